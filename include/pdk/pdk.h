@@ -1,0 +1,9 @@
+/* pdk: peridynamics solid mechanics with ductile fracture. This header includes every public one. */
+#ifndef PDK_PDK_H
+#define PDK_PDK_H
+
+#include "pdk/version.h"
+#include "pdk/ctx.h"
+#include "pdk/particles.h"
+
+#endif

@@ -1,0 +1,86 @@
+/* Private to libpdk: error macros, aligned allocation, the context's insides.
+ *
+ * Error convention (STYLE.md): a fallible function returns int (0 = success). PDK_CHECK records a
+ * message in the context and returns; PDK_CHECK_GOTO and PDK_CALL_GOTO set `err` and jump to the
+ * function's single `cleanup:` label, for functions that own memory. Inside OpenMP regions record
+ * failure in a private flag, reduce it, and check after the region.
+ */
+#ifndef PDK_IMPL_H
+#define PDK_IMPL_H
+
+#include <stdarg.h>
+#include <stdlib.h>
+
+#include "pdk/pdk.h"
+
+#define PDK_ERRMSG_MAX 2048
+
+/* Kernel-variant table: one function pointer per kernel kind, filled at context creation from the
+ * CPU's features (or the user's forced choice). Later issues add kinds; callers never branch on
+ * variants themselves. */
+typedef struct pdk_kernel_table {
+  const char *name; /* "ref" or "simd" */
+  /* Family build, candidate scan (kernels/ref/family_scan.c and variants). */
+  pdk_index (*family_scan2)(pdk_index n_cand, const double *restrict cx, const double *restrict cy,
+                            double xi, double yi, double r2max, pdk_index self,
+                            const pdk_index *restrict cand_id, pdk_index *restrict out);
+  pdk_index (*family_scan3)(pdk_index n_cand, const double *restrict cx, const double *restrict cy,
+                            const double *restrict cz, double xi, double yi, double zi,
+                            double r2max, pdk_index self, const pdk_index *restrict cand_id,
+                            pdk_index *restrict out);
+} pdk_kernel_table;
+
+struct pdk_ctx {
+  int num_threads;
+  int max_threads;   /* hardware threads the process may use */
+  pdk_bind bind;
+  unsigned isa;
+  pdk_kernel_table kernels;
+  void *topology;    /* hwloc_topology_t, owned */
+  int num_cores;
+  int error_code;
+  char error[PDK_ERRMSG_MAX];
+};
+
+/* Selects the kernel table by name ("ref", "simd") or, for NULL, the best for `isa`. */
+int pdk_kernels_select(const char *name, unsigned isa, pdk_kernel_table *out);
+
+/* Binds the calling OpenMP thread `tid` of `nthreads` to a core per the policy (no-op for NONE);
+ * called at the start of each parallel region that should run bound. */
+void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid);
+
+#define PDK_CHECK(cond, ctx, code, ...)                                                         \
+  do {                                                                                          \
+    if (!(cond)) return pdk_ctx_error_set((ctx), (code), __func__, __VA_ARGS__);                \
+  } while (0)
+
+#define PDK_CALL(expr)                                                                          \
+  do {                                                                                          \
+    int pdk_call_err_ = (expr);                                                                 \
+    if (pdk_call_err_) return pdk_call_err_;                                                    \
+  } while (0)
+
+#define PDK_CHECK_GOTO(cond, ctx, code, ...)                                                    \
+  do {                                                                                          \
+    if (!(cond)) {                                                                              \
+      err = pdk_ctx_error_set((ctx), (code), __func__, __VA_ARGS__);                            \
+      goto cleanup;                                                                             \
+    }                                                                                           \
+  } while (0)
+
+#define PDK_CALL_GOTO(expr)                                                                     \
+  do {                                                                                          \
+    err = (expr);                                                                               \
+    if (err) goto cleanup;                                                                      \
+  } while (0)
+
+/* 64-byte aligned allocation of `count` elements of `size` bytes; NULL on overflow or failure.
+ * Memory is zeroed. Free with pdk_free_aligned. */
+void *pdk_alloc_aligned(size_t count, size_t size);
+void pdk_free_aligned(void *ptr);
+
+static inline pdk_index pdk_pad_count(pdk_index n) {
+  return (pdk_index)(((int64_t)n + PDK_PAD - 1) / PDK_PAD * PDK_PAD);
+}
+
+#endif
