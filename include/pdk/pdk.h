@@ -5,5 +5,7 @@
 #include "pdk/version.h"
 #include "pdk/ctx.h"
 #include "pdk/particles.h"
+#include "pdk/geometry.h"
+#include "pdk/families.h"
 
 #endif

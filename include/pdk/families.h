@@ -1,0 +1,64 @@
+/* Cell list and bond families.
+ *
+ * Cells: a uniform grid of edge >= horizon over the particles' bounding box; a counting sort gives
+ * cell_start[num_cells+1] and the particles of each cell. A neighbour search visits the 3^dim
+ * cells around a particle's cell.
+ *
+ * Families, in CSR form with every bond stored from both ends:
+ *   bond_start: [n+1] int64; bonds of particle i are bond_start[i] .. bond_start[i+1]-1
+ *   bond_j:     [num_bonds] int32; the neighbour of each bond
+ * Neighbour rule: j != i is in the family of i when |X_j - X_i|^2 <= delta^2 * (1 + PDK_HORIZON_RTOL),
+ * the squared distance summed over axes in x, y, z order (bit-for-bit symmetric in i and j). The
+ * relative tolerance makes lattice points at exactly distance delta (up to the round-off of their
+ * generation) members, deterministically; with PDK_HORIZON_RTOL = 1e-12 a point farther than
+ * delta*(1 + 5e-13) is never a member.
+ * Bonds crossing a pre-crack are not created: a bond i-j is cut when the closed segment X_i X_j
+ * meets the crack segment (2-D) or the crack polygon (3-D, a planar convex or non-convex polygon);
+ * a bond lying in the crack's plane (3-D) or on its line (2-D) is not cut.
+ * Within a family, bonds are sorted by ascending j. The result does not depend on the thread count.
+ */
+#ifndef PDK_FAMILIES_H
+#define PDK_FAMILIES_H
+
+#include "pdk/particles.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PDK_HORIZON_RTOL 1e-12
+
+typedef struct pdk_precrack {
+  int num_vertices;        /* 2 in 2-D (a segment); >= 3 in 3-D (a planar polygon) */
+  const double *vertices;  /* [num_vertices][dim], caller-owned */
+} pdk_precrack;
+
+typedef struct pdk_families_opts {
+  double horizon;                   /* delta [length], > 0, uniform */
+  const char *horizon_field;        /* reserved for a per-particle horizon field; must be NULL now */
+  const pdk_precrack *precracks;    /* [num_precracks] */
+  int num_precracks;
+  size_t max_bytes;                 /* refuse to build if the bonds would take more; 0: 3/4 of RAM */
+} pdk_families_opts;
+
+pdk_families_opts pdk_families_opts_default(void);
+
+typedef struct pdk_families pdk_families;
+
+/* Builds the families of every particle of p. Errors: no particles, non-positive or non-finite
+ * horizon, non-finite coordinates (names the particle), bond count beyond the index types or
+ * the memory limit (names the count), bad pre-crack geometry. */
+int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts, pdk_families **out);
+void pdk_families_destroy(pdk_families **f);
+
+pdk_index pdk_families_num_particles(const pdk_families *f);
+pdk_bond_index pdk_families_num_bonds(const pdk_families *f);   /* directed bonds */
+const pdk_bond_index *pdk_families_bond_start(const pdk_families *f);
+const pdk_index *pdk_families_bond_j(const pdk_families *f);
+double pdk_families_horizon(const pdk_families *f);
+size_t pdk_families_memory_bytes(const pdk_families *f);        /* bond_start + bond_j */
+
+#ifdef __cplusplus
+}
+#endif
+#endif
