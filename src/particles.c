@@ -328,13 +328,14 @@ int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *
   {
     const double *x0 = pdk_particles_X(p, 0), *x1 = pdk_particles_X(p, 1);
     const double *x2 = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-    const double inv = 1.0 / cell_edge;
-    int nthreads = ctx->num_threads;
-#pragma omp parallel for default(none) shared(key, perm, x0, x1, x2, lo, n, dim, inv) schedule(static) num_threads(nthreads)
+        int nthreads = ctx->num_threads;
+#pragma omp parallel for default(none) shared(key, perm, x0, x1, x2, lo, n, dim, cell_edge) schedule(static) num_threads(nthreads)
     for (pdk_index i = 0; i < n; ++i) {
-      uint32_t cx = (uint32_t)((x0[i] - lo[0]) * inv);
-      uint32_t cy = (uint32_t)((x1[i] - lo[1]) * inv);
-      key[i] = dim == 2 ? pdk_morton2(cx, cy) : pdk_morton3(cx, cy, (uint32_t)((x2[i] - lo[2]) * inv));
+      /* cell = floor((x - lo) / edge), by division so the rule is exact as documented */
+      uint32_t cx = (uint32_t)((x0[i] - lo[0]) / cell_edge);
+      uint32_t cy = (uint32_t)((x1[i] - lo[1]) / cell_edge);
+      key[i] = dim == 2 ? pdk_morton2(cx, cy)
+                        : pdk_morton3(cx, cy, (uint32_t)((x2[i] - lo[2]) / cell_edge));
       perm[i] = i;
     }
   }

@@ -20,7 +20,12 @@
 /* A condition that must hold. */
 #define T_ASSERT(cond, ...)                                                                     \
   do {                                                                                          \
-    if (!(cond)) T_FAIL("assertion '%s' failed: " __VA_ARGS__, #cond);                          \
+    if (!(cond)) {                                                                              \
+      fprintf(stderr, "%s:%d: assertion '%s' failed: ", __FILE__, __LINE__, #cond);             \
+      fprintf(stderr, __VA_ARGS__);                                                             \
+      fprintf(stderr, "\n");                                                                    \
+      exit(1);                                                                                  \
+    }                                                                                           \
   } while (0)
 
 /* A pdk call that must succeed; prints the context's message if it does not. */
@@ -47,9 +52,13 @@
 #define T_NEAR(a, b, rtol, atol, ...)                                                           \
   do {                                                                                          \
     double t_a_ = (a), t_b_ = (b);                                                              \
-    if (!(fabs(t_a_ - t_b_) <= (rtol) * fabs(t_b_) + (atol)))                                   \
-      T_FAIL("%s = %.17g vs %s = %.17g (rtol %g, atol %g): " __VA_ARGS__, #a, t_a_, #b, t_b_,   \
-             (double)(rtol), (double)(atol));                                                   \
+    if (!(fabs(t_a_ - t_b_) <= (rtol) * fabs(t_b_) + (atol))) {                                 \
+      fprintf(stderr, "%s:%d: %s = %.17g vs %s = %.17g (rtol %g, atol %g): ", __FILE__,         \
+              __LINE__, #a, t_a_, #b, t_b_, (double)(rtol), (double)(atol));                   \
+      fprintf(stderr, __VA_ARGS__);                                                             \
+      fprintf(stderr, "\n");                                                                    \
+      exit(1);                                                                                  \
+    }                                                                                           \
   } while (0)
 
 static inline pdk_ctx *t_ctx(int num_threads) {

@@ -71,8 +71,8 @@ int pdk_particles_permute(pdk_particles *p, const pdk_index *perm);
 /* Keeps only particles with keep[i] != 0, in their order; error if none would remain. */
 int pdk_particles_compact(pdk_particles *p, const uint8_t *keep);
 
-/* Sorts particles by the Morton (Z-order) key of the cell of edge `cell_edge` that holds X, cells
- * counted from the bounding box's low corner. Stable: ties keep their current order. If perm_out
+/* Sorts particles by the Morton (Z-order) key of the cell of edge `cell_edge` that holds X (cell
+ * index floor((X - lo) / cell_edge) per axis, lo the bounding box's low corner). Stable: ties keep their current order. If perm_out
  * is not NULL it receives n entries (new -> old). */
 int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out);
 
