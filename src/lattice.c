@@ -5,9 +5,9 @@
  * linear point index p. Points are ordered x fastest, then y, then z:
  *
  *   square / cubic:  p = i + nx*(j + ny*k)
- *   hexagonal:       rows alternate between n_even and n_odd points (n_odd <= n_even), so a pair of
- *                    rows holds n_even + n_odd points and p = (j/2)*(n_even+n_odd) + (j odd ? n_even
- *                    : 0) + i
+ *   hexagonal:       rows alternate between n_even and n_odd points (n_odd <= n_even), so a
+ *                    pair of rows holds n_even + n_odd points and
+ *                    p = (j/2)*(n_even + n_odd) + (j odd ? n_even : 0) + i
  *
  * Coordinates along an axis, computed by multiplication so each is one rounding from exact and does
  * not depend on how points are split among threads:
@@ -15,7 +15,8 @@
  *   cell-centred (node_type 0):  x_i = lo + (i + 1/2) * spacing,  generated while x_i < hi
  *   node-type    (node_type 1):  x_i = lo + i * spacing,  i = 0 .. N,  N = round((hi - lo)/spacing)
  *   hexagonal rows:              y_j = lo_y + (j + 1/2) * h,  h = spacing * sqrt(3)/2
- *                                x_ij = lo_x + (i + 1/4) * spacing (even j), (i + 3/4) * spacing (odd j)
+ *                                x_ij = lo_x + (i + 1/4) * spacing  (even j)
+ *                                x_ij = lo_x + (i + 3/4) * spacing  (odd j)
  *
  * The hexagonal rows are offset by +-spacing/4 from the cell centre (instead of 0 and +spacing/2)
  * so both row kinds sit symmetrically in the box: for a box width that is a multiple of the spacing
@@ -52,17 +53,17 @@ pdk_lattice_opts pdk_lattice_opts_default(void) {
 /* Everything the fill needs, computed once by lattice_layout. */
 typedef struct lattice_layout {
   int dim;
-  int hex;             /* 1: hexagonal rows */
+  int hex; /* 1: hexagonal rows */
   int node_type;
   double lo[3];
-  double spacing;      /* [length] */
-  double row_pitch;    /* hexagonal: spacing*sqrt(3)/2 between rows [length] */
-  int64_t n_axis[3];   /* points per axis; hexagonal: n_axis[0] = points in an even row */
-  int64_t n_odd;       /* hexagonal: points in an odd row */
-  int64_t n_rows;      /* hexagonal: number of rows (= n_axis[1]) */
-  int64_t total;       /* number of points */
-  double volume;       /* cell volume [length^dim, 2-D times thickness] */
-  double jitter_abs;   /* jitter * spacing [length] */
+  double spacing;    /* [length] */
+  double row_pitch;  /* hexagonal: spacing*sqrt(3)/2 between rows [length] */
+  int64_t n_axis[3]; /* points per axis; hexagonal: n_axis[0] = points in an even row */
+  int64_t n_odd;     /* hexagonal: points in an odd row */
+  int64_t n_rows;    /* hexagonal: number of rows (= n_axis[1]) */
+  int64_t total;     /* number of points */
+  double volume;     /* cell volume [length^dim, 2-D times thickness] */
+  double jitter_abs; /* jitter * spacing [length] */
   uint64_t seed;
 } lattice_layout;
 
@@ -84,8 +85,10 @@ static int64_t axis_count(double lo, double hi, double pitch, double offset) {
   double estimate = ceil((hi - lo) / pitch - offset);
   int64_t n = estimate > 0 ? (int64_t)estimate : 0;
   /* The estimate is off by at most one or two from rounding; settle it on the real test. */
-  while (n > 0 && !(lo + ((double)(n - 1) + offset) * pitch < hi)) --n;
-  while (lo + ((double)n + offset) * pitch < hi) ++n;
+  while (n > 0 && !(lo + ((double)(n - 1) + offset) * pitch < hi))
+    --n;
+  while (lo + ((double)n + offset) * pitch < hi)
+    ++n;
   return n;
 }
 
@@ -111,11 +114,10 @@ static double jitter_unit(uint64_t seed, int64_t i, int64_t j, int64_t k, int ax
 static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_layout *L) {
   static const char axis_name[3] = {'x', 'y', 'z'};
   memset(L, 0, sizeof *L);
-  PDK_CHECK(o->type == PDK_LATTICE_SQUARE || o->type == PDK_LATTICE_HEX ||
-                o->type == PDK_LATTICE_CUBIC,
-            ctx, PDK_ERR_ARG,
-            "unknown lattice type %d; allowed: %d (square), %d (hexagonal), %d (cubic)",
-            (int)o->type, PDK_LATTICE_SQUARE, PDK_LATTICE_HEX, PDK_LATTICE_CUBIC);
+  PDK_CHECK(
+      o->type == PDK_LATTICE_SQUARE || o->type == PDK_LATTICE_HEX || o->type == PDK_LATTICE_CUBIC,
+      ctx, PDK_ERR_ARG, "unknown lattice type %d; allowed: %d (square), %d (hexagonal), %d (cubic)",
+      (int)o->type, PDK_LATTICE_SQUARE, PDK_LATTICE_HEX, PDK_LATTICE_CUBIC);
   const int dim = o->type == PDK_LATTICE_CUBIC ? 3 : 2;
   const int hex = o->type == PDK_LATTICE_HEX;
   const char *tname = lattice_type_name(o->type);
@@ -125,7 +127,8 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
             "lattice jitter must be in [0, 0.5) (a fraction of the spacing), got %g", o->jitter);
   PDK_CHECK(o->node_type == 0 || o->node_type == 1, ctx, PDK_ERR_ARG,
             "lattice node_type must be 0 (cell-centred points) or 1 (grid nodes on both faces), "
-            "got %d", o->node_type);
+            "got %d",
+            o->node_type);
   PDK_CHECK(!(hex && o->node_type), ctx, PDK_ERR_ARG,
             "node_type 1 (grid nodes on both faces) is defined for square and cubic lattices only, "
             "not for the hexagonal lattice");
@@ -149,7 +152,8 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
   L->row_pitch = s * (0.5 * sqrt(3.0));
   L->jitter_abs = o->jitter * s;
   L->seed = o->seed;
-  for (int d = 0; d < dim; ++d) L->lo[d] = o->lo[d];
+  for (int d = 0; d < dim; ++d)
+    L->lo[d] = o->lo[d];
 
   /* Per-axis counts; first bound (hi - lo)/pitch so the integer counts cannot overflow. */
   for (int d = 0; d < dim; ++d) {
@@ -158,15 +162,16 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
     PDK_CHECK(q <= (double)LATTICE_MAX_POINTS, ctx, PDK_ERR_ARG,
               "%s lattice: axis %c spans %g spacings (lo = %g, hi = %g, spacing %g), more points "
               "than the 32-bit particle index allows (%lld); increase the spacing or shrink the "
-              "box", tname, axis_name[d], q, o->lo[d], o->hi[d], s, (long long)LATTICE_MAX_POINTS);
+              "box",
+              tname, axis_name[d], q, o->lo[d], o->hi[d], s, (long long)LATTICE_MAX_POINTS);
     if (o->node_type) {
       double nq = round(q);
       /* Relative tolerance 1e-6: far above the round-off of (hi - lo)/spacing, far below any
        * box that is really not a whole number of spacings. */
       PDK_CHECK(fabs(q - nq) <= 1e-6 * fmax(nq, 1.0), ctx, PDK_ERR_ARG,
                 "node-type lattice: axis %c is %g spacings long (lo = %g, hi = %g, spacing %g); "
-                "grid nodes on both faces need a whole number of spacings", axis_name[d], q,
-                o->lo[d], o->hi[d], s);
+                "grid nodes on both faces need a whole number of spacings",
+                axis_name[d], q, o->lo[d], o->hi[d], s);
       L->n_axis[d] = (int64_t)nq + 1;
     } else if (hex && d == 0) {
       L->n_axis[0] = axis_count(o->lo[0], o->hi[0], s, 0.25);
@@ -184,12 +189,13 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
     total = (double)n_even_rows * (double)L->n_axis[0] + (double)n_odd_rows * (double)L->n_odd;
   } else {
     total = 1.0;
-    for (int d = 0; d < dim; ++d) total *= (double)L->n_axis[d];
+    for (int d = 0; d < dim; ++d)
+      total *= (double)L->n_axis[d];
   }
   PDK_CHECK(total <= (double)LATTICE_MAX_POINTS, ctx, PDK_ERR_ARG,
             "%s lattice would have %.0f points, more than the 32-bit particle index allows (%lld); "
-            "increase the spacing (%g) or shrink the box", tname, total,
-            (long long)LATTICE_MAX_POINTS, s);
+            "increase the spacing (%g) or shrink the box",
+            tname, total, (long long)LATTICE_MAX_POINTS, s);
   if (dim == 2)
     PDK_CHECK(total > 0, ctx, PDK_ERR_ARG,
               "%s lattice has no point: the box [%g, %g]..[%g, %g] is too small for spacing %g "
@@ -202,9 +208,12 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
               tname, o->lo[0], o->lo[1], o->lo[2], o->hi[0], o->hi[1], o->hi[2], s);
   L->total = (int64_t)total;
 
-  if (o->type == PDK_LATTICE_SQUARE) L->volume = s * s * o->thickness;
-  else if (hex) L->volume = (0.5 * sqrt(3.0)) * s * s * o->thickness;
-  else L->volume = s * s * s;
+  if (o->type == PDK_LATTICE_SQUARE)
+    L->volume = s * s * o->thickness;
+  else if (hex)
+    L->volume = (0.5 * sqrt(3.0)) * s * s * o->thickness;
+  else
+    L->volume = s * s * s;
   return PDK_SUCCESS;
 }
 
@@ -260,7 +269,7 @@ int pdk_lattice_create(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_particles
   const pdk_index n = (pdk_index)layout.total;
   const int dim = layout.dim;
   const int nthreads = ctx->num_threads;
-#pragma omp parallel for default(none) shared(L, X, volume, n, dim) schedule(static) \
+#pragma omp parallel for default(none) shared(L, X, volume, n, dim) schedule(static)               \
     num_threads(nthreads)
   for (pdk_index ip = 0; ip < n; ++ip) {
     int64_t site[3];
