@@ -7,5 +7,7 @@
 #include "pdk/particles.h"
 #include "pdk/geometry.h"
 #include "pdk/families.h"
+#include "pdk/model.h"
+#include "pdk/explicit.h"
 
 #endif

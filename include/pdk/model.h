@@ -1,0 +1,112 @@
+/* Force models: bond-based PMB, ordinary state-based LPS, and correspondence.
+ *
+ * A model is built over a particle store and its families. It declares the particle fields it
+ * needs (only those are allocated):
+ *   "x"  f64 x dim  current position [length] (read; the solver advances it)
+ *   "f"  f64 x dim  internal force density [force/length^dim] (written by pdk_model_force)
+ * plus what its kind needs (LPS: "m" weighted volume, "theta" dilation; correspondence: "Kinv"
+ * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag).
+ * Bond state (intact = 1, broken = 0) exists only when the model can break bonds.
+ *
+ * Units: any consistent set (SI or N-mm-s-tonne). Volumes in 2-D are area x thickness; 2-D
+ * models are plane strain.
+ *
+ * Forces are force densities: the acceleration of particle i is f_i / rho. Every pass is a
+ * gather over particle i's own family (bonds stored from both ends), so results do not depend on
+ * the thread count.
+ */
+#ifndef PDK_MODEL_H
+#define PDK_MODEL_H
+
+#include "pdk/families.h"
+#include "pdk/particles.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum pdk_model_kind {
+  PDK_MODEL_PMB = 0,           /* prototype microelastic brittle, as LAMMPS peri/pmb */
+  PDK_MODEL_LPS = 1,           /* linear peridynamic solid, as LAMMPS peri/lps */
+  PDK_MODEL_CORRESPONDENCE = 2 /* non-ordinary state-based, total Lagrangian */
+} pdk_model_kind;
+
+typedef enum pdk_influence {
+  PDK_INFLUENCE_CONSTANT = 0, /* 1 */
+  PDK_INFLUENCE_INV_R = 1,    /* delta / r */
+  PDK_INFLUENCE_INV_R2 = 2,   /* (delta / r)^2 */
+  PDK_INFLUENCE_LINEAR = 3,   /* 1 - r/delta */
+  PDK_INFLUENCE_CUBIC = 4,    /* (1 - r/delta)^3 */
+  PDK_INFLUENCE_GAUSSIAN = 5  /* exp(-(r / (gaussian_width*delta))^2) */
+} pdk_influence;
+
+typedef enum pdk_stabilization {
+  PDK_STAB_NONE = 0,
+  PDK_STAB_SILLING = 1,  /* Silling 2017: T += (C_s c / m_w) omega z, z = Y - F xi */
+  PDK_STAB_HOURGLASS = 2 /* bond-projected hourglass force (Littlewood 2011 form) */
+} pdk_stabilization;
+
+typedef enum pdk_law {
+  PDK_LAW_LINEAR_ELASTIC = 0, /* small strain: sigma = lambda tr(eps) I + 2 mu eps, P = sigma */
+  PDK_LAW_SVK = 1,            /* St Venant-Kirchhoff: S = lambda tr(E) I + 2 mu E, P = F S */
+  PDK_LAW_NEO_HOOKE = 2       /* compressible: P = mu (F - F^-T) + lambda ln(J) F^-T */
+} pdk_law;
+
+typedef enum pdk_precision {
+  PDK_PRECISION_DOUBLE = 0,
+  PDK_PRECISION_FLOAT = 1 /* float storage of per-bond/neighbour data, double accumulation */
+} pdk_precision;
+
+typedef struct pdk_model_opts {
+  pdk_model_kind kind;
+  double bulk_modulus;  /* K [pressure], 3-D bulk modulus (plane strain uses lambda = K - 2G/3) */
+  double shear_modulus; /* G [pressure] (ignored by PMB, whose Poisson ratio is fixed) */
+  double density;       /* rho [mass / length^3] */
+  /* Critical-stretch failure (PMB, LPS; an extra criterion elsewhere), LAMMPS s0 rule:
+   * a bond breaks when its stretch exceeds min(s0_i, s0_j); after each force pass
+   * s0_i = s00 - alpha * min_j(stretch_ij). critical_stretch = s00 <= 0: no breaking. */
+  double critical_stretch;
+  double alpha;
+  /* LAMMPS partial-volume scaling of neighbours near the horizon edge (half_lc = lattice/2);
+   * 0: off (full volumes). */
+  double lattice_constant;
+  pdk_influence influence; /* correspondence (LPS and PMB use constant, as LAMMPS) */
+  double gaussian_width;   /* for PDK_INFLUENCE_GAUSSIAN, fraction of delta (default 0.5) */
+  pdk_stabilization stabilization;
+  double stab_coefficient; /* C_s (Silling) or the hourglass coefficient; default 0.1 */
+  pdk_law law;
+  pdk_precision precision;
+} pdk_model_opts;
+
+pdk_model_opts pdk_model_opts_default(void);
+
+typedef struct pdk_model pdk_model;
+
+/* Creates the model, declares its fields, precomputes what is fixed (weighted volumes, shape
+ * tensors). "x" is initialised to "X" if it did not exist. */
+int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts,
+                     pdk_model **out);
+void pdk_model_destroy(pdk_model **m);
+
+/* Computes the force density "f" from the current positions "x". If strain_energy is not NULL
+ * it receives the total strain energy sum_i V_i W_i [energy], summed in a fixed order. Breaks
+ * bonds per the failure criterion (state read from the previous pass, written for the next). */
+int pdk_model_force(pdk_model *m, double *strain_energy);
+/* The same forces, but a trial: no history changes (bond state, critical stretches, plastic
+ * strain stay as they are). Used by time-step estimates, relaxation iterates and tangents. */
+int pdk_model_force_trial(pdk_model *m, double *strain_energy);
+
+const pdk_model_opts *pdk_model_opts_get(const pdk_model *m);
+pdk_particles *pdk_model_particles(const pdk_model *m);
+pdk_families *pdk_model_families(const pdk_model *m);
+/* Bond state: [num_bonds] uint8, 1 intact, 0 broken; NULL when the model never breaks bonds. */
+const uint8_t *pdk_model_bond_alive(const pdk_model *m);
+pdk_bond_index pdk_model_num_broken(const pdk_model *m); /* directed bonds broken so far */
+/* Particles whose family no longer spans the space (correspondence): count, after a force pass. */
+pdk_index pdk_model_num_flagged(const pdk_model *m);
+const char *pdk_model_kind_name(pdk_model_kind kind);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,44 @@
+/* Private: the model object and the per-kind operations table.
+ *
+ * src/model.c owns creation, options checking, bond state and dispatch; each kind lives in its
+ * own file (model_pmb.c, model_lps.c, model_corr.c) and fills a pdk_model_ops.
+ */
+#ifndef PDK_MODEL_IMPL_H
+#define PDK_MODEL_IMPL_H
+
+#include "pdk/model.h"
+#include "pdk_impl.h"
+
+typedef struct pdk_model_ops {
+  /* Declares the kind's fields and precomputes fixed data; may set m->impl. */
+  int (*setup)(pdk_model *m);
+  /* Force density "f" from "x"; total strain energy into *energy when not NULL. With commit = 1
+   * the pass also advances history (breaks bonds, updates s0); with commit = 0 it changes
+   * nothing but "f" (and the kind's scratch fields). */
+  int (*force)(pdk_model *m, int commit, double *energy);
+  void (*destroy)(pdk_model *m);
+} pdk_model_ops;
+
+struct pdk_model {
+  pdk_ctx *ctx;
+  pdk_particles *p;
+  pdk_families *fam;
+  pdk_model_opts opts;
+  const pdk_model_ops *ops;
+  void *impl;                  /* kind-private data */
+  uint8_t *bond_alive;         /* [num_bonds] or NULL when bonds never break */
+  double *s0;                  /* [n_pad] LAMMPS critical stretch per particle, or NULL */
+  pdk_bond_index num_broken;
+  pdk_index num_flagged;
+};
+
+/* Weak while the kinds are developed side by side: a kind whose file is absent is reported as
+ * unsupported instead of breaking the link. */
+extern const pdk_model_ops pdk_model_ops_pmb __attribute__((weak));
+extern const pdk_model_ops pdk_model_ops_lps __attribute__((weak));
+extern const pdk_model_ops pdk_model_ops_corr __attribute__((weak));
+
+/* Influence function omega(r) for r <= delta (see pdk_influence). */
+double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);
+
+#endif
