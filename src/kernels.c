@@ -14,7 +14,16 @@ static void fill_ref(pdk_kernel_table *t) {
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
   fill_ref(t); /* every kind starts from its reference; optimized variants override below */
   t->name = "simd";
-  (void)isa;
+  /* Family candidate scan: AVX-512 (16 candidates per step, vpcompressd) over AVX2 (4 per step,
+   * shuffle table); both reproduce the reference exactly. */
+  if (isa & PDK_ISA_AVX2) {
+    t->family_scan2 = pdk_kernel_family_scan2_avx2;
+    t->family_scan3 = pdk_kernel_family_scan3_avx2;
+  }
+  if (isa & PDK_ISA_AVX512) {
+    t->family_scan2 = pdk_kernel_family_scan2_avx512;
+    t->family_scan3 = pdk_kernel_family_scan3_avx512;
+  }
 }
 
 int pdk_kernels_select(const char *name, unsigned isa, pdk_kernel_table *out) {

@@ -15,7 +15,17 @@
  * Bonds crossing a pre-crack are not created: a bond i-j is cut when the closed segment X_i X_j
  * meets the crack segment (2-D) or the crack polygon (3-D, a planar convex or non-convex polygon);
  * a bond lying in the crack's plane (3-D) or on its line (2-D) is not cut.
- * Within a family, bonds are sorted by ascending j. The result does not depend on the thread count.
+ * Within a family, bonds are sorted by ascending j. The result does not depend on the thread count
+ * (bitwise) nor on the kernel family ("ref" or "simd").
+ *
+ * Exact rule: with r2max = (delta * delta) * (1 + PDK_HORIZON_RTOL) evaluated in double, j is a
+ * neighbour of i when r2 <= r2max, where r2 = (dx*dx + dy*dy) + dz*dz, dx = X_j - X_i (x, y, z),
+ * each operation rounded to double, no fused multiply-add.
+ *
+ * Speed: the build is fastest when the store was first reordered by the cells it uses:
+ *   pdk_particles_reorder_morton(p, pdk_families_cell_edge(p, delta), NULL);
+ * then every cell is one contiguous index range and families come out sorted without merging.
+ * Any order gives the same families (up to the renumbering), only slower.
  */
 #ifndef PDK_FAMILIES_H
 #define PDK_FAMILIES_H
@@ -45,9 +55,12 @@ pdk_families_opts pdk_families_opts_default(void);
 
 typedef struct pdk_families pdk_families;
 
-/* Builds the families of every particle of p. Errors: no particles, non-positive or non-finite
- * horizon, non-finite coordinates (names the particle), bond count beyond the index types or
- * the memory limit (names the count), bad pre-crack geometry. */
+/* Builds the families of every particle of p (n >= 1; a single particle has an empty family).
+ * Errors: non-positive or non-finite horizon (PDK_ERR_ARG), horizon_field set
+ * (PDK_ERR_UNSUPPORTED), non-finite coordinates (PDK_ERR_NUMERIC, names the particle), bond count
+ * beyond the memory limit (PDK_ERR_MEMORY, names the count and bytes; checked before the bonds are
+ * allocated), bad pre-crack geometry (PDK_ERR_ARG: wrong vertex count, non-finite, zero length or
+ * area, not planar). */
 int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts, pdk_families **out);
 void pdk_families_destroy(pdk_families **f);
 
@@ -57,6 +70,12 @@ const pdk_bond_index *pdk_families_bond_start(const pdk_families *f);
 const pdk_index *pdk_families_bond_j(const pdk_families *f);
 double pdk_families_horizon(const pdk_families *f);
 size_t pdk_families_memory_bytes(const pdk_families *f);        /* bond_start + bond_j */
+
+/* The cell edge pdk_families_build uses for store p and this horizon: a relative 1.5e-8 above the
+ * horizon (so round-off can never put two neighbours two cells apart), more when a huge box or a
+ * tiny horizon forces a coarser grid. Pass it to pdk_particles_reorder_morton for the fastest
+ * build. Returns 0 and records an error in the context for a bad horizon or coordinates. */
+double pdk_families_cell_edge(pdk_particles *p, double horizon);
 
 #ifdef __cplusplus
 }

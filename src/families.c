@@ -1,0 +1,902 @@
+/* Bond families: neighbour search over a cell list, pre-cracks, CSR storage. See
+ * include/pdk/families.h for the neighbour rule and the guarantees.
+ *
+ * Storage:
+ *   bond_start: [n+1] int64; bonds of particle i are bond_start[i] .. bond_start[i+1]-1
+ *   bond_j:     [num_bonds] int32; the neighbour of each bond, ascending within a family
+ *
+ * Method.
+ *  1. Cells (src/cells.c): grid of edge slightly above the horizon, particles counting-sorted by
+ *     cell into contiguous coordinate arrays.
+ *  2. Bound the bond count before allocating anything large: an upper bound from cell occupancies
+ *     (every particle of the 3^d cells around a particle's cell), and, when that exceeds the memory
+ *     limit, a lower bound (cell pairs whose particles are all within the horizon of each other)
+ *     that fails a huge horizon at once, else an exact count with early exit.
+ *  3. Per cell c, gather the candidates: the particles of the 3^d neighbour cells that lie within
+ *     the horizon of c's bounding box, in ascending particle index (neighbour cells visited in the
+ *     order of their first particle, and merged when their index ranges interleave). Every
+ *     particle i of c then scans this one contiguous buffer with the family_scan kernel of the
+ *     context's table; the kernel keeps candidate order, so each family comes out ascending
+ *     without a sort. When the store was reordered with pdk_families_cell_edge's edge, cells are
+ *     contiguous index ranges and no merge happens.
+ *  4. Pre-cracks remove the bonds they cut; a cell tests only the cracks whose bounding box comes
+ *     within the horizon of its own, a bond only those its bounding box touches.
+ *  5. Threads: the non-empty cells, in the order of their first particle, are split into one block
+ *     per thread with equal particle counts (a static schedule). A first parallel pass counts each
+ *     family, a prefix sum gives bond_start, a second pass writes bond_j. Every family depends
+ *     only on its particle, so the result is bitwise the same for any thread count.
+ */
+#define _DEFAULT_SOURCE /* sysconf(_SC_PHYS_PAGES) */
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cells.h"
+#include "kernels.h"
+
+/* Orientation filters below bound the round-off of a specific sequence of roundings; fused
+ * multiply-adds would change it. */
+PDK_KERNEL_FP_EXACT
+
+struct pdk_families {
+  pdk_ctx *ctx;
+  pdk_index n;
+  double horizon;             /* [length] */
+  pdk_bond_index num_bonds;   /* directed bonds */
+  pdk_bond_index *bond_start; /* [n+1] */
+  pdk_index *bond_j;          /* [num_bonds] (allocated for at least one entry) */
+};
+
+pdk_families_opts pdk_families_opts_default(void) {
+  pdk_families_opts o;
+  memset(&o, 0, sizeof o);
+  return o;
+}
+
+/* ---- exact orientation predicates ------------------------------------------------------------
+ * orient2d(a, b, c) = det [a - c; b - c] and orient3d(a, b, c, d) = det [a - d; b - d; c - d], as
+ * exact signs. A floating-point evaluation with Shewchuk's forward error bound (doubled here for
+ * margin) decides almost every case; the rest are evaluated exactly as sums of products of the
+ * input coordinates, each product split into non-overlapping doubles with fma, summed into a
+ * non-overlapping expansion (Shewchuk's Grow-Expansion) whose largest component gives the sign.
+ * Exact as long as no product underflows or overflows (|coordinates| within 1e-70 .. 1e70). */
+
+/* Adds b to the expansion e[0..m-1] (non-overlapping, increasing magnitude, no zeros); returns
+ * the new length. */
+static int expansion_grow(double *e, int m, double b) {
+  int k = 0;
+  double q = b;
+  for (int i = 0; i < m; ++i) {
+    double sum = q + e[i];
+    double bv = sum - q, av = sum - bv;
+    double err = (q - av) + (e[i] - bv);
+    q = sum;
+    if (err != 0.0) e[k++] = err;
+  }
+  if (q != 0.0) e[k++] = q;
+  return k;
+}
+
+/* Adds sign * a * b to the expansion, exactly. */
+static int expansion_add_product(double *e, int m, double sign, double a, double b) {
+  double p = a * b, err = fma(a, b, -p);
+  m = expansion_grow(e, m, sign * p);
+  return expansion_grow(e, m, sign * err);
+}
+
+/* Adds sign * a * b * c to the expansion, exactly. */
+static int expansion_add_triple(double *e, int m, double sign, double a, double b, double c) {
+  double p = a * b, err = fma(a, b, -p);
+  m = expansion_add_product(e, m, sign, p, c);
+  return expansion_add_product(e, m, sign, err, c);
+}
+
+static int expansion_sign(const double *e, int m) { return m == 0 ? 0 : (e[m - 1] > 0 ? 1 : -1); }
+
+static int orient2d_sign(const double a[2], const double b[2], const double c[2]) {
+  const double eps = 0x1p-53;
+  double detleft = (a[0] - c[0]) * (b[1] - c[1]);
+  double detright = (a[1] - c[1]) * (b[0] - c[0]);
+  double det = detleft - detright;
+  double bound = 2.0 * (3.0 + 16.0 * eps) * eps * (fabs(detleft) + fabs(detright));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  /* det = ax by - ax cy - ay bx + ay cx + bx cy - by cx */
+  double e[12];
+  int m = 0;
+  m = expansion_add_product(e, m, 1, a[0], b[1]);
+  m = expansion_add_product(e, m, -1, a[0], c[1]);
+  m = expansion_add_product(e, m, -1, a[1], b[0]);
+  m = expansion_add_product(e, m, 1, a[1], c[0]);
+  m = expansion_add_product(e, m, 1, b[0], c[1]);
+  m = expansion_add_product(e, m, -1, b[1], c[0]);
+  return expansion_sign(e, m);
+}
+
+/* Adds sign * det [p; q; r] (3 x 3, rows p, q, r) to the expansion. */
+static int expansion_add_det3(double *e, int m, double sign, const double p[3], const double q[3],
+                              const double r[3]) {
+  m = expansion_add_triple(e, m, sign, p[0], q[1], r[2]);
+  m = expansion_add_triple(e, m, -sign, p[0], q[2], r[1]);
+  m = expansion_add_triple(e, m, -sign, p[1], q[0], r[2]);
+  m = expansion_add_triple(e, m, sign, p[1], q[2], r[0]);
+  m = expansion_add_triple(e, m, sign, p[2], q[0], r[1]);
+  m = expansion_add_triple(e, m, -sign, p[2], q[1], r[0]);
+  return m;
+}
+
+static int orient3d_sign(const double a[3], const double b[3], const double c[3],
+                         const double d[3]) {
+  const double eps = 0x1p-53;
+  double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];
+  double bdx = b[0] - d[0], bdy = b[1] - d[1], bdz = b[2] - d[2];
+  double cdx = c[0] - d[0], cdy = c[1] - d[1], cdz = c[2] - d[2];
+  double bc = bdy * cdz - bdz * cdy, ca = cdy * adz - cdz * ady, ab = ady * bdz - adz * bdy;
+  double det = adx * bc + bdx * ca + cdx * ab;
+  double permanent = (fabs(bdy * cdz) + fabs(bdz * cdy)) * fabs(adx) +
+                     (fabs(cdy * adz) + fabs(cdz * ady)) * fabs(bdx) +
+                     (fabs(ady * bdz) + fabs(adz * bdy)) * fabs(cdx);
+  double bound = 2.0 * (7.0 + 56.0 * eps) * eps * permanent;
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  /* det [a-d; b-d; c-d] = det [a 1; b 1; c 1; d 1] = -|b c d| + |a c d| - |a b d| + |a b c| */
+  double e[96];
+  int m = 0;
+  m = expansion_add_det3(e, m, -1, b, c, d);
+  m = expansion_add_det3(e, m, 1, a, c, d);
+  m = expansion_add_det3(e, m, -1, a, b, d);
+  m = expansion_add_det3(e, m, 1, a, b, c);
+  return expansion_sign(e, m);
+}
+
+/* ---- pre-cracks ------------------------------------------------------------------------------ */
+
+typedef struct crack {
+  int num_vertices;
+  const double *v;     /* [num_vertices][dim], caller-owned */
+  double lo[3], hi[3]; /* bounding box */
+  /* 3-D only */
+  double normal[3];   /* Newell normal (twice the area vector) */
+  int plane[3];       /* three vertices spanning the plane, for the exact side test */
+  int axis_u, axis_w; /* projection axes: the dominant normal axis dropped */
+} crack;
+
+/* Checks the pre-crack geometry and precomputes what the bond tests need. */
+static int cracks_prepare(pdk_ctx *ctx, int dim, const pdk_families_opts *o, crack **out) {
+  *out = NULL;
+  PDK_CHECK(o->num_precracks >= 0, ctx, PDK_ERR_ARG, "opts.num_precracks must be >= 0, got %d",
+            o->num_precracks);
+  if (o->num_precracks == 0) return PDK_SUCCESS;
+  PDK_CHECK(o->precracks, ctx, PDK_ERR_ARG, "opts.num_precracks is %d but opts.precracks is NULL",
+            o->num_precracks);
+  for (int k = 0; k < o->num_precracks; ++k) {
+    const pdk_precrack *pc = &o->precracks[k];
+    if (dim == 2)
+      PDK_CHECK(pc->num_vertices == 2, ctx, PDK_ERR_ARG,
+                "pre-crack %d: a 2-D pre-crack is a segment with 2 vertices, got %d vertices", k,
+                pc->num_vertices);
+    else
+      PDK_CHECK(pc->num_vertices >= 3, ctx, PDK_ERR_ARG,
+                "pre-crack %d: a 3-D pre-crack is a planar polygon with at least 3 vertices, got "
+                "%d vertices",
+                k, pc->num_vertices);
+    PDK_CHECK(pc->vertices, ctx, PDK_ERR_ARG, "pre-crack %d: vertices is NULL", k);
+    for (int v = 0; v < pc->num_vertices; ++v)
+      for (int a = 0; a < dim; ++a)
+        PDK_CHECK(isfinite(pc->vertices[v * dim + a]), ctx, PDK_ERR_ARG,
+                  "pre-crack %d: vertex %d has a non-finite coordinate %d = %g", k, v, a,
+                  pc->vertices[v * dim + a]);
+  }
+  crack *cr = calloc((size_t)o->num_precracks, sizeof *cr);
+  PDK_CHECK(cr, ctx, PDK_ERR_MEMORY, "out of memory preparing %d pre-cracks", o->num_precracks);
+  for (int k = 0; k < o->num_precracks; ++k) {
+    const pdk_precrack *pc = &o->precracks[k];
+    crack *c = &cr[k];
+    const int nv = pc->num_vertices;
+    const double *v = pc->vertices;
+    c->num_vertices = nv;
+    c->v = v;
+    for (int a = 0; a < dim; ++a) {
+      c->lo[a] = c->hi[a] = v[a];
+      for (int q = 1; q < nv; ++q) {
+        c->lo[a] = fmin(c->lo[a], v[q * dim + a]);
+        c->hi[a] = fmax(c->hi[a], v[q * dim + a]);
+      }
+    }
+    double size = 0;
+    for (int a = 0; a < dim; ++a)
+      size = fmax(size, c->hi[a] - c->lo[a]);
+    if (dim == 2) {
+      if (!(size > 0)) {
+        free(cr);
+        return pdk_ctx_error_set(ctx, PDK_ERR_ARG, __func__,
+                                 "pre-crack %d: its two vertices coincide at (%g, %g); a crack "
+                                 "segment needs a positive length",
+                                 k, v[0], v[1]);
+      }
+      continue;
+    }
+    /* Newell normal: n = sum over edges (v_q - v_{q+1}) x-ish terms, robust for any planar
+     * polygon, convex or not; |n| is twice the area. */
+    double n[3] = {0, 0, 0};
+    for (int q = 0; q < nv; ++q) {
+      const double *p0 = &v[q * 3], *p1 = &v[((q + 1) % nv) * 3];
+      n[0] += (p0[1] - p1[1]) * (p0[2] + p1[2]);
+      n[1] += (p0[2] - p1[2]) * (p0[0] + p1[0]);
+      n[2] += (p0[0] - p1[0]) * (p0[1] + p1[1]);
+    }
+    double nlen = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(size > 0) || !(nlen > 1e-12 * size * size)) {
+      free(cr);
+      return pdk_ctx_error_set(ctx, PDK_ERR_ARG, __func__,
+                               "pre-crack %d: the polygon has zero area (its %d vertices are "
+                               "repeated or collinear)",
+                               k, nv);
+    }
+    for (int q = 0; q < nv; ++q) {
+      double dist =
+          ((v[q * 3] - v[0]) * n[0] + (v[q * 3 + 1] - v[1]) * n[1] + (v[q * 3 + 2] - v[2]) * n[2]) /
+          nlen;
+      if (!(fabs(dist) <= 1e-9 * size)) {
+        free(cr);
+        return pdk_ctx_error_set(ctx, PDK_ERR_ARG, __func__,
+                                 "pre-crack %d: the polygon is not planar: vertex %d lies %g off "
+                                 "the plane of vertex 0 (polygon size %g)",
+                                 k, q, dist, size);
+      }
+    }
+    memcpy(c->normal, n, sizeof n);
+    /* Plane for the exact side test: vertex 0, the vertex farthest from it, and the vertex that
+     * makes the largest triangle with those two. */
+    int ib = 0, ic = 0;
+    double best = -1;
+    for (int q = 1; q < nv; ++q) {
+      double d0 = v[q * 3] - v[0], d1 = v[q * 3 + 1] - v[1], d2 = v[q * 3 + 2] - v[2];
+      double d = d0 * d0 + d1 * d1 + d2 * d2;
+      if (d > best) best = d, ib = q;
+    }
+    best = -1;
+    for (int q = 1; q < nv; ++q) {
+      double e1[3], e2[3], x[3];
+      for (int a = 0; a < 3; ++a)
+        e1[a] = v[ib * 3 + a] - v[a], e2[a] = v[q * 3 + a] - v[a];
+      x[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      x[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      x[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      double d = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+      if (d > best) best = d, ic = q;
+    }
+    c->plane[0] = 0;
+    c->plane[1] = ib;
+    c->plane[2] = ic;
+    int drop = 0;
+    for (int a = 1; a < 3; ++a)
+      if (fabs(n[a]) > fabs(n[drop])) drop = a;
+    c->axis_u = (drop + 1) % 3;
+    c->axis_w = (drop + 2) % 3;
+  }
+  *out = cr;
+  return PDK_SUCCESS;
+}
+
+/* 1 if the closed bond segment p-q meets the closed crack segment; a bond on the crack's line is
+ * not cut. */
+static int crack_cuts2(const crack *c, const double p[2], const double q[2]) {
+  const double *a = c->v, *b = c->v + 2;
+  int o1 = orient2d_sign(a, b, p), o2 = orient2d_sign(a, b, q);
+  if (o1 == 0 && o2 == 0) return 0;
+  if (o1 * o2 > 0) return 0;
+  int o3 = orient2d_sign(p, q, a), o4 = orient2d_sign(p, q, b);
+  return o3 * o4 <= 0;
+}
+
+/* 1 if the point x (on the crack's plane) lies inside the polygon: crossing number in the
+ * projection that drops the dominant normal axis. */
+static int crack_contains3(const crack *c, const double x[3]) {
+  const int u = c->axis_u, w = c->axis_w, nv = c->num_vertices;
+  const double *v = c->v;
+  int inside = 0;
+  for (int a = 0, b = nv - 1; a < nv; b = a++) {
+    double ua = v[a * 3 + u], wa = v[a * 3 + w], ub = v[b * 3 + u], wb = v[b * 3 + w];
+    if ((wa > x[w]) != (wb > x[w])) {
+      double ucross = ua + (x[w] - wa) * (ub - ua) / (wb - wa);
+      if (x[u] < ucross) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+/* 1 if the closed bond segment p-q passes through the crack polygon; a bond lying in the crack's
+ * plane is not cut. Sides are exact (orient3d against three polygon vertices); the crossing point
+ * is computed in floating point. */
+static int crack_cuts3(const crack *c, const double p[3], const double q[3]) {
+  const double *a = c->v + 3 * c->plane[0], *b = c->v + 3 * c->plane[1],
+               *cc = c->v + 3 * c->plane[2];
+  int sp = orient3d_sign(a, b, cc, p), sq = orient3d_sign(a, b, cc, q);
+  if (sp == 0 && sq == 0) return 0;
+  if (sp * sq > 0) return 0;
+  double x[3];
+  if (sp == 0) {
+    memcpy(x, p, sizeof x);
+  } else if (sq == 0) {
+    memcpy(x, q, sizeof x);
+  } else {
+    const double *n = c->normal, *o = c->v;
+    double dp = (p[0] - o[0]) * n[0] + (p[1] - o[1]) * n[1] + (p[2] - o[2]) * n[2];
+    double dq = (q[0] - o[0]) * n[0] + (q[1] - o[1]) * n[1] + (q[2] - o[2]) * n[2];
+    double t = dp / (dp - dq);
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    if (!isfinite(t)) t = 0.5;
+    for (int k = 0; k < 3; ++k)
+      x[k] = p[k] + t * (q[k] - p[k]);
+  }
+  return crack_contains3(c, x);
+}
+
+/* ---- the scan ------------------------------------------------------------------------------- */
+
+/* Read-only inputs of the scan, shared by all threads. */
+typedef struct scan_shared {
+  const pdk_cells *cl;
+  int dim;
+  double r2max;       /* horizon^2 (1 + PDK_HORIZON_RTOL): the neighbour rule */
+  double prune2;      /* r2max (1 + 1e-9): keeps every candidate within reach of the cell's box */
+  double reach;       /* sqrt(prune2) */
+  const double *X[3]; /* [n] store-order coordinates (pre-crack tests) */
+  const crack *cracks;
+  int num_cracks;
+  pdk_kernel_table kern;
+  pdk_index max_cand; /* the most candidates any cell can have (3^d cells' occupancy) */
+} scan_shared;
+
+/* Per-thread buffers of the scan; all [max_cand] entries unless stated. */
+typedef struct scan_buf {
+  double *cx, *cy, *cz;       /* candidates of the current cell, ascending particle index */
+  pdk_index *cid;             /* [max_cand + PDK_SCAN_OUT_PAD] their particle indices */
+  double *tx, *ty, *tz;       /* merge target; swapped with cx.. after a merge */
+  pdk_index *tid;             /* [max_cand + PDK_SCAN_OUT_PAD] */
+  pdk_index *perm, *perm_tmp; /* merge permutations */
+  pdk_index *out;             /* [max_cand + PDK_SCAN_OUT_PAD] one family before it is stored */
+  int *crack_list;            /* [num_cracks] cracks that may cut a bond of the current cell */
+  int num_crack_list;
+} scan_buf;
+
+static void scan_buf_free(scan_buf *t) {
+  if (!t) return;
+  void *ptrs[] = {t->cx, t->cy,  t->cz,   t->cid,      t->tx,  t->ty,
+                  t->tz, t->tid, t->perm, t->perm_tmp, t->out, t->crack_list};
+  for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; ++k)
+    pdk_free_aligned(ptrs[k]);
+  memset(t, 0, sizeof *t);
+}
+
+static int scan_buf_alloc(scan_buf *t, const scan_shared *sh) {
+  const size_t m = (size_t)sh->max_cand + PDK_SCAN_OUT_PAD;
+  memset(t, 0, sizeof *t);
+  t->cx = pdk_alloc_aligned(m, sizeof(double));
+  t->cy = pdk_alloc_aligned(m, sizeof(double));
+  t->cz = pdk_alloc_aligned(m, sizeof(double));
+  t->tx = pdk_alloc_aligned(m, sizeof(double));
+  t->ty = pdk_alloc_aligned(m, sizeof(double));
+  t->tz = pdk_alloc_aligned(m, sizeof(double));
+  t->cid = pdk_alloc_aligned(m, sizeof(pdk_index));
+  t->tid = pdk_alloc_aligned(m, sizeof(pdk_index));
+  t->perm = pdk_alloc_aligned(m, sizeof(pdk_index));
+  t->perm_tmp = pdk_alloc_aligned(m, sizeof(pdk_index));
+  t->out = pdk_alloc_aligned(m, sizeof(pdk_index));
+  t->crack_list = pdk_alloc_aligned((size_t)sh->num_cracks + 1, sizeof(int));
+  if (t->cx && t->cy && t->cz && t->tx && t->ty && t->tz && t->cid && t->tid && t->perm &&
+      t->perm_tmp && t->out && t->crack_list)
+    return 0;
+  scan_buf_free(t);
+  return 1;
+}
+
+/* Sorts the candidate buffer by particle index. It holds num_runs ascending runs starting at
+ * run_start[r] (run_start[num_runs] = m); runs are merged pairwise, bottom-up, through a
+ * permutation, and the coordinates gathered once at the end. Indices are unique, so the result is
+ * the one ascending order. */
+static void merge_runs(scan_buf *t, pdk_index m, pdk_index *run_start, int num_runs) {
+  pdk_index *a = t->perm, *b = t->perm_tmp;
+  for (pdk_index k = 0; k < m; ++k)
+    a[k] = k;
+  const pdk_index *id = t->cid;
+  while (num_runs > 1) {
+    int r_out = 0;
+    for (int r = 0; r < num_runs; r += 2) {
+      pdk_index lo = run_start[r], mid = run_start[r + 1];
+      pdk_index hi = r + 2 <= num_runs ? run_start[r + 2] : mid;
+      pdk_index i = lo, j = mid, k = lo;
+      while (i < mid && j < hi)
+        b[k++] = id[a[i]] < id[a[j]] ? a[i++] : a[j++];
+      while (i < mid)
+        b[k++] = a[i++];
+      while (j < hi)
+        b[k++] = a[j++];
+      run_start[r_out++] = lo;
+    }
+    run_start[r_out] = m;
+    num_runs = r_out;
+    pdk_index *s = a;
+    a = b;
+    b = s;
+  }
+  for (pdk_index k = 0; k < m; ++k) {
+    const pdk_index q = a[k];
+    t->tx[k] = t->cx[q];
+    t->ty[k] = t->cy[q];
+    t->tz[k] = t->cz[q];
+    t->tid[k] = t->cid[q];
+  }
+  double *d;
+  d = t->cx, t->cx = t->tx, t->tx = d;
+  d = t->cy, t->cy = t->ty, t->ty = d;
+  d = t->cz, t->cz = t->tz, t->tz = d;
+  pdk_index *p = t->cid;
+  t->cid = t->tid, t->tid = p;
+}
+
+/* Fills t's candidate buffer for cell c (see the file comment, step 3) and its crack list;
+ * returns the number of candidates. */
+static pdk_index gather_candidates(const scan_shared *sh, int64_t c, scan_buf *t) {
+  const pdk_cells *cl = sh->cl;
+  const int dim = sh->dim;
+  const pdk_index *cs = cl->cell_start, *slot_id = cl->slot_id;
+  const double *x0 = cl->x[0], *x1 = cl->x[1], *x2 = cl->x[2];
+  /* Bounding box of the cell's own particles. */
+  double blo[3] = {0, 0, 0}, bhi[3] = {0, 0, 0};
+  for (int a = 0; a < dim; ++a) {
+    const double *x = cl->x[a];
+    blo[a] = bhi[a] = x[cs[c]];
+    for (pdk_index s = cs[c] + 1; s < cs[c + 1]; ++s) {
+      blo[a] = x[s] < blo[a] ? x[s] : blo[a];
+      bhi[a] = x[s] > bhi[a] ? x[s] : bhi[a];
+    }
+  }
+  /* Neighbour cells, ordered by their first (smallest) particle index. */
+  int64_t cc[3];
+  pdk_cells_coords(cl, c, cc);
+  int64_t nb[27];
+  pdk_index first[27];
+  int num_nb = 0;
+  const int zr = dim == 3 ? 1 : 0;
+  for (int dz = -zr; dz <= zr; ++dz) {
+    const int64_t z = cc[2] + dz;
+    if (z < 0 || z >= cl->num[2]) continue;
+    for (int dy = -1; dy <= 1; ++dy) {
+      const int64_t y = cc[1] + dy;
+      if (y < 0 || y >= cl->num[1]) continue;
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int64_t x = cc[0] + dx;
+        if (x < 0 || x >= cl->num[0]) continue;
+        const int64_t c2 = x + cl->num[0] * (y + cl->num[1] * z);
+        if (cs[c2] == cs[c2 + 1]) continue;
+        const pdk_index f = slot_id[cs[c2]];
+        int k = num_nb++;
+        while (k > 0 && first[k - 1] > f) {
+          first[k] = first[k - 1];
+          nb[k] = nb[k - 1];
+          --k;
+        }
+        first[k] = f;
+        nb[k] = c2;
+      }
+    }
+  }
+  /* Copy the candidates within reach of the box; branch-free append. */
+  pdk_index run_start[28];
+  int num_runs = 0, sorted = 1;
+  pdk_index m = 0;
+  double *cx = t->cx, *cy = t->cy, *cz = t->cz;
+  pdk_index *cid = t->cid;
+  const double prune2 = sh->prune2;
+  for (int k = 0; k < num_nb; ++k) {
+    const pdk_index s0 = cs[nb[k]], s1 = cs[nb[k] + 1];
+    const pdk_index m0 = m;
+    if (dim == 3) {
+      for (pdk_index s = s0; s < s1; ++s) {
+        const double px = x0[s], py = x1[s], pz = x2[s];
+        double ex = fmax(fmax(blo[0] - px, px - bhi[0]), 0.0);
+        double ey = fmax(fmax(blo[1] - py, py - bhi[1]), 0.0);
+        double ez = fmax(fmax(blo[2] - pz, pz - bhi[2]), 0.0);
+        cx[m] = px;
+        cy[m] = py;
+        cz[m] = pz;
+        cid[m] = slot_id[s];
+        m += (ex * ex + ey * ey) + ez * ez <= prune2;
+      }
+    } else {
+      for (pdk_index s = s0; s < s1; ++s) {
+        const double px = x0[s], py = x1[s];
+        double ex = fmax(fmax(blo[0] - px, px - bhi[0]), 0.0);
+        double ey = fmax(fmax(blo[1] - py, py - bhi[1]), 0.0);
+        cx[m] = px;
+        cy[m] = py;
+        cid[m] = slot_id[s];
+        m += ex * ex + ey * ey <= prune2;
+      }
+    }
+    if (m > m0) {
+      if (num_runs > 0 && cid[m0] < cid[m0 - 1]) sorted = 0;
+      run_start[num_runs++] = m0;
+    }
+  }
+  run_start[num_runs] = m;
+  if (!sorted) merge_runs(t, m, run_start, num_runs);
+  /* Cracks whose box comes within reach of the cell's box. */
+  t->num_crack_list = 0;
+  for (int k = 0; k < sh->num_cracks; ++k) {
+    const crack *cr = &sh->cracks[k];
+    int near = 1;
+    for (int a = 0; a < dim; ++a)
+      near = near && cr->lo[a] <= bhi[a] + sh->reach && cr->hi[a] >= blo[a] - sh->reach;
+    if (near) t->crack_list[t->num_crack_list++] = k;
+  }
+  return m;
+}
+
+/* Removes from the family out[0..count-1] of particle i the bonds a listed crack cuts; returns the
+ * new count. Each bond is tested with its lower-index end first, so i-j and j-i agree. */
+static pdk_index cut_bonds(const scan_shared *sh, const scan_buf *t, pdk_index i, pdk_index *out,
+                           pdk_index count) {
+  const int dim = sh->dim;
+  pdk_index kept = 0;
+  for (pdk_index b = 0; b < count; ++b) {
+    const pdk_index j = out[b];
+    const pdk_index lo_end = i < j ? i : j, hi_end = i < j ? j : i;
+    double p[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a)
+      p[a] = sh->X[a][lo_end], q[a] = sh->X[a][hi_end];
+    int cut = 0;
+    for (int k = 0; k < t->num_crack_list && !cut; ++k) {
+      const crack *cr = &sh->cracks[t->crack_list[k]];
+      int touch = 1;
+      for (int a = 0; a < dim; ++a)
+        touch = touch && fmin(p[a], q[a]) <= cr->hi[a] && fmax(p[a], q[a]) >= cr->lo[a];
+      if (touch) cut = dim == 2 ? crack_cuts2(cr, p, q) : crack_cuts3(cr, p, q);
+    }
+    if (!cut) out[kept++] = j;
+  }
+  return kept;
+}
+
+/* Scans cell c: the family of each of its particles, written to t->out then stored. With
+ * bond_j == NULL (count pass) the size of each family goes to count[i]; otherwise the family goes
+ * to bond_j + bond_start[i]. Returns the cell's bond count. */
+static int64_t scan_cell(const scan_shared *sh, int64_t c, scan_buf *t, pdk_index *count,
+                         const pdk_bond_index *bond_start, pdk_index *bond_j) {
+  const pdk_cells *cl = sh->cl;
+  const pdk_index m = gather_candidates(sh, c, t);
+  int64_t total = 0;
+  for (pdk_index s = cl->cell_start[c]; s < cl->cell_start[c + 1]; ++s) {
+    const pdk_index i = cl->slot_id[s];
+    pdk_index nb;
+    if (sh->dim == 3)
+      nb = sh->kern.family_scan3(m, t->cx, t->cy, t->cz, cl->x[0][s], cl->x[1][s], cl->x[2][s],
+                                 sh->r2max, i, t->cid, t->out);
+    else
+      nb = sh->kern.family_scan2(m, t->cx, t->cy, cl->x[0][s], cl->x[1][s], sh->r2max, i, t->cid,
+                                 t->out);
+    if (t->num_crack_list) nb = cut_bonds(sh, t, i, t->out, nb);
+    if (bond_j)
+      memcpy(bond_j + bond_start[i], t->out, (size_t)nb * sizeof *bond_j);
+    else
+      count[i] = nb;
+    total += nb;
+  }
+  return total;
+}
+
+/* ---- bounds on the bond count ---------------------------------------------------------------- */
+
+/* Visits the 3^d neighbour cells of cell c (c itself included) that hold particles. */
+#define FOR_EACH_NEIGHBOUR_CELL(cl, c, c2, BODY)                                                   \
+  do {                                                                                             \
+    int64_t cc_[3];                                                                                \
+    pdk_cells_coords((cl), (c), cc_);                                                              \
+    const int zr_ = (cl)->dim == 3 ? 1 : 0;                                                        \
+    for (int64_t z_ = cc_[2] - zr_; z_ <= cc_[2] + zr_; ++z_)                                      \
+      for (int64_t y_ = cc_[1] - 1; y_ <= cc_[1] + 1; ++y_)                                        \
+        for (int64_t x_ = cc_[0] - 1; x_ <= cc_[0] + 1; ++x_) {                                    \
+          if (x_ < 0 || y_ < 0 || z_ < 0 || x_ >= (cl)->num[0] || y_ >= (cl)->num[1] ||            \
+              z_ >= (cl)->num[2])                                                                  \
+            continue;                                                                              \
+          const int64_t c2 = x_ + (cl)->num[0] * (y_ + (cl)->num[1] * z_);                         \
+          if ((cl)->cell_start[c2] == (cl)->cell_start[c2 + 1]) continue;                          \
+          BODY                                                                                     \
+        }                                                                                          \
+  } while (0)
+
+/* Upper bound on the directed bonds (every pair of particles in neighbouring cells, self
+ * excluded) and the most candidates of any cell. */
+static void bound_upper(const pdk_cells *cl, const int64_t *cells, int64_t num_cells, int nthreads,
+                        int64_t *upper, pdk_index *max_cand) {
+  int64_t up = 0, mx = 0;
+#pragma omp parallel for default(none) shared(cl, cells, num_cells) reduction(+ : up) \
+    reduction(max : mx) schedule(static) num_threads(nthreads)
+  for (int64_t k = 0; k < num_cells; ++k) {
+    const int64_t c = cells[k];
+    int64_t cand = 0;
+    FOR_EACH_NEIGHBOUR_CELL(cl, c, c2, { cand += cl->cell_start[c2 + 1] - cl->cell_start[c2]; });
+    const int64_t occ = cl->cell_start[c + 1] - cl->cell_start[c];
+    up += occ * (cand - 1);
+    mx = cand > mx ? cand : mx;
+  }
+  *upper = up;
+  *max_cand = (pdk_index)mx;
+}
+
+/* Lower bound on the directed bonds: pairs of (neighbouring or equal) cells whose particles'
+ * bounding boxes are everywhere within the horizon of each other contribute all their pairs. */
+static int bound_lower(pdk_ctx *ctx, const pdk_cells *cl, const int64_t *cells, int64_t num_cells,
+                       double r2max, int64_t *lower) {
+  const int dim = cl->dim, nthreads = ctx->num_threads;
+  double *box = malloc((size_t)cl->num_cells * 6 * sizeof *box); /* [num_cells][lo 3, hi 3] */
+  PDK_CHECK(box, ctx, PDK_ERR_MEMORY, "out of memory bounding the bond count");
+#pragma omp parallel for default(none) shared(cl, cells, num_cells, box, dim) schedule(static)     \
+    num_threads(nthreads)
+  for (int64_t k = 0; k < num_cells; ++k) {
+    const int64_t c = cells[k];
+    double *b = box + 6 * c;
+    for (int a = 0; a < 3; ++a)
+      b[a] = b[3 + a] = 0;
+    for (int a = 0; a < dim; ++a) {
+      b[a] = b[3 + a] = cl->x[a][cl->cell_start[c]];
+      for (pdk_index s = cl->cell_start[c]; s < cl->cell_start[c + 1]; ++s) {
+        b[a] = fmin(b[a], cl->x[a][s]);
+        b[3 + a] = fmax(b[3 + a], cl->x[a][s]);
+      }
+    }
+  }
+  int64_t lo = 0;
+#pragma omp parallel for default(none) shared(cl, cells, num_cells, box, dim, r2max) \
+    reduction(+ : lo) schedule(static) num_threads(nthreads)
+  for (int64_t k = 0; k < num_cells; ++k) {
+    const int64_t c = cells[k];
+    const double *b = box + 6 * c;
+    const int64_t occ = cl->cell_start[c + 1] - cl->cell_start[c];
+    FOR_EACH_NEIGHBOUR_CELL(cl, c, c2, {
+      const double *b2 = box + 6 * c2;
+      double d2 = 0;
+      for (int a = 0; a < dim; ++a) {
+        double e = fmax(b[3 + a] - b2[a], b2[3 + a] - b[a]);
+        d2 += e * e;
+      }
+      if (d2 * (1.0 + 1e-9) <= r2max)
+        lo += occ * (cl->cell_start[c2 + 1] - cl->cell_start[c2] - (c2 == c ? 1 : 0));
+    });
+  }
+  free(box);
+  *lower = lo;
+  return PDK_SUCCESS;
+}
+
+/* Bytes held for `bonds` directed bonds of n particles (bond_j + bond_start), saturating. */
+static double families_bytes(pdk_index n, double bonds) {
+  return bonds * (double)sizeof(pdk_index) + ((double)n + 1.0) * (double)sizeof(pdk_bond_index);
+}
+
+static size_t default_max_bytes(void) {
+  long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return SIZE_MAX;
+  return (size_t)((double)pages * (double)page * 0.75);
+}
+
+/* ---- the driver ------------------------------------------------------------------------------ */
+
+/* Splits the cells (in `cells` order) into nblocks blocks of about equal particle counts:
+ * block b covers cells[block_start[b] .. block_start[b+1]-1]. */
+static void split_blocks(const pdk_cells *cl, const int64_t *cells, int64_t num_cells, int nblocks,
+                         int64_t *block_start) {
+  int64_t k = 0, seen = 0;
+  block_start[0] = 0;
+  for (int b = 1; b < nblocks; ++b) {
+    const int64_t target = (int64_t)cl->n * b / nblocks;
+    while (k < num_cells && seen < target) {
+      seen += cl->cell_start[cells[k] + 1] - cl->cell_start[cells[k]];
+      ++k;
+    }
+    block_start[b] = k;
+  }
+  block_start[nblocks] = num_cells;
+}
+
+/* Runs one pass of the scan over all cells, one block per thread. Count pass (bond_j NULL):
+ * family sizes to count[], stopping early once more than `limit` bonds are found (sets *over).
+ * Fill pass: families to bond_j. Returns an error if a thread could not allocate its buffers. */
+static int scan_pass(pdk_ctx *ctx, const scan_shared *sh, const int64_t *cells,
+                     const int64_t *block_start, int nblocks, pdk_index *count,
+                     const pdk_bond_index *bond_start, pdk_index *bond_j, int64_t limit,
+                     int *over) {
+  int failed = 0, stop = 0;
+  int64_t found = 0;
+  const int nthreads = ctx->num_threads;
+#pragma omp parallel default(none)                                                                 \
+    shared(sh, cells, block_start, nblocks, count, bond_start, bond_j, limit, failed, stop, found) \
+        num_threads(nthreads)
+  {
+    scan_buf t;
+    const int bad = scan_buf_alloc(&t, sh);
+    if (bad) {
+#pragma omp atomic write
+      failed = 1;
+    }
+#pragma omp for schedule(static)
+    for (int b = 0; b < nblocks; ++b) {
+      if (bad) continue;
+      for (int64_t k = block_start[b]; k < block_start[b + 1]; ++k) {
+        int halt;
+#pragma omp atomic read
+        halt = stop;
+        if (halt) break;
+        const int64_t nc = scan_cell(sh, cells[k], &t, count, bond_start, bond_j);
+        if (!bond_j) {
+          int64_t now;
+#pragma omp atomic capture
+          now = found += nc;
+          if (now > limit) {
+#pragma omp atomic write
+            stop = 1;
+          }
+        }
+      }
+    }
+    scan_buf_free(&t);
+  }
+  if (over) *over = stop;
+  PDK_CHECK(!failed, ctx, PDK_ERR_MEMORY,
+            "out of memory allocating the neighbour-scan buffers (%d candidates per cell)",
+            (int)sh->max_cand);
+  return PDK_SUCCESS;
+}
+
+int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts_in, pdk_families **out) {
+  int err = PDK_SUCCESS;
+  pdk_families_opts opts = opts_in ? *opts_in : pdk_families_opts_default();
+  pdk_ctx *ctx = pdk_particles_ctx(p);
+  pdk_cells *cl = NULL;
+  crack *cracks = NULL;
+  int64_t *cells = NULL, *block_start = NULL;
+  pdk_index *count = NULL;
+  pdk_families *f = NULL;
+  *out = NULL;
+
+  PDK_CHECK(!opts.horizon_field, ctx, PDK_ERR_UNSUPPORTED,
+            "opts.horizon_field = '%s': per-particle horizons are not supported yet; leave "
+            "horizon_field NULL and give a uniform opts.horizon",
+            opts.horizon_field);
+  PDK_CHECK(isfinite(opts.horizon) && opts.horizon > 0, ctx, PDK_ERR_ARG,
+            "the horizon must be a positive finite length, got %g", opts.horizon);
+  const int dim = pdk_particles_dim(p);
+  const pdk_index n = pdk_particles_count(p);
+  const int nthreads = ctx->num_threads;
+  PDK_CALL(cracks_prepare(ctx, dim, &opts, &cracks));
+  PDK_CALL_GOTO(pdk_particles_check_finite(p));
+  PDK_CALL_GOTO(pdk_cells_build(p, opts.horizon, &cl));
+
+  /* Non-empty cells in the order of their first particle: a store sorted by cell (Morton) is then
+   * walked in index order. */
+  {
+    uint8_t *seen = calloc((size_t)cl->num_cells, 1);
+    cells = malloc((size_t)n * sizeof *cells);
+    if (!seen || !cells) free(seen);
+    PDK_CHECK_GOTO(seen && cells, ctx, PDK_ERR_MEMORY, "out of memory ordering %lld cells",
+                   (long long)cl->num_cells);
+    int64_t m = 0;
+    for (pdk_index i = 0; i < n; ++i) {
+      const pdk_index c = cl->cell_of[i];
+      if (!seen[c]) seen[c] = 1, cells[m++] = c;
+    }
+    free(seen);
+    const int64_t num_cells = m;
+
+    scan_shared sh;
+    memset(&sh, 0, sizeof sh);
+    sh.cl = cl;
+    sh.dim = dim;
+    sh.r2max = opts.horizon * opts.horizon * (1.0 + PDK_HORIZON_RTOL);
+    sh.prune2 = sh.r2max * (1.0 + 1e-9);
+    sh.reach = sqrt(sh.prune2);
+    for (int a = 0; a < dim; ++a)
+      sh.X[a] = pdk_particles_X(p, a);
+    sh.cracks = cracks;
+    sh.num_cracks = opts.num_precracks;
+    sh.kern = ctx->kernels;
+
+    /* Bound the bond count before allocating for it. */
+    const size_t limit_bytes = opts.max_bytes ? opts.max_bytes : default_max_bytes();
+    const double limit_bonds_d =
+        ((double)limit_bytes - families_bytes(n, 0)) / (double)sizeof(pdk_index);
+    const int64_t limit_bonds =
+        limit_bonds_d < 0 ? -1 : (limit_bonds_d > 4e18 ? INT64_MAX : (int64_t)limit_bonds_d);
+    int64_t upper = 0;
+    bound_upper(cl, cells, num_cells, nthreads, &upper, &sh.max_cand);
+    const int need_count = upper > limit_bonds;
+    if (need_count) {
+      int64_t lower = 0;
+      PDK_CALL_GOTO(bound_lower(ctx, cl, cells, num_cells, sh.r2max, &lower));
+      PDK_CHECK_GOTO(lower <= limit_bonds, ctx, PDK_ERR_MEMORY,
+                     "the families would hold at least %lld directed bonds (%.4g bytes for bond_j "
+                     "and bond_start), more than the limit of %zu bytes (opts.max_bytes; 0 means "
+                     "3/4 of RAM); use a smaller horizon than %g",
+                     (long long)lower, families_bytes(n, (double)lower), limit_bytes, opts.horizon);
+    }
+
+    const int nblocks = nthreads;
+    block_start = malloc((size_t)(nblocks + 1) * sizeof *block_start);
+    count = pdk_alloc_aligned((size_t)n, sizeof *count);
+    f = calloc(1, sizeof *f);
+    PDK_CHECK_GOTO(block_start && count && f, ctx, PDK_ERR_MEMORY,
+                   "out of memory building the families of %d particles", (int)n);
+    split_blocks(cl, cells, num_cells, nblocks, block_start);
+
+    /* Pass 1: family sizes (stops early past the limit when the upper bound did not clear it). */
+    int over = 0;
+    PDK_CALL_GOTO(scan_pass(ctx, &sh, cells, block_start, nblocks, count, NULL, NULL,
+                            need_count ? limit_bonds : INT64_MAX, &over));
+    PDK_CHECK_GOTO(!over, ctx, PDK_ERR_MEMORY,
+                   "the families would hold more than %lld directed bonds (%.4g bytes for bond_j "
+                   "and bond_start), more than the limit of %zu bytes (opts.max_bytes; 0 means 3/4 "
+                   "of RAM); use a smaller horizon than %g",
+                   (long long)limit_bonds, families_bytes(n, (double)limit_bonds), limit_bytes,
+                   opts.horizon);
+
+    f->ctx = ctx;
+    f->n = n;
+    f->horizon = opts.horizon;
+    f->bond_start = pdk_alloc_aligned((size_t)n + 1, sizeof *f->bond_start);
+    PDK_CHECK_GOTO(f->bond_start, ctx, PDK_ERR_MEMORY,
+                   "out of memory for bond_start of %d particles", (int)n);
+    for (pdk_index i = 0; i < n; ++i)
+      f->bond_start[i + 1] = f->bond_start[i] + count[i];
+    f->num_bonds = f->bond_start[n];
+    PDK_CHECK_GOTO(f->num_bonds <= limit_bonds, ctx, PDK_ERR_MEMORY,
+                   "the families would hold %lld directed bonds (%.4g bytes for bond_j and "
+                   "bond_start), more than the limit of %zu bytes (opts.max_bytes; 0 means 3/4 of "
+                   "RAM); use a smaller horizon than %g",
+                   (long long)f->num_bonds, families_bytes(n, (double)f->num_bonds), limit_bytes,
+                   opts.horizon);
+    f->bond_j = pdk_alloc_aligned((size_t)f->num_bonds + 1, sizeof *f->bond_j);
+    PDK_CHECK_GOTO(f->bond_j, ctx, PDK_ERR_MEMORY,
+                   "out of memory allocating %lld directed bonds (%.4g bytes)",
+                   (long long)f->num_bonds, families_bytes(n, (double)f->num_bonds));
+
+    /* Pass 2: the families. */
+    PDK_CALL_GOTO(scan_pass(ctx, &sh, cells, block_start, nblocks, count, f->bond_start, f->bond_j,
+                            INT64_MAX, NULL));
+  }
+  *out = f;
+  f = NULL;
+cleanup:
+  pdk_families_destroy(&f);
+  pdk_cells_destroy(&cl);
+  free(cracks);
+  free(cells);
+  free(block_start);
+  pdk_free_aligned(count);
+  return err;
+}
+
+void pdk_families_destroy(pdk_families **f) {
+  if (!f || !*f) return;
+  pdk_free_aligned((*f)->bond_start);
+  pdk_free_aligned((*f)->bond_j);
+  free(*f);
+  *f = NULL;
+}
+
+double pdk_families_cell_edge(pdk_particles *p, double horizon) {
+  double edge = 0;
+  if (pdk_cells_edge(p, horizon, &edge)) return 0.0;
+  return edge;
+}
+
+pdk_index pdk_families_num_particles(const pdk_families *f) { return f->n; }
+pdk_bond_index pdk_families_num_bonds(const pdk_families *f) { return f->num_bonds; }
+const pdk_bond_index *pdk_families_bond_start(const pdk_families *f) { return f->bond_start; }
+const pdk_index *pdk_families_bond_j(const pdk_families *f) { return f->bond_j; }
+double pdk_families_horizon(const pdk_families *f) { return f->horizon; }
+size_t pdk_families_memory_bytes(const pdk_families *f) {
+  return (size_t)(f->n + 1) * sizeof *f->bond_start + (size_t)f->num_bonds * sizeof *f->bond_j;
+}
