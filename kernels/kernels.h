@@ -65,4 +65,92 @@ pdk_index pdk_kernel_family_scan3_avx512(pdk_index n_cand, const double *restric
                                          pdk_index self, const pdk_index *restrict cand_id,
                                          pdk_index *restrict out);
 
+/* ---- Bond-based PMB and state-based LPS (kernels/ref/pmb.c, kernels/ref/lps.c) ----------------
+ * Formulas and contracts at the top of each file. Common arguments: particles [i0, i1); CSR
+ * families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current x, y[, z]
+ * positions, volume, outputs: [n_pad] each. bond_alive [num_bonds] (NULL: bonds never break) is
+ * read, and written only by a committing force pass (s0_next != NULL), which also writes
+ * s0_next[i] and returns the number of bonds it broke (the LAMMPS s0 rule). w (NULL: skip) gets
+ * the strain energy density W_i [energy/volume]. */
+typedef struct pdk_pmb_consts {
+  double c;          /* micromodulus [pressure / length^(dim+1)] */
+  double vs_a, vs_b; /* partial volume factor min(1, (vs_a - r0) * vs_b); vs_a = +inf: off */
+  double s00, alpha; /* s0 rule: s0_next = max over intact bonds of (s00 - alpha s) */
+} pdk_pmb_consts;
+
+typedef struct pdk_lps_consts {
+  double vs_a, vs_b;   /* as pdk_pmb_consts */
+  double theta_factor; /* d: 3 (3-D) or 2 (plane strain) */
+  double c_dil, c_dev; /* bond force t = c_dil (theta_i/m_i + theta_j/m_j) + c_dev (1/m_i + 1/m_j) s */
+  double e_bulk, e_dev; /* W = e_bulk theta^2/2 + e_dev/m sum omega (e - theta r0/d)^2 beta V */
+  double s00, alpha;
+} pdk_lps_consts;
+
+pdk_bond_index pdk_kernel_pmb_force3_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j,
+                                         const double *restrict X, const double *restrict Y,
+                                         const double *restrict Z, const double *restrict x,
+                                         const double *restrict y, const double *restrict z,
+                                         const double *restrict volume, const pdk_pmb_consts *k,
+                                         uint8_t *restrict bond_alive, const double *restrict s0,
+                                         double *restrict s0_next, double *restrict fx,
+                                         double *restrict fy, double *restrict fz,
+                                         double *restrict w);
+pdk_bond_index pdk_kernel_pmb_force2_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j,
+                                         const double *restrict X, const double *restrict Y,
+                                         const double *restrict x, const double *restrict y,
+                                         const double *restrict volume, const pdk_pmb_consts *k,
+                                         uint8_t *restrict bond_alive, const double *restrict s0,
+                                         double *restrict s0_next, double *restrict fx,
+                                         double *restrict fy, double *restrict w);
+
+/* m_i = sum_b r0 beta V_j over every bond (LPS weighted volume with omega = 1/r0). */
+void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j,
+                                         const double *restrict X, const double *restrict Y,
+                                         const double *restrict Z, const double *restrict volume,
+                                         const pdk_lps_consts *k, double *restrict m);
+void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j,
+                                         const double *restrict X, const double *restrict Y,
+                                         const double *restrict volume, const pdk_lps_consts *k,
+                                         double *restrict m);
+/* theta_i = d inv_m_i sum_b alive_b e beta V_j; inv_m [n_pad] = 1/m (0 for an empty family). */
+void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
+                                  const pdk_bond_index *restrict bond_start,
+                                  const pdk_index *restrict bond_j, const double *restrict X,
+                                  const double *restrict Y, const double *restrict Z,
+                                  const double *restrict x, const double *restrict y,
+                                  const double *restrict z, const double *restrict volume,
+                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
+                                  const double *restrict inv_m, double *restrict theta);
+void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
+                                  const pdk_bond_index *restrict bond_start,
+                                  const pdk_index *restrict bond_j, const double *restrict X,
+                                  const double *restrict Y, const double *restrict x,
+                                  const double *restrict y, const double *restrict volume,
+                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
+                                  const double *restrict inv_m, double *restrict theta);
+/* Force pass; theta and inv_m must be complete for every particle (neighbours are read). */
+pdk_bond_index pdk_kernel_lps_force3_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict Z, const double *restrict x, const double *restrict y,
+    const double *restrict z, const double *restrict volume, const pdk_lps_consts *k,
+    const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
+    const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
+    double *restrict fz, double *restrict w);
+pdk_bond_index pdk_kernel_lps_force2_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict x, const double *restrict y, const double *restrict volume,
+    const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
+    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+    double *restrict fx, double *restrict fy, double *restrict w);
+
 #endif

@@ -1,0 +1,284 @@
+/* Reference LPS (linear peridynamic solid) kernels, ordinary state-based, as LAMMPS peri/lps.
+ *
+ * Notation for a bond b of particle i (neighbour j = bond_j[b]): xi = X_j - X_i, eta = x_j - x_i,
+ * r0 = |xi|, r = |eta|, e = r - r0 (extension), s = e / r0, beta = min(1, (vs_a - r0) * vs_b)
+ * (LAMMPS's partial-volume factor, see kernels/ref/pmb.c), alive_b in {0, 1} (1 when
+ * bond_alive == NULL). The influence function is LAMMPS's omega = 1 / r0, so omega r0 = 1 and
+ * omega r0^2 = r0 below. d = k->theta_factor (3 in 3-D, 2 in plane strain).
+ *
+ *   weighted volume  m_i     = sum_b omega r0^2 beta V_j          = sum_b r0 beta V_j
+ *                              (all bonds; fixed at setup, as LAMMPS's wvolume)
+ *   dilation         theta_i = d / m_i * sum_b alive_b omega r0 e beta V_j
+ *                            = d * inv_m_i * sum_b alive_b e beta V_j          (0 if m_i = 0)
+ *   force density    f_i    += alive_b beta V_j t_b eta / r                    (0 when r == 0)
+ *                    t_b     = c_dil (theta_i / m_i + theta_j / m_j) + c_dev (1/m_i + 1/m_j) s
+ *   energy density   W_i     = e_bulk theta_i^2 / 2
+ *                              + e_dev / m_i * sum_b alive_b omega (e - theta_i r0 / d)^2 beta V_j
+ *
+ * Constants (src/model_lps.c): 3-D c_dil = 3K - 5G, c_dev = 15G, e_bulk = K, e_dev = 15G/2 (the
+ * LAMMPS force; its rk = (3K-5G) (omega theta_i/m_i + omega theta_j/m_j) r0 + 15 G (omega/m_i +
+ * omega/m_j) e). Plane strain (lambda = K - 2G/3, mu = G): c_dil = 2(lambda - mu) = 2K - 10G/3,
+ * c_dev = 8 mu, e_bulk = lambda + mu = K + G/3, e_dev = 4 mu. In both cases V_i f_i = -dE/dx_i for
+ * E = sum_i V_i W_i. For an isotropic stretch (e = s r0 on every bond) theta = d s and the
+ * deviatoric term vanishes, so W = e_bulk d^2 s^2 / 2: 9 K s^2 / 2 in 3-D, 2 (lambda + mu) s^2 in
+ * plane strain, the continuum values, at every particle whatever its family.
+ * (LAMMPS tallies half of the deviatoric term; pdk reports the energy whose gradient is f.)
+ *
+ * Bond failure: as kernels/ref/pmb.c (LAMMPS s0 rule, in the force pass only; the dilation pass
+ * only reads bond_alive). m_i is not updated when bonds break (LAMMPS keeps wvolume).
+ * Not included: LAMMPS's short-range contact forces (see pmb.c).
+ *
+ * Contract: pure; no allocation, no OpenMP region; a call writes only entries i in [i0, i1) of its
+ * outputs; particle arrays are [n_pad], bond arrays [num_bonds]; the result for particle i does not
+ * depend on i0, i1. The force pass reads theta and inv_m of neighbours: the dilation pass must have
+ * completed for every particle first.
+ */
+#include <float.h>
+#include <math.h>
+
+#include "kernels.h"
+
+/* No FMA contraction: the stretch must round the same way in the vector body and in the scalar
+ * remainder, so both ends of a bond see the same s and break it together. */
+PDK_KERNEL_FP_EXACT
+
+static inline __attribute__((always_inline)) double
+partial_volume(double volume_j, double r0, const double vs_a, const double vs_b) {
+  return volume_j * fmin(1.0, (vs_a - r0) * vs_b);
+}
+
+/* ---- weighted volume ------------------------------------------------------------------------- */
+
+static inline __attribute__((always_inline)) void
+lps_m_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+            const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+            const double *restrict Z, const double *restrict volume, const pdk_lps_consts *k,
+            double *restrict m) {
+  const double vs_a = k->vs_a, vs_b = k->vs_b;
+  for (pdk_index i = i0; i < i1; ++i) {
+    const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
+    double mi = 0.0;
+    const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];
+#pragma omp simd reduction(+ : mi)
+    for (pdk_bond_index b = b0; b < b1; ++b) {
+      const pdk_index j = bond_j[b];
+      const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
+      const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+      mi += r0 * partial_volume(volume[j], r0, vs_a, vs_b);
+    }
+    m[i] = mi;
+  }
+}
+
+void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j, const double *restrict X,
+                                         const double *restrict Y, const double *restrict Z,
+                                         const double *restrict volume, const pdk_lps_consts *k,
+                                         double *restrict m) {
+  lps_m_range(3, i0, i1, bond_start, bond_j, X, Y, Z, volume, k, m);
+}
+
+void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
+                                         const pdk_bond_index *restrict bond_start,
+                                         const pdk_index *restrict bond_j, const double *restrict X,
+                                         const double *restrict Y, const double *restrict volume,
+                                         const pdk_lps_consts *k, double *restrict m) {
+  lps_m_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, volume, k, m);
+}
+
+/* ---- dilation -------------------------------------------------------------------------------- */
+
+static inline __attribute__((always_inline)) void
+lps_theta_range(const int dim, const int has_state, pdk_index i0, pdk_index i1,
+                const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
+                const double *restrict X, const double *restrict Y, const double *restrict Z,
+                const double *restrict x, const double *restrict y, const double *restrict z,
+                const double *restrict volume, const pdk_lps_consts *k,
+                const uint8_t *restrict bond_alive, const double *restrict inv_m,
+                double *restrict theta) {
+  const double vs_a = k->vs_a, vs_b = k->vs_b, d = k->theta_factor;
+  for (pdk_index i = i0; i < i1; ++i) {
+    const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
+    const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
+    double sum = 0.0;
+    const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];
+#pragma omp simd reduction(+ : sum)
+    for (pdk_bond_index b = b0; b < b1; ++b) {
+      const pdk_index j = bond_j[b];
+      const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
+      const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
+      const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+      const double r = sqrt(dx * dx + dy * dy + dz * dz);
+      const double on = has_state ? (double)bond_alive[b] : 1.0;
+      sum += on * (r - r0) * partial_volume(volume[j], r0, vs_a, vs_b);
+    }
+    theta[i] = d * inv_m[i] * sum;
+  }
+}
+
+void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
+                                  const pdk_bond_index *restrict bond_start,
+                                  const pdk_index *restrict bond_j, const double *restrict X,
+                                  const double *restrict Y, const double *restrict Z,
+                                  const double *restrict x, const double *restrict y,
+                                  const double *restrict z, const double *restrict volume,
+                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
+                                  const double *restrict inv_m, double *restrict theta) {
+  if (bond_alive)
+    lps_theta_range(3, 1, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, bond_alive,
+                    inv_m, theta);
+  else
+    lps_theta_range(3, 0, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, NULL, inv_m,
+                    theta);
+}
+
+void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
+                                  const pdk_bond_index *restrict bond_start,
+                                  const pdk_index *restrict bond_j, const double *restrict X,
+                                  const double *restrict Y, const double *restrict x,
+                                  const double *restrict y, const double *restrict volume,
+                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
+                                  const double *restrict inv_m, double *restrict theta) {
+  if (bond_alive)
+    lps_theta_range(2, 1, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, bond_alive,
+                    inv_m, theta);
+  else
+    lps_theta_range(2, 0, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, NULL,
+                    inv_m, theta);
+}
+
+/* ---- force ----------------------------------------------------------------------------------- */
+
+static inline __attribute__((always_inline)) pdk_bond_index
+lps_row(const int dim, const int has_state, const int commit, const int want_energy, pdk_index i,
+        const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
+        const double *restrict X, const double *restrict Y, const double *restrict Z,
+        const double *restrict x, const double *restrict y, const double *restrict z,
+        const double *restrict volume, const pdk_lps_consts *k, const double *restrict theta,
+        const double *restrict inv_m, uint8_t *restrict bond_alive, const double *restrict s0,
+        double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict fz,
+        double *restrict w) {
+  const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
+  const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
+  const double vs_a = k->vs_a, vs_b = k->vs_b, c_dil = k->c_dil, c_dev = k->c_dev;
+  const double s00 = k->s00, alpha = k->alpha, d = k->theta_factor;
+  const double theta_i = theta[i], inv_m_i = inv_m[i], q_i = theta_i * inv_m_i;
+  const double sd_i = theta_i / d; /* deviatoric extension: e - theta r0/d = r0 (s - theta/d) */
+  const double s0_i = has_state ? s0[i] : 0.0;
+  double f0 = 0.0, f1 = 0.0, f2 = 0.0, wdev = 0.0, s0_max = -DBL_MAX;
+  pdk_bond_index broken = 0;
+  const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];
+#pragma omp simd reduction(+ : f0, f1, f2, wdev, broken) reduction(max : s0_max)
+  for (pdk_bond_index b = b0; b < b1; ++b) {
+    const pdk_index j = bond_j[b];
+    const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
+    const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
+    const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+    const double r = sqrt(dx * dx + dy * dy + dz * dz);
+    const double s = (r - r0) / r0;
+    const double on = has_state ? (double)bond_alive[b] : 1.0;
+    const double vol = on * partial_volume(volume[j], r0, vs_a, vs_b);
+    const double t = c_dil * (q_i + theta[j] * inv_m[j]) + c_dev * (inv_m_i + inv_m[j]) * s;
+    const double g = r > 0.0 ? vol * t / r : 0.0;
+    f0 += g * dx;
+    f1 += g * dy;
+    if (dim == 3) f2 += g * dz;
+    if (want_energy) {
+      const double sd = s - sd_i;
+      wdev += r0 * sd * sd * vol; /* omega e_d^2 = r0 (s - theta/d)^2 */
+    }
+    if (has_state && commit) {
+      const int alive = bond_alive[b] != 0;
+      const double s0_min = fmin(s0_i, s0[j]);
+      const int brk = alive && s > s0_min;
+      broken += brk;
+      bond_alive[b] = (uint8_t)(alive && !brk);
+      s0_max = fmax(s0_max, alive ? s00 - alpha * s : -DBL_MAX);
+    }
+  }
+  fx[i] = f0;
+  fy[i] = f1;
+  if (dim == 3) fz[i] = f2;
+  if (want_energy) w[i] = 0.5 * k->e_bulk * theta_i * theta_i + k->e_dev * inv_m_i * wdev;
+  if (has_state && commit) s0_next[i] = s0_max == -DBL_MAX ? DBL_MAX : s0_max;
+  return broken;
+}
+
+#define LPS_RANGE(dim, st, cm, en)                                                                 \
+  for (pdk_index i = i0; i < i1; ++i)                                                              \
+  broken += lps_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, theta,    \
+                    inv_m, bond_alive, s0, s0_next, fx, fy, fz, w)
+
+static pdk_bond_index
+lps_force_range(const int dim, pdk_index i0, pdk_index i1,
+                const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
+                const double *restrict X, const double *restrict Y, const double *restrict Z,
+                const double *restrict x, const double *restrict y, const double *restrict z,
+                const double *restrict volume, const pdk_lps_consts *k,
+                const double *restrict theta, const double *restrict inv_m,
+                uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+                double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
+  pdk_bond_index broken = 0;
+  const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
+  const int want_energy = w != NULL;
+  if (dim == 3) {
+    if (!has_state) {
+      if (want_energy)
+        LPS_RANGE(3, 0, 0, 1);
+      else
+        LPS_RANGE(3, 0, 0, 0);
+    } else if (!commit) {
+      if (want_energy)
+        LPS_RANGE(3, 1, 0, 1);
+      else
+        LPS_RANGE(3, 1, 0, 0);
+    } else {
+      if (want_energy)
+        LPS_RANGE(3, 1, 1, 1);
+      else
+        LPS_RANGE(3, 1, 1, 0);
+    }
+  } else {
+    if (!has_state) {
+      if (want_energy)
+        LPS_RANGE(2, 0, 0, 1);
+      else
+        LPS_RANGE(2, 0, 0, 0);
+    } else if (!commit) {
+      if (want_energy)
+        LPS_RANGE(2, 1, 0, 1);
+      else
+        LPS_RANGE(2, 1, 0, 0);
+    } else {
+      if (want_energy)
+        LPS_RANGE(2, 1, 1, 1);
+      else
+        LPS_RANGE(2, 1, 1, 0);
+    }
+  }
+  return broken;
+}
+
+pdk_bond_index pdk_kernel_lps_force3_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict Z, const double *restrict x, const double *restrict y,
+    const double *restrict z, const double *restrict volume, const pdk_lps_consts *k,
+    const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
+    const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
+    double *restrict fz, double *restrict w) {
+  return lps_force_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, theta, inv_m,
+                         bond_alive, s0, s0_next, fx, fy, fz, w);
+}
+
+pdk_bond_index pdk_kernel_lps_force2_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict x, const double *restrict y, const double *restrict volume,
+    const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
+    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+    double *restrict fx, double *restrict fy, double *restrict w) {
+  return lps_force_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, theta,
+                         inv_m, bond_alive, s0, s0_next, fx, fy, NULL, w);
+}

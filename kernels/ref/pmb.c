@@ -1,0 +1,168 @@
+/* Reference PMB (prototype microelastic brittle) force kernel, bond-based, as LAMMPS peri/pmb.
+ *
+ * For every particle i in [i0, i1) and every bond b of i (bond_start[i] <= b < bond_start[i+1],
+ * neighbour j = bond_j[b]), with reference bond xi = X_j - X_i and current bond eta = x_j - x_i:
+ *
+ *   r0 = |xi|,  r = |eta|,  s = (r - r0) / r0                       bond stretch
+ *   beta = min(1, (vs_a - r0) * vs_b)                                partial-volume factor
+ *   f_i += alive_b * c * s * beta * V_j * eta / r                    (0 when r == 0)
+ *   W_i  = sum_b alive_b * c * s^2 * r0 * beta * V_j / 4             strain energy density
+ *
+ * c is the micromodulus (3-D: 18 K / (pi delta^4); 2-D plane strain: 72 K / (5 pi delta^3), see
+ * src/model_pmb.c). beta is LAMMPS's vfrac_scale: with h = lattice/2, beta = (delta + h - r0)/(2h)
+ * when r0 >= delta - h and 1 otherwise, written branch-free as min(1, (vs_a - r0) * vs_b) with
+ * vs_a = delta + h, vs_b = 1/(2h); vs_a = +inf turns it off. Each bond is stored from both ends,
+ * so f_i is a gather over i's own row: a call writes only entries i in [i0, i1).
+ *
+ * Bond failure (LAMMPS s0 rule), only when bond_alive != NULL:
+ *   - a bond with bond_alive[b] == 0 contributes nothing;
+ *   - commit (s0_next != NULL): an intact bond breaks (bond_alive[b] = 0) when s > min(s0[i],
+ * s0[j]) (s0 of the previous pass; the force of this pass still includes the bond, as in LAMMPS),
+ * and s0_next[i] = max over the bonds intact at entry of (s00 - alpha * s), or DBL_MAX if none; the
+ * return value counts the bonds broken. Both ends of a bond compute bit-identical s (eta and xi
+ * only change sign), so a bond breaks from both ends in the same pass.
+ *   - trial (s0_next == NULL): bond_alive and s0 are only read; returns 0.
+ * w (may be NULL): receives W_i for i in [i0, i1).
+ *
+ * Not included (a deliberate difference from LAMMPS): the short-range contact forces LAMMPS adds
+ * between any two particles closer than min(0.9 r0, 1.35 lattice); pdk treats contact separately.
+ * LAMMPS also sets |r - r0| < 2.2204e-16 (an absolute length) to 0; pdk does not, so the two differ
+ * by round-off near the undeformed state only.
+ *
+ * Contract: pure; no allocation, no OpenMP region; arrays are [n_pad] per component (positions,
+ * volume, s0, s0_next, f, w), bond_start [n+1], bond_j and bond_alive [num_bonds]; the result for
+ * particle i does not depend on i0, i1 (so it is the same for any thread partition).
+ */
+#include <float.h>
+#include <math.h>
+
+#include "kernels.h"
+
+/* No FMA contraction: the stretch must round the same way in the vector body and in the scalar
+ * remainder, so both ends of a bond see the same s and break it together. */
+PDK_KERNEL_FP_EXACT
+
+/* One particle's row; the flags are compile-time constants in every caller, so each combination
+ * compiles to its own loop without branches on them. */
+static inline __attribute__((always_inline)) pdk_bond_index
+pmb_row(const int dim, const int has_state, const int commit, const int want_energy, pdk_index i,
+        const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
+        const double *restrict X, const double *restrict Y, const double *restrict Z,
+        const double *restrict x, const double *restrict y, const double *restrict z,
+        const double *restrict volume, const pdk_pmb_consts *k, uint8_t *restrict bond_alive,
+        const double *restrict s0, double *restrict s0_next, double *restrict fx,
+        double *restrict fy, double *restrict fz, double *restrict w) {
+  const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
+  const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
+  const double c = k->c, vs_a = k->vs_a, vs_b = k->vs_b, s00 = k->s00, alpha = k->alpha;
+  const double s0_i = has_state ? s0[i] : 0.0;
+  double f0 = 0.0, f1 = 0.0, f2 = 0.0, wi = 0.0, s0_max = -DBL_MAX;
+  pdk_bond_index broken = 0;
+  const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];
+#pragma omp simd reduction(+ : f0, f1, f2, wi, broken) reduction(max : s0_max)
+  for (pdk_bond_index b = b0; b < b1; ++b) {
+    const pdk_index j = bond_j[b];
+    const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
+    const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
+    const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+    const double r = sqrt(dx * dx + dy * dy + dz * dz);
+    const double s = (r - r0) / r0;
+    const double vol = volume[j] * fmin(1.0, (vs_a - r0) * vs_b);
+    const double on = has_state ? (double)bond_alive[b] : 1.0;
+    const double rk = on * c * s * vol;
+    const double g = r > 0.0 ? rk / r : 0.0;
+    f0 += g * dx;
+    f1 += g * dy;
+    if (dim == 3) f2 += g * dz;
+    if (want_energy) wi += 0.25 * rk * s * r0;
+    if (has_state && commit) {
+      const int alive = bond_alive[b] != 0;
+      const double s0_min = fmin(s0_i, s0[j]);
+      const int brk = alive && s > s0_min;
+      broken += brk;
+      bond_alive[b] = (uint8_t)(alive && !brk);
+      s0_max = fmax(s0_max, alive ? s00 - alpha * s : -DBL_MAX);
+    }
+  }
+  fx[i] = f0;
+  fy[i] = f1;
+  if (dim == 3) fz[i] = f2;
+  if (want_energy) w[i] = wi;
+  if (has_state && commit) s0_next[i] = s0_max == -DBL_MAX ? DBL_MAX : s0_max;
+  return broken;
+}
+
+#define PMB_RANGE(dim, st, cm, en)                                                                 \
+  for (pdk_index i = i0; i < i1; ++i)                                                              \
+  broken += pmb_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, k,           \
+                    bond_alive, s0, s0_next, fx, fy, fz, w)
+
+static pdk_bond_index
+pmb_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+          const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+          const double *restrict Z, const double *restrict x, const double *restrict y,
+          const double *restrict z, const double *restrict volume, const pdk_pmb_consts *k,
+          uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+          double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
+  pdk_bond_index broken = 0;
+  const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
+  const int want_energy = w != NULL;
+  /* Dispatch once per call to the loop specialised for (state, commit, energy). */
+  if (dim == 3) {
+    if (!has_state) {
+      if (want_energy)
+        PMB_RANGE(3, 0, 0, 1);
+      else
+        PMB_RANGE(3, 0, 0, 0);
+    } else if (!commit) {
+      if (want_energy)
+        PMB_RANGE(3, 1, 0, 1);
+      else
+        PMB_RANGE(3, 1, 0, 0);
+    } else {
+      if (want_energy)
+        PMB_RANGE(3, 1, 1, 1);
+      else
+        PMB_RANGE(3, 1, 1, 0);
+    }
+  } else {
+    if (!has_state) {
+      if (want_energy)
+        PMB_RANGE(2, 0, 0, 1);
+      else
+        PMB_RANGE(2, 0, 0, 0);
+    } else if (!commit) {
+      if (want_energy)
+        PMB_RANGE(2, 1, 0, 1);
+      else
+        PMB_RANGE(2, 1, 0, 0);
+    } else {
+      if (want_energy)
+        PMB_RANGE(2, 1, 1, 1);
+      else
+        PMB_RANGE(2, 1, 1, 0);
+    }
+  }
+  return broken;
+}
+
+pdk_bond_index pdk_kernel_pmb_force3_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict Z, const double *restrict x, const double *restrict y,
+    const double *restrict z, const double *restrict volume, const pdk_pmb_consts *k,
+    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+    double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
+  return pmb_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, bond_alive, s0,
+                   s0_next, fx, fy, fz, w);
+}
+
+pdk_bond_index pdk_kernel_pmb_force2_ref(
+    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
+    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
+    const double *restrict x, const double *restrict y, const double *restrict volume,
+    const pdk_pmb_consts *k, uint8_t *restrict bond_alive, const double *restrict s0,
+    double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict w) {
+  return pmb_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, bond_alive, s0,
+                   s0_next, fx, fy, NULL, w);
+}

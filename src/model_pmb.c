@@ -1,0 +1,165 @@
+/* Bond-based PMB model, as LAMMPS peri/pmb: driver over the reference kernel kernels/ref/pmb.c.
+ *
+ * Constants. LAMMPS takes the micromodulus c from the user; pdk derives it from the bulk modulus K
+ * and the horizon delta by matching the continuum strain energy density of an isotropic stretch s
+ * (W = 1/4 integral over the horizon of c s^2 |xi| dV):
+ *   3-D:          W = c pi delta^4 s^2 / 4  = 9/2 K s^2               ->  c = 18 K / (pi delta^4)
+ *   plane strain: W = c pi delta^3 s^2 / 6  = 2 (lambda + mu) s^2     ->  c = 72 K / (5 pi delta^3)
+ * A pair potential fixes the Poisson ratio: 1/4 in 3-D and in plane strain, so lambda = mu and
+ * K = lambda + 2 mu/3 = 5 mu/3, lambda + mu = 6 K / 5 (the 2-D c is 48 E / (5 pi delta^3), the
+ * known plane-strain value). The shear modulus option is ignored. In 2-D the sum over the family
+ * uses the particle volumes as areas: the 2-D c is per unit thickness, so a 2-D PMB body must be
+ * built with thickness 1 (the lattice default); LPS has no such restriction (its m normalises).
+ *
+ * Partial volumes: opts.lattice_constant > 0 turns on LAMMPS's vfrac_scale (kernels/ref/pmb.c).
+ * Bond failure: opts.critical_stretch > 0 turns on the LAMMPS s0 rule; model.c owns bond_alive and
+ * s0, this driver keeps the second s0 buffer (written by a committing pass, then swapped in).
+ *
+ * Threads: one parallel region per pass, over fixed blocks of PDK_PMB_BLOCK particles with a
+ * static schedule. Each block calls the kernel on its particles and, when the energy is wanted,
+ * sums V_i W_i over the block into its own slot; the slots are summed in block order afterwards.
+ * Every particle's force depends only on its own row, so results are bitwise the same for any
+ * thread count.
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "kernels.h"
+#include "model_bond.h"
+#include "model_impl.h"
+
+#define PDK_PMB_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
+
+typedef struct pmb_impl {
+  pdk_pmb_consts k;
+  int dim;
+  pdk_index n;
+  int64_t num_blocks;
+  double *s0_next;      /* [n_pad] when bonds can break */
+  double *w;            /* [n_pad] strain energy density, allocated on first request */
+  double *block_energy; /* [num_blocks] */
+} pmb_impl;
+
+/* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
+static void partial_volume_consts(double delta, double lattice, double *vs_a, double *vs_b) {
+  if (lattice > 0) {
+    double half = 0.5 * lattice;
+    *vs_a = delta + half;
+    *vs_b = 1.0 / (2.0 * half);
+  } else {
+    *vs_a = HUGE_VAL;
+    *vs_b = 1.0;
+  }
+}
+
+static int pmb_setup(pdk_model *m) {
+  pdk_ctx *ctx = m->ctx;
+  const pdk_model_opts *o = &m->opts;
+  pmb_impl *im = calloc(1, sizeof *im);
+  PDK_CHECK(im, ctx, PDK_ERR_MEMORY, "out of memory creating the pmb model");
+  m->impl = im;
+  im->dim = pdk_particles_dim(m->p);
+  im->n = pdk_particles_count(m->p);
+  im->num_blocks = ((int64_t)im->n + PDK_PMB_BLOCK - 1) / PDK_PMB_BLOCK;
+  const double delta = pdk_families_horizon(m->fam);
+  PDK_CHECK(isfinite(delta) && delta > 0, ctx, PDK_ERR_ARG,
+            "pmb model: the families' horizon must be positive, got %g", delta);
+  const double K = o->bulk_modulus;
+  im->k.c = im->dim == 3 ? 18.0 * K / (M_PI * delta * delta * delta * delta)
+                         : 72.0 * K / (5.0 * M_PI * delta * delta * delta);
+  partial_volume_consts(delta, o->lattice_constant, &im->k.vs_a, &im->k.vs_b);
+  im->k.s00 = o->critical_stretch;
+  im->k.alpha = o->alpha;
+  if (m->bond_alive) {
+    im->s0_next = pdk_alloc_aligned((size_t)pdk_particles_count_padded(m->p), sizeof(double));
+    PDK_CHECK(im->s0_next, ctx, PDK_ERR_MEMORY,
+              "pmb model: out of memory for %d critical stretches", (int)im->n);
+  }
+  im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
+  PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
+  return PDK_SUCCESS;
+}
+
+static int pmb_force(pdk_model *m, int commit, double *energy) {
+  pdk_ctx *ctx = m->ctx;
+  pmb_impl *im = m->impl;
+  pdk_particles *p = m->p;
+  if (energy && !im->w) {
+    im->w = pdk_alloc_aligned((size_t)pdk_particles_count_padded(p), sizeof(double));
+    PDK_CHECK(im->w, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for the energy densities");
+  }
+  const int dim = im->dim;
+  const pdk_index n = im->n;
+  const int64_t num_blocks = im->num_blocks;
+  const pdk_pmb_consts *k = &im->k;
+  const pdk_bond_index *bond_start = pdk_families_bond_start(m->fam);
+  const pdk_index *bond_j = pdk_families_bond_j(m->fam);
+  const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
+  const double *Z = dim == 3 ? pdk_particles_X(p, 2) : NULL;
+  const double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
+  const double *z = dim == 3 ? pdk_particles_field_data(p, "x", 2) : NULL;
+  double *fx = pdk_particles_field_data(p, "f", 0), *fy = pdk_particles_field_data(p, "f", 1);
+  double *fz = dim == 3 ? pdk_particles_field_data(p, "f", 2) : NULL;
+  const double *volume = pdk_particles_volume(p);
+  PDK_CHECK(x && y && fx && fy && (dim == 2 || (z && fz)), ctx, PDK_ERR_NOT_FOUND,
+            "pmb model: fields \"x\" and \"f\" are missing from the particle store");
+  uint8_t *alive = m->bond_alive;
+  const double *s0 = m->s0;
+  double *s0_next = commit && alive ? im->s0_next : NULL;
+  double *w = energy ? im->w : NULL;
+  double *block_energy = im->block_energy;
+  pdk_bond_index broken = 0;
+
+#pragma omp parallel for default(none) schedule(static) num_threads(ctx->num_threads)            \
+    reduction(+ : broken)                                                                          \
+    shared(num_blocks, n, dim, k, bond_start, bond_j, X, Y, Z, x, y, z, volume, alive, s0,         \
+               s0_next, fx, fy, fz, w, block_energy)
+  for (int64_t blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+    const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+    if (dim == 3)
+      broken += pdk_kernel_pmb_force3_ref(i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k,
+                                          alive, s0, s0_next, fx, fy, fz, w);
+    else
+      broken += pdk_kernel_pmb_force2_ref(i0, i1, bond_start, bond_j, X, Y, x, y, volume, k, alive,
+                                          s0, s0_next, fx, fy, w);
+    if (w) {
+      double e = 0.0;
+      for (pdk_index i = i0; i < i1; ++i)
+        e += volume[i] * w[i];
+      block_energy[blk] = e;
+    }
+  }
+
+  if (s0_next) { /* the pass's s0 becomes the next pass's "previous" s0 */
+    double *t = m->s0;
+    m->s0 = im->s0_next;
+    im->s0_next = t;
+    m->num_broken += broken;
+  }
+  if (energy) {
+    double e = 0.0;
+    for (int64_t blk = 0; blk < num_blocks; ++blk)
+      e += block_energy[blk];
+    *energy = e;
+  }
+  return PDK_SUCCESS;
+}
+
+static void pmb_destroy(pdk_model *m) {
+  pmb_impl *im = m->impl;
+  if (!im) return;
+  pdk_free_aligned(im->s0_next);
+  pdk_free_aligned(im->w);
+  free(im->block_energy);
+  free(im);
+  m->impl = NULL;
+}
+
+const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy};
+
+const double *pdk_model_pmb_energy_density(const pdk_model *m) {
+  if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;
+  return ((pmb_impl *)m->impl)->w;
+}
