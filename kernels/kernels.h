@@ -153,4 +153,55 @@ pdk_bond_index pdk_kernel_lps_force2_ref(
     uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
     double *restrict fx, double *restrict fy, double *restrict w);
 
+/* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
+#define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
+#define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke with J <= 0) */
+#define PDK_CORR_SPAN_RTOL 1e-6   /* flag when det K < PDK_CORR_SPAN_RTOL * (tr K / d)^d */
+
+typedef struct pdk_corr_consts {
+  int dim;             /* 2 (plane strain) or 3 */
+  int law;             /* pdk_law */
+  double lambda, mu;   /* Lame constants [pressure] */
+  int stab;            /* pdk_stabilization */
+  double stab_modulus; /* C_s c_d K [pressure]; particle i's coefficient is stab_modulus / m_i */
+  double horizon;      /* delta [length] (hourglass form) */
+  double span_rtol;    /* PDK_CORR_SPAN_RTOL */
+  double s00, alpha;   /* critical stretch and its alpha (bond failure) */
+} pdk_corr_consts;
+
+/* Arrays the kernels read and write. Per-particle arrays are [n_pad]; tensors are dim*dim such
+ * arrays, component [a][c] at index a*dim + c. Kernels copy these into restrict locals. */
+typedef struct pdk_corr_arrays {
+  const pdk_bond_index *bond_start; /* [n+1] */
+  const pdk_index *bond_j;          /* [num_bonds] */
+  const double *bond_omega;         /* [num_bonds] influence omega(|xi|) >= 0 */
+  uint8_t *bond_alive;              /* [num_bonds] 1 intact, 0 broken; NULL: all intact */
+  const double *X[3];               /* reference positions [length] */
+  const double *x[3];               /* current positions [length] */
+  const double *volume;             /* [length^3] (2-D: area x thickness) */
+  double *Kinv[9];                  /* K^-1 [1/length^5] */
+  double *F[9];                     /* deformation gradient [-] */
+  double *A[9];                     /* P K^-1 [pressure/length^5] */
+  double *m;                        /* weighted volume sum w V |xi|^2 [length^5]; NULL if unused */
+  uint8_t *flag;                    /* PDK_CORR_FLAG_* bits */
+  int32_t *num_alive;               /* intact bonds when K^-1 was computed; NULL if no failure */
+  double *W;                        /* strain energy density [energy/length^3] */
+  double *f[3];                     /* force density [force/length^3] */
+  const double *s0;                 /* critical stretch per particle, previous pass */
+  double *s0_next;                  /* critical stretch per particle, next pass */
+} pdk_corr_arrays;
+
+/* Shape: K^-1, m, flag bit SPAN, num_alive for i in [i0, i1); returns how many do not span. */
+pdk_index pdk_kernel_corr_shape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i0, pdk_index i1);
+/* Pass 1: F, A = P K^-1, W (and the shape again where bonds broke). */
+void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1);
+/* Pass 2: f (and W += Silling stabilization energy); reads A, F of neighbours from pass 1. */
+void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1);
+/* Bond failure by the s0 rule (commit passes); returns the directed bonds broken. */
+pdk_bond_index pdk_kernel_corr_break_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                         pdk_index i0, pdk_index i1);
+
 #endif

@@ -1,0 +1,444 @@
+/* Reference correspondence kernels (non-ordinary state-based peridynamics, total Lagrangian,
+ * nodal integration), 2-D plane strain and 3-D.
+ *
+ * Notation: particle i, bond b of i with neighbour j = bond_j[b], reference bond xi = X_j - X_i,
+ * current bond Y = x_j - x_i, bond weight w_b = omega_b * alive_b (omega_b = influence function at
+ * |xi|, alive_b = 1 intact / 0 broken; all intact when bond_alive == NULL), V_j the volume of j.
+ * Tensors are d x d (d = 2 or 3), stored SoA: component T[a][c] is array a*d + c, each [n_pad].
+ *
+ * Shape (pdk_kernel_corr_shape_ref), once in total Lagrangian and again for a particle whose
+ * intact-bond count changed:
+ *   K_i = sum_b w_b V_j xi (x) xi        m_i = sum_b w_b V_j |xi|^2 (weighted volume)
+ *   The family spans the space when det K_i >= span_rtol * (tr K_i / d)^d (and tr K_i > 0, all
+ *   finite). det K / (tr K / d)^d is the ratio of the geometric to the arithmetic mean of the
+ *   eigenvalues, to the power d: 1 for an isotropic family, 0 for collinear (2-D) or coplanar
+ *   (3-D) bonds; span_rtol = 1e-6 (PDK_CORR_SPAN_RTOL) flags condition numbers beyond about
+ *   4e6 (2-D). A family that does not span gets flag bit PDK_CORR_FLAG_SPAN and K^-1 = 0.
+ *
+ * Pass 1 (pdk_kernel_corr_pass1_ref), per particle i:
+ *   N_i = sum_b w_b V_j Y (x) xi,   F_i = N_i K_i^-1,   P_i = law(F_i),   A_i = P_i K_i^-1,
+ *   W_i = strain energy density of the law (per reference volume).
+ *   Laws (lambda, mu Lame constants; 2-D plane strain: F, P, E are the in-plane 2 x 2 blocks and
+ *   the out-of-plane stretch is 1, so J = det of the 2 x 2 F and tr(F^T F) - d = I_1 - 3):
+ *     linear elastic  eps = sym(F) - I, P = sigma = lambda tr(eps) I + 2 mu eps,
+ *                     W = lambda/2 tr(eps)^2 + mu eps:eps
+ *     St Venant-K.    E = (F^T F - I)/2, S = lambda tr(E) I + 2 mu E, P = F S,
+ *                     W = lambda/2 tr(E)^2 + mu E:E
+ *     Neo-Hooke       J = det F, P = mu (F - F^-T) + lambda ln(J) F^-T,
+ *                     W = mu/2 (tr(F^T F) - d) - mu ln J + lambda/2 (ln J)^2
+ *   A particle flagged by the shape gets F = 0, A = 0, W = 0. With Neo-Hooke, J <= 0 (or a
+ *   non-finite J) sets flag bit PDK_CORR_FLAG_INVERTED and A = 0, W = 0 for this pass (the bit is
+ *   recomputed every pass). So no NaN or infinity is ever stored.
+ *   When bond_alive != NULL, pass 1 counts the intact bonds of i; if the count differs from
+ *   num_alive[i] (bonds broke since K_i was computed), it recomputes the shape of i first.
+ *
+ * Pass 2 (pdk_kernel_corr_pass2_ref), force density [force / length^3 of reference volume]:
+ *   f_i = sum_b V_j ( T_i<xi> - T_j<-xi> ),  T_i<xi> = w_b A_i xi + S_i<xi>,
+ *   i.e. f_i = sum_b w_b V_j (A_i + A_j) xi + stabilization. A flagged particle has A = 0 and
+ *   S = 0: it contributes no correspondence force (it still feels its neighbours' T_j).
+ *   Stabilization, with z_i = Y - F_i xi (the non-uniform part of the deformation seen from i),
+ *   z_j' = Y - F_j xi (the same bond seen from j, sign-flipped), k_i = stab_modulus / m_i (0 for a
+ *   flagged particle):
+ *     none       S = 0
+ *     Silling    S_i<xi> = k_i w_b z_i          (Silling 2017, CMAME 322, 42-57)
+ *                pair term: w_b V_j (k_i z_i + k_j z_j')
+ *                energy:    W_i += k_i/2 sum_b w_b V_j |z_i|^2  (an exact potential: F_i is the
+ *                w V-weighted least-squares fit of Y on xi, so sum_b w_b V_j z_i (x) xi = 0 and
+ *                the variation of F drops out; hence f = -grad E holds with the term included)
+ *     hourglass  S_i<xi> = k_i w_b (delta / |xi|) (z_i . e) e,  e = Y / |Y|   (Littlewood 2011,
+ *                as in Peridigm's correspondence hourglass force: the Silling vector projected on
+ *                the current bond, so every pair force is parallel to Y and angular momentum is
+ *                conserved). pair term: w_b V_j (delta/|xi|) (k_i z_i.e + k_j z_j'.e) e.
+ *                Not the gradient of an energy; it adds nothing to W.
+ *   stab_modulus = C_s c_d K (K bulk modulus, C_s the user's coefficient; c_3 = 72/5, c_2 = 36/5),
+ *   chosen so that for omega = 1 and a full continuum family (m = 4 pi delta^5 / 5 in 3-D,
+ *   pi delta^4 h / 2 in 2-D with thickness h) k_i equals C_s c_PMB / delta, c_PMB the PMB
+ *   micromodulus (18 K / (pi delta^4) in 3-D, 72 K / (5 pi h delta^3) in 2-D plane strain): the
+ *   18 C_s K / (pi delta^5) of the Peridigm-derived implementations of Silling's term and the
+ *   18 C_s K / (pi delta^4) / |xi| of Peridigm's hourglass force (with delta / |xi| above).
+ *   Dividing by the particle's own m_i (rather than a constant) makes the term invariant under a
+ *   rescaling of omega, like F and the correspondence force, and stiffer at surfaces, as LPS is.
+ *   Why this and not another reading: see src/model_corr.c.
+ *
+ * Bond failure (pdk_kernel_corr_break_ref, commit passes only, bond_alive != NULL): the LAMMPS s0
+ * rule of kernels/ref/pmb.c. For every bond intact at entry, s = (|Y| - |xi|)/|xi|; it breaks
+ * (bond_alive = 0) when s > min(s0_i, s0_j); s0_next_i = max over those bonds of s00 - alpha s,
+ * DBL_MAX if none. Both ends compute bit-identical s (Y and xi only change sign), so a bond breaks
+ * from both ends in the same pass. Returns the number of directed bonds broken.
+ *
+ * Contract: pure functions over particles [i0, i1); no allocation, no OpenMP region. A call writes
+ * only per-particle entries i in [i0, i1) and bond entries of those particles' rows, and reads
+ * neighbours' data written by an earlier pass, so the result for i does not depend on how the
+ * range is split between threads. Families must be symmetric (j in H_i <=> i in H_j, same omega,
+ * same alive state), as pdk_families_build makes them.
+ */
+#include <float.h>
+#include <math.h>
+
+#include "kernels.h"
+#include "pdk/model.h" /* pdk_law, pdk_stabilization */
+
+/* ---- small dense tensors (row-major, d x d in the top-left of 3 x 3) ------------------------- */
+
+static double det_d(const int d, const double T[3][3]) {
+  if (d == 2) return T[0][0] * T[1][1] - T[0][1] * T[1][0];
+  return T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1]) -
+         T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0]) +
+         T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]);
+}
+
+/* Inverse by the adjugate; the caller checks det != 0. */
+static void inv_d(const int d, const double T[3][3], double det, double R[3][3]) {
+  const double s = 1.0 / det;
+  if (d == 2) {
+    R[0][0] = T[1][1] * s;
+    R[0][1] = -T[0][1] * s;
+    R[1][0] = -T[1][0] * s;
+    R[1][1] = T[0][0] * s;
+    return;
+  }
+  R[0][0] = (T[1][1] * T[2][2] - T[1][2] * T[2][1]) * s;
+  R[0][1] = (T[0][2] * T[2][1] - T[0][1] * T[2][2]) * s;
+  R[0][2] = (T[0][1] * T[1][2] - T[0][2] * T[1][1]) * s;
+  R[1][0] = (T[1][2] * T[2][0] - T[1][0] * T[2][2]) * s;
+  R[1][1] = (T[0][0] * T[2][2] - T[0][2] * T[2][0]) * s;
+  R[1][2] = (T[0][2] * T[1][0] - T[0][0] * T[1][2]) * s;
+  R[2][0] = (T[1][0] * T[2][1] - T[1][1] * T[2][0]) * s;
+  R[2][1] = (T[0][1] * T[2][0] - T[0][0] * T[2][1]) * s;
+  R[2][2] = (T[0][0] * T[1][1] - T[0][1] * T[1][0]) * s;
+}
+
+/* R = S T */
+static void mul_d(const int d, const double S[3][3], const double T[3][3], double R[3][3]) {
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c) {
+      double s = 0.0;
+      for (int e = 0; e < d; ++e)
+        s += S[a][e] * T[e][c];
+      R[a][c] = s;
+    }
+}
+
+static void load_d(const int d, double *const *restrict src, pdk_index i, double T[3][3]) {
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c)
+      T[a][c] = src[a * d + c][i];
+}
+
+static void store_d(const int d, double *const *restrict dst, pdk_index i, const double T[3][3]) {
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c)
+      dst[a * d + c][i] = T[a][c];
+}
+
+static void store_zero_d(const int d, double *const *restrict dst, pdk_index i) {
+  for (int c = 0; c < d * d; ++c)
+    dst[c][i] = 0.0;
+}
+
+/* ---- material laws: P(F) and W(F); return 0 if the law is undefined at F ----------------------
+ */
+
+static int law_eval(const pdk_corr_consts *k, const double F[3][3], double P[3][3], double *W) {
+  const int d = k->dim;
+  const double lambda = k->lambda, mu = k->mu;
+  switch (k->law) {
+  case PDK_LAW_LINEAR_ELASTIC: {
+    double eps[3][3], tr = 0.0, ee = 0.0;
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        eps[a][c] = 0.5 * (F[a][c] + F[c][a]) - (a == c ? 1.0 : 0.0);
+        ee += eps[a][c] * eps[a][c];
+      }
+    for (int a = 0; a < d; ++a)
+      tr += eps[a][a];
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c)
+        P[a][c] = 2.0 * mu * eps[a][c] + (a == c ? lambda * tr : 0.0);
+    *W = 0.5 * lambda * tr * tr + mu * ee;
+    return 1;
+  }
+  case PDK_LAW_SVK: {
+    double E[3][3], S[3][3], tr = 0.0, ee = 0.0;
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        double C = 0.0;
+        for (int e = 0; e < d; ++e)
+          C += F[e][a] * F[e][c];
+        E[a][c] = 0.5 * (C - (a == c ? 1.0 : 0.0));
+        ee += E[a][c] * E[a][c];
+      }
+    for (int a = 0; a < d; ++a)
+      tr += E[a][a];
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c)
+        S[a][c] = 2.0 * mu * E[a][c] + (a == c ? lambda * tr : 0.0);
+    mul_d(d, F, S, P);
+    *W = 0.5 * lambda * tr * tr + mu * ee;
+    return 1;
+  }
+  case PDK_LAW_NEO_HOOKE: {
+    const double J = det_d(d, F);
+    if (!(J > 0.0) || !isfinite(J)) return 0;
+    double Finv[3][3], ff = 0.0;
+    inv_d(d, F, J, Finv);
+    const double lnJ = log(J);
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < d; ++c) {
+        const double FinvT = Finv[c][a];
+        P[a][c] = mu * (F[a][c] - FinvT) + lambda * lnJ * FinvT;
+        ff += F[a][c] * F[a][c];
+      }
+    *W = 0.5 * mu * (ff - d) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
+    return 1;
+  }
+  }
+  return 0;
+}
+
+/* ---- shape ------------------------------------------------------------------------------------
+ */
+
+/* Shape of one particle: K^-1 (or 0), m, the SPAN flag bit, the intact-bond count. Returns 1 if
+ * the family does not span. */
+static int shape_one(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
+  const int d = k->dim;
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  double K[3][3] = {{0}}, m = 0.0;
+  int32_t count = 0;
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    const pdk_index j = bond_j[b];
+    const int on = alive ? alive[b] != 0 : 1;
+    count += on;
+    const double wv = on ? omega[b] * volume[j] : 0.0;
+    double xi[3];
+    for (int c = 0; c < d; ++c)
+      xi[c] = a->X[c][j] - a->X[c][i];
+    for (int r = 0; r < d; ++r) {
+      m += wv * xi[r] * xi[r];
+      for (int c = 0; c < d; ++c)
+        K[r][c] += wv * xi[r] * xi[c];
+    }
+  }
+  double tr = 0.0;
+  for (int c = 0; c < d; ++c)
+    tr += K[c][c];
+  const double det = det_d(d, K);
+  const double mean = tr / d;
+  const double scale = d == 2 ? mean * mean : mean * mean * mean;
+  const int spans = tr > 0.0 && isfinite(tr) && isfinite(det) && det >= k->span_rtol * scale;
+  if (spans) {
+    double Kinv[3][3];
+    inv_d(d, K, det, Kinv);
+    store_d(d, a->Kinv, i, Kinv);
+  } else {
+    store_zero_d(d, a->Kinv, i);
+  }
+  if (a->m) a->m[i] = m;
+  if (a->num_alive) a->num_alive[i] = count;
+  a->flag[i] = (uint8_t)((a->flag[i] & ~PDK_CORR_FLAG_SPAN) | (spans ? 0u : PDK_CORR_FLAG_SPAN));
+  return !spans;
+}
+
+pdk_index pdk_kernel_corr_shape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i0, pdk_index i1) {
+  pdk_index flagged = 0;
+  for (pdk_index i = i0; i < i1; ++i)
+    flagged += shape_one(k, a, i);
+  return flagged;
+}
+
+/* ---- pass 1 -----------------------------------------------------------------------------------
+ */
+
+static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                      pdk_index i) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  double N[3][3] = {{0}};
+  int32_t count = 0;
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    const pdk_index j = bond_j[b];
+    const int on = alive ? alive[b] != 0 : 1;
+    count += on;
+    const double wv = on ? omega[b] * volume[j] : 0.0;
+    double xi[3], Y[3];
+    for (int c = 0; c < d; ++c) {
+      xi[c] = a->X[c][j] - a->X[c][i];
+      Y[c] = a->x[c][j] - a->x[c][i];
+    }
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        N[r][c] += wv * Y[r] * xi[c];
+  }
+  if (alive && a->num_alive && count != a->num_alive[i]) shape_one(k, a, i);
+  if (a->flag[i] & PDK_CORR_FLAG_SPAN) {
+    store_zero_d(d, a->F, i);
+    store_zero_d(d, a->A, i);
+    a->W[i] = 0.0;
+    return;
+  }
+  double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
+  load_d(d, a->Kinv, i, Kinv);
+  mul_d(d, N, Kinv, F);
+  store_d(d, a->F, i, F);
+  if (law_eval(k, F, P, &W)) {
+    mul_d(d, P, Kinv, A);
+    store_d(d, a->A, i, A);
+    a->W[i] = W;
+    a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
+  } else {
+    store_zero_d(d, a->A, i);
+    a->W[i] = 0.0;
+    a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
+  }
+}
+
+void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1) {
+  /* The dimension is a literal in each loop so the small tensor loops are fully unrolled. */
+  if (k->dim == 2)
+    for (pdk_index i = i0; i < i1; ++i)
+      pass1_one(2, k, a, i);
+  else
+    for (pdk_index i = i0; i < i1; ++i)
+      pass1_one(3, k, a, i);
+}
+
+/* ---- pass 2 -----------------------------------------------------------------------------------
+ */
+
+/* Stabilization coefficient k of particle p (0 when flagged or without a weighted volume). */
+static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
+  if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
+  return k->stab_modulus / a->m[p];
+}
+
+static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                      pdk_index i) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  const int stab = k->stab != PDK_STAB_NONE;
+  const int silling = k->stab == PDK_STAB_SILLING;
+  double Ai[3][3], Fi[3][3];
+  load_d(d, a->A, i, Ai);
+  load_d(d, a->F, i, Fi);
+  const double ki = stab_coef(k, a, i);
+  double f[3] = {0.0, 0.0, 0.0}, zz = 0.0;
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    if (alive && !alive[b]) continue;
+    const pdk_index j = bond_j[b];
+    const double wv = omega[b] * volume[j];
+    double xi[3], Y[3], Aj[3][3], t[3];
+    for (int c = 0; c < d; ++c) {
+      xi[c] = a->X[c][j] - a->X[c][i];
+      Y[c] = a->x[c][j] - a->x[c][i];
+    }
+    load_d(d, a->A, j, Aj);
+    for (int r = 0; r < d; ++r) {
+      double s = 0.0;
+      for (int c = 0; c < d; ++c)
+        s += (Ai[r][c] + Aj[r][c]) * xi[c];
+      t[r] = s;
+    }
+    if (stab) {
+      const double kj = stab_coef(k, a, j);
+      double Fj[3][3], zi[3], zj[3];
+      load_d(d, a->F, j, Fj);
+      for (int r = 0; r < d; ++r) {
+        double si = 0.0, sj = 0.0;
+        for (int c = 0; c < d; ++c) {
+          si += Fi[r][c] * xi[c];
+          sj += Fj[r][c] * xi[c];
+        }
+        zi[r] = Y[r] - si;
+        zj[r] = Y[r] - sj;
+      }
+      if (silling) {
+        for (int r = 0; r < d; ++r) {
+          t[r] += ki * zi[r] + kj * zj[r];
+          zz += wv * zi[r] * zi[r];
+        }
+      } else { /* hourglass, projected on the current bond */
+        double y2 = 0.0, x2 = 0.0;
+        for (int c = 0; c < d; ++c) {
+          y2 += Y[c] * Y[c];
+          x2 += xi[c] * xi[c];
+        }
+        if (y2 > 0.0) {
+          const double ylen = sqrt(y2);
+          double zie = 0.0, zje = 0.0;
+          for (int c = 0; c < d; ++c) {
+            zie += zi[c] * Y[c];
+            zje += zj[c] * Y[c];
+          }
+          /* (delta/|xi|) (k_i z_i.e + k_j z_j.e) e, with e = Y/|Y| */
+          const double g = k->horizon / sqrt(x2) * (ki * zie + kj * zje) / (ylen * ylen);
+          for (int r = 0; r < d; ++r)
+            t[r] += g * Y[r];
+        }
+      }
+    }
+    for (int r = 0; r < d; ++r)
+      f[r] += wv * t[r];
+  }
+  for (int r = 0; r < d; ++r)
+    a->f[r][i] = f[r];
+  if (silling) a->W[i] += 0.5 * ki * zz;
+}
+
+void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1) {
+  if (k->dim == 2)
+    for (pdk_index i = i0; i < i1; ++i)
+      pass2_one(2, k, a, i);
+  else
+    for (pdk_index i = i0; i < i1; ++i)
+      pass2_one(3, k, a, i);
+}
+
+/* ---- bond failure -----------------------------------------------------------------------------
+ */
+
+pdk_bond_index pdk_kernel_corr_break_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                         pdk_index i0, pdk_index i1) {
+  const int d = k->dim;
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  uint8_t *restrict alive = a->bond_alive;
+  const double *restrict s0 = a->s0;
+  double *restrict s0_next = a->s0_next;
+  pdk_bond_index broken = 0;
+  for (pdk_index i = i0; i < i1; ++i) {
+    double s0_max = -DBL_MAX;
+    for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+      if (!alive[b]) continue;
+      const pdk_index j = bond_j[b];
+      double x2 = 0.0, y2 = 0.0;
+      for (int c = 0; c < d; ++c) {
+        const double xi = a->X[c][j] - a->X[c][i], Y = a->x[c][j] - a->x[c][i];
+        x2 += xi * xi;
+        y2 += Y * Y;
+      }
+      const double r0 = sqrt(x2);
+      const double s = (sqrt(y2) - r0) / r0;
+      if (s > fmin(s0[i], s0[j])) {
+        alive[b] = 0;
+        ++broken;
+      }
+      s0_max = fmax(s0_max, k->s00 - k->alpha * s);
+    }
+    s0_next[i] = s0_max == -DBL_MAX ? DBL_MAX : s0_max;
+  }
+  return broken;
+}
