@@ -32,11 +32,9 @@ struct pdk_model {
   pdk_index num_flagged;
 };
 
-/* Weak while the kinds are developed side by side: a kind whose file is absent is reported as
- * unsupported instead of breaking the link. */
-extern const pdk_model_ops pdk_model_ops_pmb __attribute__((weak));
-extern const pdk_model_ops pdk_model_ops_lps __attribute__((weak));
-extern const pdk_model_ops pdk_model_ops_corr __attribute__((weak));
+extern const pdk_model_ops pdk_model_ops_pmb;
+extern const pdk_model_ops pdk_model_ops_lps;
+extern const pdk_model_ops pdk_model_ops_corr;
 
 /* Influence function omega(r) for r <= delta (see pdk_influence). */
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);

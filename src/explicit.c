@@ -1,0 +1,517 @@
+/* Explicit dynamics: velocity Verlet with boundary conditions, a Lanczos estimate of the stable
+ * time step, energies and reactions; see include/pdk/explicit.h.
+ *
+ * Per-particle arrays: "x", "v", "f" (dim components each, n_pad entries). Constraint masks:
+ * fixed_mask[i] bit c set when component c of particle i is prescribed (displacement or
+ * velocity); the prescribing condition is bc_of[c][i] (index into bcs, -1 none).
+ * Reductions (energies, reactions) go through per-block partial sums in block order, so the
+ * result does not depend on the thread count.
+ */
+#include <math.h>
+#include <omp.h>
+#include <string.h>
+
+#include "model_impl.h"
+#include "pdk/explicit.h"
+
+#define PDK_RED_BLOCK 4096 /* particles per reduction block: fixed, so sums are thread-independent */
+#define PDK_MAX_REACTION_SETS 8
+
+struct pdk_explicit {
+  pdk_ctx *ctx;
+  pdk_model *m;
+  pdk_particles *p;
+  pdk_explicit_opts opts;
+  pdk_bc *bcs;              /* [num_bcs], copied */
+  int dim;
+  pdk_index n;
+  double dt, dt_stable;
+  double time;
+  long step;
+  double rho;
+  int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
+  uint8_t *reaction_member[PDK_MAX_REACTION_SETS]; /* [n] 1 if in reaction set k (borrowed) */
+  int num_reaction;
+  double strain;            /* strain energy of the last force pass */
+  double external_work;
+  double *fprev_work;       /* [num_bcs*3] previous-step power terms for trapezoidal work */
+};
+
+pdk_tfun pdk_tfun_constant(double a) {
+  pdk_tfun f = {PDK_TFUN_CONSTANT, a, 0.0};
+  return f;
+}
+
+double pdk_tfun_value(const pdk_tfun *f, double t) {
+  switch (f->kind) {
+  case PDK_TFUN_CONSTANT: return f->a;
+  case PDK_TFUN_LINEAR: return f->a + f->b * t;
+  case PDK_TFUN_RAMP: return f->a * (t < f->b ? t / f->b : 1.0);
+  case PDK_TFUN_SMOOTH: {
+    double r = t < f->b ? t / f->b : 1.0;
+    return f->a * r * r * r * (10.0 - 15.0 * r + 6.0 * r * r);
+  }
+  case PDK_TFUN_SINE: return f->a * sin(2.0 * M_PI * t / f->b);
+  }
+  return 0.0;
+}
+
+double pdk_tfun_rate(const pdk_tfun *f, double t) {
+  switch (f->kind) {
+  case PDK_TFUN_CONSTANT: return 0.0;
+  case PDK_TFUN_LINEAR: return f->b;
+  case PDK_TFUN_RAMP: return t < f->b ? f->a / f->b : 0.0;
+  case PDK_TFUN_SMOOTH: {
+    if (t >= f->b) return 0.0;
+    double r = t / f->b;
+    return f->a / f->b * 30.0 * r * r * (1.0 - r) * (1.0 - r);
+  }
+  case PDK_TFUN_SINE: return f->a * 2.0 * M_PI / f->b * cos(2.0 * M_PI * t / f->b);
+  }
+  return 0.0;
+}
+
+pdk_explicit_opts pdk_explicit_opts_default(void) {
+  pdk_explicit_opts o;
+  memset(&o, 0, sizeof o);
+  o.safety = 0.8;
+  return o;
+}
+
+static double *field(pdk_particles *p, const char *name, int c) {
+  return pdk_particles_field_data(p, name, c);
+}
+
+/* Sets prescribed positions and velocities of constrained components at time t. */
+static void apply_kinematic_bcs(pdk_explicit *e, double t) {
+  const int dim = e->dim;
+  const pdk_index n = e->n;
+  for (int c = 0; c < dim; ++c) {
+    const int32_t *bc_of = e->bc_of[c];
+    double *x = field(e->p, "x", c), *v = field(e->p, "v", c);
+    const double *X = pdk_particles_X(e->p, c);
+    const pdk_bc *bcs = e->bcs;
+    int nthreads = e->ctx->num_threads;
+#pragma omp parallel for default(none) shared(bc_of, x, v, X, bcs, n, c, t) schedule(static) num_threads(nthreads)
+    for (pdk_index i = 0; i < n; ++i) {
+      int k = bc_of[i];
+      if (k < 0) continue;
+      const pdk_bc *bc = &bcs[k];
+      if (bc->kind == PDK_BC_DISPLACEMENT) {
+        x[i] = X[i] + pdk_tfun_value(&bc->value[c], t);
+        v[i] = pdk_tfun_rate(&bc->value[c], t);
+      } else { /* velocity: position already advanced with the prescribed velocity */
+        v[i] = pdk_tfun_value(&bc->value[c], t);
+      }
+    }
+  }
+}
+
+/* Body force density at time t on particle i, component c. */
+static double body_force(const pdk_explicit *e, const uint8_t *const *member, pdk_index i, int c, double t) {
+  double b = 0.0;
+  for (int k = 0; k < e->opts.num_bcs; ++k) {
+    const pdk_bc *bc = &e->bcs[k];
+    if (bc->kind != PDK_BC_BODY_FORCE || !(bc->components & (1u << c))) continue;
+    if (member[k] && !member[k][i]) continue;
+    b += pdk_tfun_value(&bc->value[c], t);
+  }
+  return b;
+}
+
+static int num_body_forces(const pdk_explicit *e) {
+  int nb = 0;
+  for (int k = 0; k < e->opts.num_bcs; ++k) nb += e->bcs[k].kind == PDK_BC_BODY_FORCE;
+  return nb;
+}
+
+/* v += dt/2 (f + b) / rho on free components. */
+static void half_kick(pdk_explicit *e, double t) {
+  const int dim = e->dim;
+  const pdk_index n = e->n;
+  const double h = 0.5 * e->dt / e->rho;
+  const int nb = num_body_forces(e);
+  const uint8_t *member[64] = {0};
+  for (int k = 0; k < e->opts.num_bcs && k < 64; ++k)
+    member[k] = e->bcs[k].set ? pdk_particles_field_data(e->p, e->bcs[k].set, 0) : NULL;
+  for (int c = 0; c < dim; ++c) {
+    double *v = field(e->p, "v", c);
+    const double *f = field(e->p, "f", c);
+    const int32_t *bc_of = e->bc_of[c];
+    int nthreads = e->ctx->num_threads;
+    const pdk_explicit *ec = e;
+#pragma omp parallel for default(none) shared(v, f, bc_of, n, h, nb, ec, member, c, t) schedule(static) num_threads(nthreads)
+    for (pdk_index i = 0; i < n; ++i) {
+      if (bc_of[i] >= 0) continue;
+      double b = nb ? body_force(ec, member, i, c, t) : 0.0;
+      v[i] += h * (f[i] + b);
+    }
+  }
+}
+
+static void drift(pdk_explicit *e) {
+  const pdk_index n = e->n;
+  const double dt = e->dt;
+  for (int c = 0; c < e->dim; ++c) {
+    double *x = field(e->p, "x", c);
+    const double *v = field(e->p, "v", c);
+    int nthreads = e->ctx->num_threads;
+#pragma omp parallel for default(none) shared(x, v, n, dt) schedule(static) num_threads(nthreads)
+    for (pdk_index i = 0; i < n; ++i) x[i] += dt * v[i];
+  }
+}
+
+/* Checks x and v for non-finite values; names the first bad particle (lowest index). */
+static int check_state(pdk_explicit *e) {
+  const pdk_index n = e->n;
+  pdk_index bad = n;
+  int bad_c = 0;
+  for (int c = 0; c < e->dim; ++c) {
+    const double *x = field(e->p, "x", c), *v = field(e->p, "v", c);
+    pdk_index first = n;
+    int nthreads = e->ctx->num_threads;
+#pragma omp parallel for default(none) shared(x, v, n) reduction(min : first) schedule(static) num_threads(nthreads)
+    for (pdk_index i = 0; i < n; ++i)
+      if (!isfinite(x[i]) || !isfinite(v[i])) first = i < first ? i : first;
+    if (first < bad) {
+      bad = first;
+      bad_c = c;
+    }
+  }
+  if (bad == n) return PDK_SUCCESS;
+  const int64_t *id = pdk_particles_id(e->p);
+  return pdk_ctx_error_set(e->ctx, PDK_ERR_NUMERIC, __func__,
+                           "the state became non-finite at step %ld (time %g): particle %d (id %lld) "
+                           "has x[%d] = %g, v[%d] = %g; the time step %g may exceed the stable limit "
+                           "%g, or a load or material parameter is too large",
+                           e->step, e->time, (int)bad, (long long)id[bad], bad_c,
+                           field(e->p, "x", bad_c)[bad], bad_c, field(e->p, "v", bad_c)[bad], e->dt,
+                           e->dt_stable);
+}
+
+/* Sum over particles of g(i) through fixed blocks: the same bits for any thread count. */
+static double kinetic_energy(pdk_explicit *e) {
+  const pdk_index n = e->n;
+  const int dim = e->dim;
+  const double *vol = pdk_particles_volume(e->p);
+  const double *v0 = field(e->p, "v", 0), *v1 = field(e->p, "v", 1);
+  const double *v2 = dim == 3 ? field(e->p, "v", 2) : NULL;
+  pdk_index nblk = (n + PDK_RED_BLOCK - 1) / PDK_RED_BLOCK;
+  double *part = malloc((size_t)nblk * sizeof *part);
+  if (!part) return NAN;
+  int nthreads = e->ctx->num_threads;
+#pragma omp parallel for default(none) shared(part, nblk, n, vol, v0, v1, v2, dim) schedule(static) num_threads(nthreads)
+  for (pdk_index b = 0; b < nblk; ++b) {
+    pdk_index lo = b * PDK_RED_BLOCK, hi = lo + PDK_RED_BLOCK < n ? lo + PDK_RED_BLOCK : n;
+    double s = 0.0;
+    for (pdk_index i = lo; i < hi; ++i) {
+      double w2 = v0[i] * v0[i] + v1[i] * v1[i] + (dim == 3 ? v2[i] * v2[i] : 0.0);
+      s += vol[i] * w2;
+    }
+    part[b] = s;
+  }
+  double total = 0.0;
+  for (pdk_index b = 0; b < nblk; ++b) total += part[b];
+  free(part);
+  return 0.5 * e->rho * total;
+}
+
+/* Reaction on a set: R = -sum_{i in set} V_i f_i, in index order (serial: sets are small). */
+static void reactions(pdk_explicit *e, double out[][3]) {
+  const double *vol = pdk_particles_volume(e->p);
+  for (int k = 0; k < e->num_reaction; ++k) {
+    const uint8_t *mem = e->reaction_member[k];
+    for (int c = 0; c < 3; ++c) out[k][c] = 0.0;
+    for (int c = 0; c < e->dim; ++c) {
+      const double *f = field(e->p, "f", c);
+      double s = 0.0;
+      for (pdk_index i = 0; i < e->n; ++i)
+        if (mem[i]) s += vol[i] * f[i];
+      out[k][c] = -s;
+    }
+  }
+}
+
+/* Power of the constraints and body forces on the body at the current state:
+ * P = sum over constrained components of (-V_i f_i) v_i + sum over free components of V_i b_i v_i. */
+static double external_power(pdk_explicit *e, double t) {
+  const double *vol = pdk_particles_volume(e->p);
+  const int nb = num_body_forces(e);
+  const uint8_t *member[64] = {0};
+  for (int k = 0; k < e->opts.num_bcs && k < 64; ++k)
+    member[k] = e->bcs[k].set ? pdk_particles_field_data(e->p, e->bcs[k].set, 0) : NULL;
+  double power = 0.0;
+  for (int c = 0; c < e->dim; ++c) {
+    const double *f = field(e->p, "f", c), *v = field(e->p, "v", c);
+    const int32_t *bc_of = e->bc_of[c];
+    for (pdk_index i = 0; i < e->n; ++i) {
+      if (bc_of[i] >= 0) power += -vol[i] * f[i] * v[i];
+      else if (nb) power += vol[i] * body_force(e, member, i, c, t) * v[i];
+    }
+  }
+  return power;
+}
+
+/* Symmetric tridiagonal (alpha[0..k-1], beta[1..k-1]) largest eigenvalue by Sturm bisection. */
+static double tridiag_max_eig(const double *alpha, const double *beta, int k) {
+  double lo = alpha[0], hi = alpha[0];
+  for (int i = 0; i < k; ++i) { /* Gershgorin interval */
+    double r = (i > 0 ? fabs(beta[i]) : 0.0) + (i + 1 < k ? fabs(beta[i + 1]) : 0.0);
+    lo = fmin(lo, alpha[i] - r);
+    hi = fmax(hi, alpha[i] + r);
+  }
+  for (int it = 0; it < 200 && hi - lo > 1e-14 * fabs(hi); ++it) {
+    double mid = 0.5 * (lo + hi);
+    int count = 0; /* eigenvalues below mid */
+    double d = 1.0;
+    for (int i = 0; i < k; ++i) {
+      d = alpha[i] - mid - (i > 0 ? beta[i] * beta[i] / d : 0.0);
+      if (d == 0.0) d = -1e-300;
+      if (d < 0) count++;
+    }
+    if (count == k) hi = mid;
+    else lo = mid;
+  }
+  return hi;
+}
+
+/* Largest eigenvalue of M^-1 K by Lanczos in the M-inner product, K v ~ -(f(x0 + eps v) -
+ * f(x0)) / eps per unit volume (trial forces: no history changes). 40 iterations give the top of the
+ * spectrum to about a percent on lattices; the estimate is a lower bound of lambda_max. */
+static int estimate_stable_dt(pdk_explicit *e) {
+  int err = PDK_SUCCESS;
+  const int dim = e->dim, kmax = 40;
+  const pdk_index n = e->n;
+  const double *vol = pdk_particles_volume(e->p);
+  const int64_t *id = pdk_particles_id(e->p);
+  double *x0[3] = {0}, *f0[3] = {0}, *q[3] = {0}, *qprev[3] = {0}, *w[3] = {0};
+  double alpha[40], beta[41];
+  for (int c = 0; c < dim; ++c) {
+    x0[c] = malloc((size_t)n * sizeof(double));
+    f0[c] = malloc((size_t)n * sizeof(double));
+    q[c] = calloc((size_t)n, sizeof(double));
+    qprev[c] = calloc((size_t)n, sizeof(double));
+    w[c] = malloc((size_t)n * sizeof(double));
+    PDK_CHECK_GOTO(x0[c] && f0[c] && q[c] && qprev[c] && w[c], e->ctx, PDK_ERR_MEMORY,
+                   "out of memory estimating the stable time step");
+    memcpy(x0[c], field(e->p, "x", c), (size_t)n * sizeof(double));
+  }
+  PDK_CALL_GOTO(pdk_model_force_trial(e->m, NULL));
+  for (int c = 0; c < dim; ++c) memcpy(f0[c], field(e->p, "f", c), (size_t)n * sizeof(double));
+  /* Start vector: deterministic pseudo-random from the particle id (order independent). */
+  double norm2 = 0.0;
+  for (int c = 0; c < dim; ++c)
+    for (pdk_index i = 0; i < n; ++i) {
+      uint64_t h = (uint64_t)id[i] * 0x9E3779B97F4A7C15ull + (uint64_t)c * 0xBF58476D1CE4E5B9ull + 1;
+      h ^= h >> 31;
+      h *= 0x94D049BB133111EBull;
+      h ^= h >> 29;
+      q[c][i] = ((double)(h >> 11) / 9007199254740992.0) - 0.5;
+      norm2 += e->rho * vol[i] * q[c][i] * q[c][i];
+    }
+  double inv = 1.0 / sqrt(norm2);
+  for (int c = 0; c < dim; ++c)
+    for (pdk_index i = 0; i < n; ++i) q[c][i] *= inv;
+  double horizon = pdk_families_horizon(e->m->fam);
+  int k;
+  beta[0] = 0.0;
+  for (k = 0; k < kmax; ++k) {
+    double qmax = 0.0;
+    for (int c = 0; c < dim; ++c)
+      for (pdk_index i = 0; i < n; ++i) qmax = fmax(qmax, fabs(q[c][i]));
+    double eps = 1e-7 * horizon / qmax;
+    for (int c = 0; c < dim; ++c) {
+      double *x = field(e->p, "x", c);
+      for (pdk_index i = 0; i < n; ++i) x[i] = x0[c][i] + eps * q[c][i];
+    }
+    PDK_CALL_GOTO(pdk_model_force_trial(e->m, NULL));
+    /* w = M^-1 K q = -(f - f0) / (eps rho) */
+    double a = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      const double *f = field(e->p, "f", c);
+      for (pdk_index i = 0; i < n; ++i) {
+        w[c][i] = -(f[i] - f0[c][i]) / (eps * e->rho);
+        a += e->rho * vol[i] * w[c][i] * q[c][i];
+      }
+    }
+    alpha[k] = a;
+    double b2 = 0.0;
+    for (int c = 0; c < dim; ++c)
+      for (pdk_index i = 0; i < n; ++i) {
+        w[c][i] -= a * q[c][i] + beta[k] * qprev[c][i];
+        b2 += e->rho * vol[i] * w[c][i] * w[c][i];
+      }
+    beta[k + 1] = sqrt(b2);
+    if (!(beta[k + 1] > 1e-12 * fabs(a)) || k + 1 == kmax) {
+      ++k;
+      break;
+    }
+    for (int c = 0; c < dim; ++c)
+      for (pdk_index i = 0; i < n; ++i) {
+        qprev[c][i] = q[c][i];
+        q[c][i] = w[c][i] / beta[k + 1];
+      }
+  }
+  {
+    double lmax = tridiag_max_eig(alpha, beta, k);
+    PDK_CHECK_GOTO(isfinite(lmax) && lmax > 0, e->ctx, PDK_ERR_NUMERIC,
+                   "the stable time step could not be estimated (largest stiffness eigenvalue %g); "
+                   "the body may have no stiffness (no bonds?)", lmax);
+    e->dt_stable = 2.0 / sqrt(lmax);
+  }
+cleanup:
+  for (int c = 0; c < dim; ++c) {
+    if (x0[c]) memcpy(field(e->p, "x", c), x0[c], (size_t)n * sizeof(double));
+    free(x0[c]);
+    free(f0[c]);
+    free(q[c]);
+    free(qprev[c]);
+    free(w[c]);
+  }
+  return err;
+}
+
+int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_explicit **out) {
+  pdk_ctx *ctx = m->ctx;
+  int err = PDK_SUCCESS;
+  pdk_explicit_opts opts = opts_in ? *opts_in : pdk_explicit_opts_default();
+  pdk_explicit *e = NULL;
+  *out = NULL;
+  PDK_CHECK(isfinite(opts.dt) && opts.dt >= 0, ctx, PDK_ERR_ARG,
+            "time step must be >= 0 (0 picks the estimate), got %g", opts.dt);
+  PDK_CHECK(isfinite(opts.safety) && opts.safety > 0 && opts.safety <= 1, ctx, PDK_ERR_ARG,
+            "time-step safety factor must be in (0, 1], got %g", opts.safety);
+  PDK_CHECK(opts.num_bcs >= 0 && opts.num_bcs <= 64, ctx, PDK_ERR_ARG,
+            "at most 64 boundary conditions, got %d", opts.num_bcs);
+  PDK_CHECK(opts.num_reaction_sets >= 0 && opts.num_reaction_sets <= PDK_MAX_REACTION_SETS, ctx,
+            PDK_ERR_ARG, "at most %d reaction sets, got %d", PDK_MAX_REACTION_SETS, opts.num_reaction_sets);
+  e = calloc(1, sizeof *e);
+  PDK_CHECK(e, ctx, PDK_ERR_MEMORY, "out of memory creating the explicit solver");
+  e->ctx = ctx;
+  e->m = m;
+  e->p = m->p;
+  e->opts = opts;
+  e->dim = pdk_particles_dim(e->p);
+  e->n = pdk_particles_count(e->p);
+  e->rho = m->opts.density;
+  if (opts.num_bcs) {
+    e->bcs = malloc((size_t)opts.num_bcs * sizeof *e->bcs);
+    PDK_CHECK_GOTO(e->bcs, ctx, PDK_ERR_MEMORY, "out of memory copying boundary conditions");
+    memcpy(e->bcs, opts.bcs, (size_t)opts.num_bcs * sizeof *e->bcs);
+  }
+  e->opts.bcs = e->bcs;
+  PDK_CALL_GOTO(pdk_particles_field_add(e->p, "v", PDK_F64, e->dim));
+  for (int c = 0; c < e->dim; ++c) {
+    e->bc_of[c] = malloc((size_t)e->n * sizeof(int32_t));
+    PDK_CHECK_GOTO(e->bc_of[c], ctx, PDK_ERR_MEMORY, "out of memory for constraint maps");
+    for (pdk_index i = 0; i < e->n; ++i) e->bc_of[c][i] = -1;
+  }
+  for (int k = 0; k < opts.num_bcs; ++k) {
+    const pdk_bc *bc = &e->bcs[k];
+    PDK_CHECK_GOTO((unsigned)bc->kind <= PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
+                   "boundary condition %d: unknown kind %d", k, (int)bc->kind);
+    PDK_CHECK_GOTO(bc->components && bc->components < (1u << e->dim), ctx, PDK_ERR_ARG,
+                   "boundary condition %d: component mask %u must select some of the %d components",
+                   k, bc->components, e->dim);
+    const uint8_t *mem = NULL;
+    if (bc->set) {
+      mem = pdk_particles_field_data(e->p, bc->set, 0);
+      PDK_CHECK_GOTO(mem, ctx, PDK_ERR_NOT_FOUND,
+                     "boundary condition %d names the set field '%s', which does not exist; define "
+                     "the set first", k, bc->set);
+    }
+    for (int c = 0; c < e->dim; ++c) {
+      if (!(bc->components & (1u << c))) continue;
+      const pdk_tfun *tf = &bc->value[c];
+      PDK_CHECK_GOTO((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
+                         ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
+                           tf->kind != PDK_TFUN_SINE) || tf->b > 0),
+                     ctx, PDK_ERR_ARG,
+                     "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
+                     "ramp, smooth and sine need a positive duration b", k, c, (int)tf->kind, tf->a, tf->b);
+      if (bc->kind == PDK_BC_BODY_FORCE) continue;
+      for (pdk_index i = 0; i < e->n; ++i) {
+        if (mem && !mem[i]) continue;
+        PDK_CHECK_GOTO(e->bc_of[c][i] < 0 || e->bc_of[c][i] == k, ctx, PDK_ERR_ARG,
+                       "particle %d (id %lld), component %d is prescribed by both boundary "
+                       "conditions %d and %d; give each component of a particle one condition",
+                       (int)i, (long long)pdk_particles_id(e->p)[i], c, e->bc_of[c][i], k);
+        e->bc_of[c][i] = k;
+      }
+    }
+  }
+  for (int k = 0; k < opts.num_reaction_sets; ++k) {
+    e->reaction_member[k] = pdk_particles_field_data(e->p, opts.reaction_sets[k], 0);
+    PDK_CHECK_GOTO(e->reaction_member[k], ctx, PDK_ERR_NOT_FOUND,
+                   "reaction set field '%s' does not exist", opts.reaction_sets[k]);
+  }
+  e->num_reaction = opts.num_reaction_sets;
+  /* Initial velocity: affine field. */
+  for (int c = 0; c < e->dim; ++c) {
+    double *v = field(e->p, "v", c);
+    for (pdk_index i = 0; i < e->n; ++i) {
+      double s = opts.v0_const[c];
+      for (int d = 0; d < e->dim; ++d) s += opts.v0_grad[c][d] * pdk_particles_X(e->p, d)[i];
+      v[i] = s;
+    }
+  }
+  PDK_CALL_GOTO(estimate_stable_dt(e));
+  if (opts.dt == 0) e->dt = opts.safety * e->dt_stable;
+  else {
+    PDK_CHECK_GOTO(opts.dt <= e->dt_stable || opts.force_dt, ctx, PDK_ERR_ARG,
+                   "time step %g exceeds the estimated stable limit %g (%.2f times it); use dt <= %g, "
+                   "leave dt at 0 to pick %g x the limit, or force it if you know better",
+                   opts.dt, e->dt_stable, opts.dt / e->dt_stable, e->dt_stable, opts.safety);
+    e->dt = opts.dt;
+  }
+  apply_kinematic_bcs(e, 0.0);
+  PDK_CALL_GOTO(pdk_model_force(m, &e->strain));
+  *out = e;
+  return PDK_SUCCESS;
+cleanup:
+  pdk_explicit_destroy(&e);
+  return err;
+}
+
+void pdk_explicit_destroy(pdk_explicit **ep) {
+  if (!ep || !*ep) return;
+  pdk_explicit *e = *ep;
+  for (int c = 0; c < 3; ++c) free(e->bc_of[c]);
+  free(e->bcs);
+  free(e);
+  *ep = NULL;
+}
+
+double pdk_explicit_stable_dt(const pdk_explicit *e) { return e->dt_stable; }
+double pdk_explicit_dt(const pdk_explicit *e) { return e->dt; }
+double pdk_explicit_time(const pdk_explicit *e) { return e->time; }
+long pdk_explicit_step(const pdk_explicit *e) { return e->step; }
+
+int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
+  PDK_CHECK(num_steps >= 0, e->ctx, PDK_ERR_ARG, "number of steps must be >= 0, got %ld", num_steps);
+  for (long s = 0; s < num_steps; ++s) {
+    double t0 = e->time, t1 = e->time + e->dt;
+    double p0 = external_power(e, t0);
+    half_kick(e, t0);
+    drift(e);
+    apply_kinematic_bcs(e, t1);
+    PDK_CALL(pdk_model_force(e->m, &e->strain));
+    half_kick(e, t1);
+    apply_kinematic_bcs(e, t1);
+    e->time = t1;
+    e->step++;
+    PDK_CALL(check_state(e));
+    e->external_work += 0.5 * e->dt * (p0 + external_power(e, t1));
+  }
+  if (hist) {
+    memset(hist, 0, sizeof *hist);
+    hist->step = e->step;
+    hist->time = e->time;
+    hist->kinetic = kinetic_energy(e);
+    hist->strain = e->strain;
+    hist->external_work = e->external_work;
+    reactions(e, hist->reaction);
+    hist->broken = pdk_model_num_broken(e->m);
+  }
+  return PDK_SUCCESS;
+}
