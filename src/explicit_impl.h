@@ -1,0 +1,31 @@
+/* Private: the explicit solver's state, shared with checkpoint/restart (src/output.c). */
+#ifndef PDK_EXPLICIT_IMPL_H
+#define PDK_EXPLICIT_IMPL_H
+
+#include "model_impl.h"
+#include "pdk/explicit.h"
+
+#define PDK_RED_BLOCK 4096 /* particles per reduction block: fixed, so sums are thread-independent */
+#define PDK_MAX_REACTION_SETS 8
+
+struct pdk_explicit {
+  pdk_ctx *ctx;
+  pdk_model *m;
+  pdk_particles *p;
+  pdk_explicit_opts opts;
+  pdk_bc *bcs;              /* [num_bcs], copied */
+  int dim;
+  pdk_index n;
+  double dt, dt_stable;
+  double time;
+  long step;
+  double rho;
+  int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
+  uint8_t *reaction_member[PDK_MAX_REACTION_SETS]; /* [n] 1 if in reaction set k (borrowed) */
+  int num_reaction;
+  double strain;            /* strain energy of the last force pass */
+  double external_work;
+  double *fprev_work;       /* [num_bcs*3] previous-step power terms for trapezoidal work */
+};
+
+#endif
