@@ -1,9 +1,9 @@
 /* Correspondence model, V-INV, for every law x influence function x stabilization, 2-D and 3-D:
  * rigid translation and large rotation give zero force; an affine motion gives F = F0 exactly at
- * particles with full point-symmetric families and zero force where the neighbours' families are
- * full too; forces sum to zero and (objective laws) the net moment is zero; 1 and 2 threads give
- * bitwise identical F, A, f and strain energy.
- * labels: physics threads
+ * particles with full point-symmetric families (and there P = A K equals the law's P(F0), computed
+ * here independently) and zero force where the neighbours' families are full too; forces sum to
+ * zero and (objective laws) the net moment is zero; 1 and 2 threads give bitwise identical F, A, f
+ * and strain energy. labels: physics threads
  *
  * Tolerances (round-off). Force densities are compared with f_scale = (lambda + 2 mu) / dx, the
  * force density of a unit strain varying over one spacing. Positions are O(L) = O(25 dx), so a
@@ -22,6 +22,88 @@ typedef struct run_out {
   double *f[3], *F[9], *A[9], energy;
   uint8_t *flag;
 } run_out;
+
+/* Small dense helpers, row-major d x d. */
+static void mat_mul(int d, const double *A, const double *B, double *C) {
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c) {
+      double s = 0.0;
+      for (int k = 0; k < d; ++k)
+        s += A[r * d + k] * B[k * d + c];
+      C[r * d + c] = s;
+    }
+}
+
+static void mat_inverse(int d, const double *A, double *R) { /* Gauss-Jordan, partial pivoting */
+  double M[3][6];
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < 2 * d; ++c)
+      M[r][c] = c < d ? A[r * d + c] : (c - d == r ? 1.0 : 0.0);
+  for (int c = 0; c < d; ++c) {
+    int piv = c;
+    for (int r = c + 1; r < d; ++r)
+      if (fabs(M[r][c]) > fabs(M[piv][c])) piv = r;
+    for (int k = 0; k < 2 * d; ++k) {
+      const double t = M[c][k];
+      M[c][k] = M[piv][k], M[piv][k] = t;
+    }
+    const double s = 1.0 / M[c][c];
+    for (int k = 0; k < 2 * d; ++k)
+      M[c][k] *= s;
+    for (int r = 0; r < d; ++r)
+      if (r != c) {
+        const double f = M[r][c];
+        for (int k = 0; k < 2 * d; ++k)
+          M[r][k] -= f * M[c][k];
+      }
+  }
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c)
+      R[r * d + c] = M[r][c + d];
+}
+
+/* First Piola-Kirchhoff stress of each law at F (2-D: plane strain, out-of-plane stretch 1).
+ * Neo-Hooke through the Kirchhoff stress tau = mu (F F^T - I) + lambda ln J I, P = tau F^-T. */
+static void law_P(int d, int law, const double *F, double *P) {
+  const double lambda = CU_BULK - 2.0 * CU_SHEAR / 3.0, mu = CU_SHEAR;
+  double Ft[9], M[9], S[9];
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c)
+      Ft[r * d + c] = F[c * d + r];
+  if (law == PDK_LAW_LINEAR_ELASTIC) {
+    double tr = 0.0;
+    for (int a = 0; a < d; ++a)
+      tr += F[a * d + a] - 1.0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        P[r * d + c] =
+            mu * (F[r * d + c] + Ft[r * d + c]) - (r == c ? 2.0 * mu - lambda * tr : 0.0);
+  } else if (law == PDK_LAW_SVK) {
+    mat_mul(d, Ft, F, M); /* C */
+    double tr = 0.0;
+    for (int a = 0; a < d; ++a)
+      tr += 0.5 * (M[a * d + a] - 1.0);
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        S[r * d + c] = mu * (M[r * d + c] - (r == c)) + (r == c ? lambda * tr : 0.0);
+    mat_mul(d, F, S, P);
+  } else {
+    double Finv[9], FinvT[9];
+    mat_inverse(d, F, Finv);
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        FinvT[r * d + c] = Finv[c * d + r];
+    mat_mul(d, F, Ft, M); /* b = F F^T */
+    const double J = d == 2
+                         ? F[0] * F[3] - F[1] * F[2]
+                         : F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                               F[2] * (F[3] * F[7] - F[4] * F[6]);
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        S[r * d + c] = mu * (M[r * d + c] - (r == c)) + (r == c ? lambda * log(J) : 0.0);
+    mat_mul(d, S, FinvT, P);
+  }
+}
 
 static double max_abs_force(pdk_particles *p, const pdk_index *sel, pdk_index nsel) {
   const int d = pdk_particles_dim(p);
@@ -93,6 +175,17 @@ static void check_case(pdk_ctx *ctx, int dim, int law, int infl, int stab) {
           for (int t = 0; t < dim * dim; ++t)
             T_NEAR(cu_field(p, "F", t)[i], G[t], 0.0, 1e-12, "%s: F[%d] at particle %d", what, t,
                    (int)i);
+          /* The stress: P = A K must be the law's P(F0), computed here independently. */
+          double Kinv[9], K[9], A[9], P[9], Pw[9];
+          for (int t = 0; t < dim * dim; ++t) {
+            Kinv[t] = cu_field(p, "Kinv", t)[i];
+            A[t] = cu_field(p, "A", t)[i];
+          }
+          mat_inverse(dim, Kinv, K);
+          mat_mul(dim, A, K, P);
+          law_P(dim, law, G, Pw);
+          for (int t = 0; t < dim * dim; ++t)
+            T_NEAR(P[t], Pw[t], 0.0, 1e-12 * f_scale, "%s: P[%d] at particle %d", what, t, (int)i);
         }
         if (cu_inside(p, i, N, 2 * M)) {
           ++nzero;
