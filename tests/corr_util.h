@@ -6,12 +6,6 @@
 #include "pdk/model.h"
 #include "test_util.h"
 
-/* src/model_impl.h declares the per-kind operation tables weak, and a weak reference does not pull
- * a member out of the static archive the tests link: this strong reference links model_corr.o.
- * (So the tests do not include model_impl.h.) */
-extern const struct pdk_model_ops pdk_model_ops_corr;
-__attribute__((used)) static const void *const cu_link_model = &pdk_model_ops_corr;
-
 /* Material of every correspondence test: K = 2, G = 1 (lambda = 4/3, mu = 1), rho = 1. */
 #define CU_BULK 2.0
 #define CU_SHEAR 1.0
