@@ -27,7 +27,10 @@ const char *pdk_model_kind_name(pdk_model_kind kind) {
 }
 
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width) {
+  /* Families admit r up to delta (1 + PDK_HORIZON_RTOL); q is clamped to 1 so the weights that
+   * vanish at the horizon (linear, cubic) never turn negative by round-off. */
   double q = r / delta;
+  if (q > 1.0) q = 1.0;
   switch (kind) {
   case PDK_INFLUENCE_CONSTANT: return 1.0;
   case PDK_INFLUENCE_INV_R: return 1.0 / q;
