@@ -39,12 +39,24 @@
 #include "kernels.h"
 
 /* No FMA contraction: the stretch must round the same way in the vector body and in the scalar
- * remainder, so both ends of a bond see the same s and break it together. */
+ * remainder, so both ends of a bond see the same s and break it together. min/max are written as
+ * comparisons: fmin/fmax are library calls and stop vectorization. sqrt vectorizes only when the
+ * build has -fno-math-errno (GCC honours it from the command line only, not from a pragma); without
+ * it these loops run scalar, about 2.4 times slower. */
 PDK_KERNEL_FP_EXACT
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+/* 256-bit vectors: with 512 bits the gathers cost more than they give on this machine class
+ * (measured: PMB 2.0 vs 2.8 ns per bond per core, bench/README.md). Only a preference; a build
+ * without AVX uses what it has. */
+#pragma GCC target("prefer-vector-width=256")
+#endif
+
+/* min(1, t); a NaN t gives 1, as fmin would. */
+static inline __attribute__((always_inline)) double min1(double t) { return t < 1.0 ? t : 1.0; }
 
 static inline __attribute__((always_inline)) double
 partial_volume(double volume_j, double r0, const double vs_a, const double vs_b) {
-  return volume_j * fmin(1.0, (vs_a - r0) * vs_b);
+  return volume_j * min1((vs_a - r0) * vs_b);
 }
 
 /* ---- weighted volume ------------------------------------------------------------------------- */
@@ -164,7 +176,7 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
   const double vs_a = k->vs_a, vs_b = k->vs_b, c_dil = k->c_dil, c_dev = k->c_dev;
   const double s00 = k->s00, alpha = k->alpha, d = k->theta_factor;
   const double theta_i = theta[i], inv_m_i = inv_m[i], q_i = theta_i * inv_m_i;
-  const double sd_i = theta_i / d; /* deviatoric extension: e - theta r0/d = r0 (s - theta/d) */
+  const double sd_i = theta_i / d; /* deviatoric extension: e - theta r0/d = e - sd_i r0 */
   const double s0_i = has_state ? s0[i] : 0.0;
   double f0 = 0.0, f1 = 0.0, f2 = 0.0, wdev = 0.0, s0_max = -DBL_MAX;
   pdk_bond_index broken = 0;
@@ -176,25 +188,29 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
     const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
     const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
     const double r = sqrt(dx * dx + dy * dy + dz * dz);
-    const double s = (r - r0) / r0;
+    const double e = r - r0;                         /* extension */
+    const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0; /* the one division */
     const double on = has_state ? (double)bond_alive[b] : 1.0;
     const double vol = on * partial_volume(volume[j], r0, vs_a, vs_b);
-    const double t = c_dil * (q_i + theta[j] * inv_m[j]) + c_dev * (inv_m_i + inv_m[j]) * s;
-    const double g = r > 0.0 ? vol * t / r : 0.0;
+    /* vol t / r with t = A + B s, s = e / r0:  vol (A r0 + B e) q */
+    const double g =
+        vol * (c_dil * (q_i + theta[j] * inv_m[j]) * r0 + c_dev * (inv_m_i + inv_m[j]) * e) * q;
     f0 += g * dx;
     f1 += g * dy;
     if (dim == 3) f2 += g * dz;
     if (want_energy) {
-      const double sd = s - sd_i;
-      wdev += r0 * sd * sd * vol; /* omega e_d^2 = r0 (s - theta/d)^2 */
+      const double ed = e - sd_i * r0; /* deviatoric extension e - theta r0 / d */
+      wdev += ed * ed / r0 * vol;      /* omega e_d^2 beta V_j */
     }
     if (has_state && commit) {
+      const double s = r > 0.0 ? e * (r * q) : -1.0; /* stretch (r = 0: fully compressed) */
       const int alive = bond_alive[b] != 0;
-      const double s0_min = fmin(s0_i, s0[j]);
-      const int brk = alive && s > s0_min;
+      const double s0_min = s0[j] < s0_i ? s0[j] : s0_i;
+      const int brk = alive && e > s0_min * r0; /* s > s0_min, without a division */
       broken += brk;
       bond_alive[b] = (uint8_t)(alive && !brk);
-      s0_max = fmax(s0_max, alive ? s00 - alpha * s : -DBL_MAX);
+      const double cand = alive ? s00 - alpha * s : -DBL_MAX;
+      s0_max = cand > s0_max ? cand : s0_max;
     }
   }
   fx[i] = f0;

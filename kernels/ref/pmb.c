@@ -4,6 +4,7 @@
  * neighbour j = bond_j[b]), with reference bond xi = X_j - X_i and current bond eta = x_j - x_i:
  *
  *   r0 = |xi|,  r = |eta|,  s = (r - r0) / r0                       bond stretch
+ *   (evaluated as d = r - r0, q = 1 / (r0 r), s / r = d q: one division per bond)
  *   beta = min(1, (vs_a - r0) * vs_b)                                partial-volume factor
  *   f_i += alive_b * c * s * beta * V_j * eta / r                    (0 when r == 0)
  *   W_i  = sum_b alive_b * c * s^2 * r0 * beta * V_j / 4             strain energy density
@@ -39,8 +40,20 @@
 #include "kernels.h"
 
 /* No FMA contraction: the stretch must round the same way in the vector body and in the scalar
- * remainder, so both ends of a bond see the same s and break it together. */
+ * remainder, so both ends of a bond see the same s and break it together. min/max are written as
+ * comparisons: fmin/fmax are library calls and stop vectorization. sqrt vectorizes only when the
+ * build has -fno-math-errno (GCC honours it from the command line only, not from a pragma); without
+ * it these loops run scalar, about 2.4 times slower. */
 PDK_KERNEL_FP_EXACT
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+/* 256-bit vectors: with 512 bits the gathers cost more than they give on this machine class
+ * (measured: PMB 2.0 vs 2.8 ns per bond per core, bench/README.md). Only a preference; a build
+ * without AVX uses what it has. */
+#pragma GCC target("prefer-vector-width=256")
+#endif
+
+/* min(1, t); a NaN t gives 1, as fmin would. */
+static inline __attribute__((always_inline)) double min1(double t) { return t < 1.0 ? t : 1.0; }
 
 /* One particle's row; the flags are compile-time constants in every caller, so each combination
  * compiles to its own loop without branches on them. */
@@ -66,22 +79,25 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
     const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
     const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
     const double r = sqrt(dx * dx + dy * dy + dz * dz);
-    const double s = (r - r0) / r0;
-    const double vol = volume[j] * fmin(1.0, (vs_a - r0) * vs_b);
+    const double d = r - r0;                         /* extension */
+    const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0; /* the one division: s / r = d q */
+    const double vol = volume[j] * min1((vs_a - r0) * vs_b);
     const double on = has_state ? (double)bond_alive[b] : 1.0;
-    const double rk = on * c * s * vol;
-    const double g = r > 0.0 ? rk / r : 0.0;
+    const double g = on * c * vol * d * q; /* c s beta V_j / r */
     f0 += g * dx;
     f1 += g * dy;
     if (dim == 3) f2 += g * dz;
-    if (want_energy) wi += 0.25 * rk * s * r0;
+    if (want_energy)
+      wi += 0.25 * g * d * r; /* c s^2 r0 beta V_j / 4 = (c s beta V_j / r) d r / 4 */
     if (has_state && commit) {
+      const double s = r > 0.0 ? d * (r * q) : -1.0; /* stretch (r = 0: fully compressed) */
       const int alive = bond_alive[b] != 0;
-      const double s0_min = fmin(s0_i, s0[j]);
-      const int brk = alive && s > s0_min;
+      const double s0_min = s0[j] < s0_i ? s0[j] : s0_i;
+      const int brk = alive && d > s0_min * r0; /* s > s0_min, without a division */
       broken += brk;
       bond_alive[b] = (uint8_t)(alive && !brk);
-      s0_max = fmax(s0_max, alive ? s00 - alpha * s : -DBL_MAX);
+      const double cand = alive ? s00 - alpha * s : -DBL_MAX;
+      s0_max = cand > s0_max ? cand : s0_max;
     }
   }
   fx[i] = f0;
