@@ -1,22 +1,41 @@
 /* Run output: one HDF5 file per run with an XDMF file beside it for ParaView, histories as CSV,
  * a PNG plot of the histories (when gnuplot is present), and checkpoints for restart.
  *
- * HDF5 layout of <dir>/<name>.h5:
- *   /                       attributes: pdk_version, scene (text), dimension, num_particles
+ * HDF5 layout of <dir>/<name>.h5 (n particles, in the store's current order):
+ *   /                       attributes: pdk_version, build_type, build_flags, compiler,
+ *                           dimension (int), num_particles (int64), scene (text, when given;
+ *                           a scene over 60 kB goes to the dataset /scene instead)
  *   /static/id              int64 [n]      original particle ids
  *   /static/X               f64   [n][3]   reference positions (z = 0 in 2-D)
  *   /static/volume          f64   [n]
- *   /static/sets/<name>     uint8 [n]      set membership
- *   /steps/<k>/             attributes: step, time
- *   /steps/<k>/<field>      f64 [n] or [n][3] (vectors padded to 3 for ParaView), chunked
- *   /history/<column>       f64 [rows], chunked and extensible
- * <dir>/<name>.xmf: a temporal collection of polyvertex grids referencing those datasets.
- * <dir>/<name>_history.csv: one row per history record, header names the columns with units.
- * <dir>/<name>_history.png: reaction force vs prescribed displacement and energies vs time.
+ *   /static/sets/<name>     uint8 [n]      membership of every "set:<name>" field at open
+ *   /steps/<k>/             k = 0, 1, ... in output order; attributes step (int64), time (f64)
+ *   /steps/<k>/<field>      the field's own type (f64 for the solver's fields):
+ *                             1 component         [n]
+ *                             dim components      [n][3]  (vectors, z = 0 in 2-D)
+ *                             dim*dim components  [n][9]  (tensors [a][c] at 3a + c, 2-D padded)
+ *                             otherwise           [n][num_comp]
+ *                           chunked, shuffled and deflated at opts.compression
+ *   /history/<column>       f64 [rows], chunked and extensible; the columns are
+ *                             step, time, kinetic, strain, external_work, broken,
+ *                             reaction_<set>_<x|y|z>  for every reaction set (dim components),
+ *                             disp_<set>_<x|y|z>      mean displacement x - X of the set's
+ *                                                     particles, when "set:<set>" and "x" exist
+ * Dataset names are the field names with every character outside [A-Za-z0-9_-] replaced by '_'.
  *
- * Crash safety: every file is written under a temporary name (<file>.part), flushed, and renamed
- * to its final name by pdk_output_close(..., success = 1). A killed run leaves only .part files,
- * never a file that looks complete.
+ * <dir>/<name>.xmf: XDMF 2 (ParaView: "Xdmf Reader"), a temporal collection with one polyvertex
+ *   grid per field output; the geometry is the current position "x" of that output when it was
+ *   written, else the reference position /static/X; every written field is a node attribute
+ *   (Scalar, Vector, Tensor or Matrix), as are id, volume and the sets. Paths are relative.
+ * <dir>/<name>_history.csv: one row per history record; the header names the columns with units.
+ * <dir>/<name>_history.png: reaction vs time, reaction vs displacement and energies vs time,
+ *   made by gnuplot from <dir>/<name>_history.gp (kept, so the plot can be redone or edited).
+ *
+ * Crash safety: every file is written under a temporary name (<file>.part) and flushed as it
+ * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its
+ * final name (the .xmf last, so an .xmf always points at a complete .h5). A killed run leaves
+ * only .part files, never a file that looks complete. Files from an earlier run with the same
+ * names are replaced only at that final rename.
  */
 #ifndef PDK_OUTPUT_H
 #define PDK_OUTPUT_H
@@ -30,29 +49,65 @@ extern "C" {
 typedef struct pdk_output pdk_output;
 
 typedef struct pdk_output_opts {
-  const char *dir;          /* created if missing */
-  const char *name;         /* file stem */
+  const char *dir;          /* created if missing (with its parents); NULL: "." */
+  const char *name;         /* file stem: not empty, no '/' or ':' */
   const char *scene_text;   /* stored as an attribute (may be NULL) */
-  const char *const *reaction_sets; /* names for the history columns, [num_reaction_sets] */
+  /* Reaction sets, in the order of pdk_explicit_opts.reaction_sets (history.reaction[k]): set
+   * names, with or without the "set:" prefix; they name the history columns. At most 8. */
+  const char *const *reaction_sets; /* [num_reaction_sets] */
   int num_reaction_sets;
   int plot;                 /* 1: make the PNG when gnuplot is on the PATH */
+  int compression;          /* deflate level 0 (off) .. 9 for field datasets; default 1 */
+  /* Unit labels in the CSV header: NULL: dimensions ("time [time]", "kinetic [energy]");
+   * "SI": s, J, N, m; "mm-N-s-tonne": s, mJ, N, mm. Anything else is an error. */
+  const char *units;
 } pdk_output_opts;
 
+/* dir ".", name "pdk", plot 1, compression 1, the rest zero/NULL. */
+pdk_output_opts pdk_output_opts_default(void);
+
+/* Creates <name>.h5.part, <name>.xmf.part and <name>_history.csv.part in dir and writes the
+ * static data. The store p is borrowed: it must outlive the output and keep its particle order. */
 int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts, pdk_particles *p, pdk_output **out);
 /* Writes the listed particle fields at this step. A name that is not a registered field is an
- * error naming it and listing the fields that exist. */
+ * error naming it and listing the fields that exist; so is a name listed twice. */
 int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double time,
                             const char *const *fields, int num_fields);
+/* Appends one history record (a row of every /history column and of the CSV). */
 int pdk_output_write_history(pdk_output *o, const pdk_history *h);
+/* 1 when pdk_output_close(..., 1) will make the PNG: the plot was asked for and gnuplot was
+ * found on the PATH at open. A missing gnuplot is not an error; this is how to tell. */
+int pdk_output_will_plot(const pdk_output *o);
+/* Number of field outputs and history records written so far. */
+int pdk_output_num_field_steps(const pdk_output *o);
+long pdk_output_num_history_rows(const pdk_output *o);
 /* success = 1: finish the XDMF, CSV and PNG and rename every file to its final name;
- * success = 0: remove the temporary files. Always frees. */
+ * success = 0: remove the temporary files. Always frees (accepts NULL). If gnuplot runs but
+ * fails, the data files are still completed and renamed, no PNG is left, and the error
+ * (PDK_ERR_EXTERNAL) names the script to rerun. */
 int pdk_output_close(pdk_output **o, int success);
 
-/* Checkpoint: every registered particle field, the model's bond state and history, and the
- * solver's scalars, in one HDF5 file (written as .part, then renamed). Restoring into a
- * simulation built from the same scene continues bitwise as if never interrupted. */
+/* Checkpoint: every registered particle field, the model's bond state and counters, and the
+ * solver's scalars (time, step, dt, strain energy, external work), in one HDF5 file (written as
+ * <path>.part, synced, then renamed). Restoring into a simulation built from the same scene
+ * continues bitwise as if never interrupted.
+ *
+ * Layout: / attributes kind = "pdk checkpoint", format (int), pdk_version, build_flags,
+ * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
+ * dataset /scene); /solver attributes time, step, dt, strain, external_work;
+ * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
+ * s0 f64 [n] when the model can break bonds; /fields/<name> [num_comp][n] in the field's type,
+ * attributes type (pdk_type) and components. */
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text);
+/* Checks the checkpoint against the simulation first (dimension, particle count, bond count,
+ * model kind, bond state, every field's type and shape, ids, reference positions and volumes)
+ * and changes nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in
+ * the checkpoint that the simulation lacks are added. */
 int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
+/* What a checkpoint holds before anything is built from it: its step and time, and the scene
+ * text it was written with (malloc'd, free() it; NULL when none was stored). Any output pointer
+ * may be NULL. */
+int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time, char **scene_text);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,55 @@
+/* Private: HDF5 attribute helpers and crash-safe file commits, shared by src/output.c and
+ * src/checkpoint.c.
+ *
+ * Every file pdk writes goes through the same life: it is created as <final>.part, written and
+ * flushed, then pdk_file_commit syncs it to disk, renames it to <final> and syncs the directory,
+ * so a file under its final name is always complete. Every HDF5 call goes through PDK_H5_CALL*.
+ */
+#ifndef PDK_H5IO_H
+#define PDK_H5IO_H
+
+#include "ext.h"
+
+/* HDF5 types of a pdk_type: in memory (native) and on disk (little-endian, fixed size). */
+hid_t pdk_h5_mem_type(pdk_type type);
+hid_t pdk_h5_file_type(pdk_type type);
+
+/* Attributes on a group or dataset `obj`. Strings are fixed-length, NUL-terminated. */
+int pdk_h5_attr_write_string(pdk_ctx *ctx, hid_t obj, const char *name, const char *text);
+int pdk_h5_attr_write_i64(pdk_ctx *ctx, hid_t obj, const char *name, int64_t value);
+int pdk_h5_attr_write_f64(pdk_ctx *ctx, hid_t obj, const char *name, double value);
+int pdk_h5_attr_exists(hid_t obj, const char *name); /* 1, or 0 (also on error) */
+int pdk_h5_attr_read_i64(pdk_ctx *ctx, hid_t obj, const char *name, int64_t *value);
+int pdk_h5_attr_read_f64(pdk_ctx *ctx, hid_t obj, const char *name, double *value);
+/* *text is malloc'd (free() it). */
+int pdk_h5_attr_read_string(pdk_ctx *ctx, hid_t obj, const char *name, char **text);
+
+/* Stores a (possibly long) text under `name` at the file root: as an attribute when it is below
+ * 60 kB (the object-header limit is 64 kB), else as a scalar string dataset. */
+int pdk_h5_text_write(pdk_ctx *ctx, hid_t file, const char *name, const char *text);
+/* Reads what pdk_h5_text_write stored; *text = NULL when there is neither. */
+int pdk_h5_text_read(pdk_ctx *ctx, hid_t file, const char *name, char **text);
+
+/* The root attributes every pdk file carries: kind, pdk_version, build_type, build_flags,
+ * compiler. */
+int pdk_h5_write_provenance(pdk_ctx *ctx, hid_t file, const char *kind);
+
+/* malloc'd printf; NULL when out of memory. */
+char *pdk_str_printf(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Creates dir and its parents (like mkdir -p); an existing directory is fine. */
+int pdk_dir_create(pdk_ctx *ctx, const char *dir);
+/* fsync of a file that is already closed (opens it read-only). */
+int pdk_file_sync(pdk_ctx *ctx, const char *path);
+/* Syncs `part`, renames it to `final` (replacing any older file) and syncs the directory. */
+int pdk_file_commit(pdk_ctx *ctx, const char *part, const char *final);
+/* Removes a file; a missing file is fine. Returns 0 or an errno value (no context message:
+ * used on cleanup paths). */
+int pdk_file_remove(const char *path);
+int pdk_file_exists(const char *path);
+
+#endif

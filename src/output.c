@@ -1,0 +1,944 @@
+/* Run output: HDF5 fields and histories, an XDMF index for ParaView, CSV histories and a gnuplot
+ * PNG; the layout and the crash-safety rule are in include/pdk/output.h.
+ *
+ * An output owns five files, each written as <final>.part and renamed by pdk_output_close:
+ *   OUT_H5   <name>.h5             static data at open, one group per field output, histories
+ *   OUT_XMF  <name>.xmf            header at open, one grid appended per field output, footer at
+ *                                  close (so the .part is readable up to the last output)
+ *   OUT_CSV  <name>_history.csv    header at open, one row per history record
+ *   OUT_GP   <name>_history.gp     gnuplot script, written at close
+ *   OUT_PNG  <name>_history.png    made by gnuplot at close, when it is on the PATH
+ * Field outputs flush the HDF5 file, the XDMF and the CSV (H5Fflush, fflush); close syncs every
+ * file (fsync) before its rename, and renames the .xmf last.
+ *
+ * Histories: one f64 dataset per column under /history, extended by one row per record (chunks
+ * of OUT_HIST_CHUNK rows). Columns (o->col_name): step, time, kinetic, strain, external_work,
+ * broken, then reaction_<set>_<c> for every reaction set and component, then disp_<set>_<c> for
+ * every reaction set whose "set:<set>" field exists (mean of x - X over its members, in index
+ * order). col_absmax keeps each column's largest |value| so the plot can pick the component
+ * that carries the load.
+ */
+#define _DEFAULT_SOURCE /* fork, execlp, pipe, access */
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <string.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "h5io.h"
+#include "pdk/output.h"
+
+enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_NUM_FILES };
+
+#define OUT_CHUNK_ROWS 32768 /* rows per field chunk: 256 kB for f64 scalars, 768 kB for vectors */
+#define OUT_HIST_CHUNK 1024  /* rows per history chunk */
+#define OUT_MAX_REACTION 8   /* = the size of pdk_history.reaction */
+#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3)
+#define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
+#define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
+
+static const char *const axis_name[3] = {"x", "y", "z"};
+
+struct pdk_output {
+  pdk_ctx *ctx;
+  pdk_particles *p; /* borrowed */
+  int dim;
+  pdk_index n;
+  int compression;  /* deflate level, 0 = off */
+  int will_plot;    /* plot asked for and gnuplot found at open */
+  int failed;       /* a write failed: the files are incomplete and close(.., 1) refuses */
+  char *dir;
+  char *name;
+  char *h5_ref;     /* "<name>.h5", XML-escaped: how the .xmf names the data file */
+  char *final[OUT_NUM_FILES], *part[OUT_NUM_FILES];
+  hid_t file;
+  hid_t history;    /* /history group */
+  FILE *xmf, *csv;
+  int num_steps;    /* field outputs written */
+  long rows;        /* history records written */
+  int num_cols;
+  char col_name[OUT_MAX_COLS][OUT_COL_MAX];
+  const char *col_unit[OUT_MAX_COLS];
+  hid_t col_dset[OUT_MAX_COLS];
+  double col_absmax[OUT_MAX_COLS];
+  int num_reaction;
+  char reaction_name[OUT_MAX_REACTION][OUT_NAME_MAX];  /* sanitized, without "set:" */
+  char reaction_field[OUT_MAX_REACTION][OUT_NAME_MAX]; /* "set:<name>" as given */
+  int reaction_col[OUT_MAX_REACTION];                  /* first reaction column of set k */
+  int disp_col[OUT_MAX_REACTION];                      /* first displacement column, or -1 */
+  int num_sets;
+  char (*set_name)[OUT_NAME_MAX]; /* [num_sets] sanitized names of the "set:*" fields at open */
+  const char *unit_time, *unit_energy, *unit_force, *unit_length;
+};
+
+pdk_output_opts pdk_output_opts_default(void) {
+  pdk_output_opts o;
+  memset(&o, 0, sizeof o);
+  o.dir = ".";
+  o.name = "pdk";
+  o.plot = 1;
+  o.compression = 1;
+  return o;
+}
+
+/* ---- names ------------------------------------------------------------------------------------ */
+
+/* Dataset name of a field: every character outside [A-Za-z0-9_-] becomes '_'. */
+static void sanitize(const char *in, char *out, size_t cap) {
+  size_t k = 0;
+  for (; in[k] && k + 1 < cap; ++k) {
+    char c = in[k];
+    int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+             c == '-';
+    out[k] = ok ? c : '_';
+  }
+  out[k] = '\0';
+}
+
+/* malloc'd copy of s with the five XML special characters escaped. */
+static char *xml_escape(const char *s) {
+  size_t len = 0;
+  for (const char *q = s; *q; ++q) len += *q == '&' ? 5 : (*q == '<' || *q == '>') ? 4 : (*q == '"' || *q == '\'') ? 6 : 1;
+  char *out = malloc(len + 1), *w = out;
+  if (!out) return NULL;
+  for (const char *q = s; *q; ++q) {
+    switch (*q) {
+    case '&': memcpy(w, "&amp;", 5); w += 5; break;
+    case '<': memcpy(w, "&lt;", 4); w += 4; break;
+    case '>': memcpy(w, "&gt;", 4); w += 4; break;
+    case '"': memcpy(w, "&quot;", 6); w += 6; break;
+    case '\'': memcpy(w, "&apos;", 6); w += 6; break;
+    default: *w++ = *q;
+    }
+  }
+  *w = '\0';
+  return out;
+}
+
+/* malloc'd copy of s for a single-quoted gnuplot string ('' stands for '). */
+static char *gnuplot_quote(const char *s) {
+  size_t len = strlen(s);
+  for (const char *q = s; *q; ++q) len += *q == '\'';
+  char *out = malloc(len + 1), *w = out;
+  if (!out) return NULL;
+  for (const char *q = s; *q; ++q) {
+    if (*q == '\'') *w++ = '\'';
+    *w++ = *q;
+  }
+  *w = '\0';
+  return out;
+}
+
+/* Comma-separated names of the registered fields, for "no such field" messages. */
+static void field_list(const pdk_particles *p, char *buf, size_t cap) {
+  size_t len = 0;
+  buf[0] = '\0';
+  for (int k = 0; k < pdk_particles_num_fields(p) && len + 1 < cap; ++k) {
+    int w = snprintf(buf + len, cap - len, "%s%s", k ? ", " : "", pdk_particles_field_name(p, k));
+    if (w < 0) break;
+    len += (size_t)w < cap - len ? (size_t)w : cap - len - 1;
+  }
+}
+
+/* ---- field layout ----------------------------------------------------------------------------- */
+
+typedef enum out_layout { OUT_SCALAR, OUT_VECTOR, OUT_TENSOR, OUT_MATRIX } out_layout;
+
+/* How a field of num_comp components is stored: the dataset's columns and where component c goes. */
+static out_layout field_layout(int dim, int num_comp, int *cols, int col_of[9]) {
+  if (num_comp == 1) {
+    *cols = 1;
+    col_of[0] = 0;
+    return OUT_SCALAR;
+  }
+  if (num_comp == dim) {
+    *cols = 3;
+    for (int c = 0; c < dim; ++c) col_of[c] = c;
+    return OUT_VECTOR;
+  }
+  if (num_comp == dim * dim) { /* component [a][c] at a*dim + c goes to 3a + c */
+    *cols = 9;
+    for (int a = 0; a < dim; ++a)
+      for (int c = 0; c < dim; ++c) col_of[a * dim + c] = 3 * a + c;
+    return OUT_TENSOR;
+  }
+  *cols = num_comp;
+  for (int c = 0; c < num_comp; ++c) col_of[c] = c;
+  return OUT_MATRIX;
+}
+
+static const char *layout_name(out_layout l) {
+  static const char *const names[] = {"Scalar", "Vector", "Tensor", "Matrix"};
+  return names[l];
+}
+
+/* XDMF NumberType and Precision of a pdk type. */
+static const char *xdmf_number_type(pdk_type t, int *precision) {
+  *precision = (int)pdk_type_size(t);
+  switch (t) {
+  case PDK_F64:
+  case PDK_F32: return "Float";
+  case PDK_I64:
+  case PDK_I32: return "Int";
+  case PDK_U8: return "UChar";
+  }
+  return "Float";
+}
+
+/* ---- HDF5 datasets ---------------------------------------------------------------------------- */
+
+/* Creates the dataset `name` in loc, [n] (cols = 1) or [n][cols], chunked by OUT_CHUNK_ROWS rows,
+ * shuffled and deflated when o->compression > 0 and this HDF5 has deflate. */
+static int create_field_dataset(pdk_output *o, hid_t loc, const char *name, pdk_type type, int cols,
+                                hid_t *out) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t space = -1, dcpl = -1;
+  herr_t st;
+  hsize_t dims[2] = {(hsize_t)o->n, (hsize_t)cols};
+  hsize_t chunk[2] = {(hsize_t)(o->n < OUT_CHUNK_ROWS ? o->n : OUT_CHUNK_ROWS), (hsize_t)cols};
+  int rank = cols > 1 ? 2 : 1;
+  *out = -1;
+  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(rank, dims, NULL));
+  PDK_H5_CALL_GOTO(ctx, dcpl, H5Pcreate(H5P_DATASET_CREATE));
+  PDK_H5_CALL_GOTO(ctx, st, H5Pset_chunk(dcpl, rank, chunk));
+  PDK_H5_CALL_GOTO(ctx, st, H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER));
+  if (o->compression > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+    PDK_H5_CALL_GOTO(ctx, st, H5Pset_shuffle(dcpl));
+    PDK_H5_CALL_GOTO(ctx, st, H5Pset_deflate(dcpl, (unsigned)o->compression));
+  }
+  PDK_H5_CALL_GOTO(ctx, *out, H5Dcreate2(loc, name, pdk_h5_file_type(type), space, H5P_DEFAULT, dcpl,
+                                         H5P_DEFAULT));
+cleanup:
+  if (dcpl >= 0) H5Pclose(dcpl);
+  if (space >= 0) H5Sclose(space);
+  return err;
+}
+
+/* Copies `rows` elements of `elem` bytes from src into column `col` of a row-major buffer of
+ * `cols` columns. */
+static void scatter_column(void *restrict dst, int cols, int col, const void *restrict src,
+                           pdk_index rows, size_t elem) {
+  switch (elem) {
+  case 8: {
+    uint64_t *d = dst;
+    const uint64_t *s = src;
+    for (pdk_index i = 0; i < rows; ++i) d[(size_t)i * cols + col] = s[i];
+    break;
+  }
+  case 4: {
+    uint32_t *d = dst;
+    const uint32_t *s = src;
+    for (pdk_index i = 0; i < rows; ++i) d[(size_t)i * cols + col] = s[i];
+    break;
+  }
+  default: {
+    unsigned char *d = dst;
+    const unsigned char *s = src;
+    for (pdk_index i = 0; i < rows; ++i) memcpy(d + ((size_t)i * cols + col) * elem, s + (size_t)i * elem, elem);
+  }
+  }
+}
+
+/* Writes a field (comp[c] = its component arrays) into dataset d: directly when it has one
+ * column, else interleaved chunk by chunk (zeros in the padding columns). */
+static int write_field_data(pdk_output *o, hid_t d, pdk_type type, int num_comp, int cols,
+                            const int *col_of, void *const *comp) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t fspace = -1, mspace = -1;
+  herr_t st;
+  unsigned char *buf = NULL;
+  const size_t elem = pdk_type_size(type);
+  const hid_t mtype = pdk_h5_mem_type(type);
+  if (cols == 1) {
+    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, comp[0]));
+    goto cleanup;
+  }
+  const pdk_index block = o->n < OUT_CHUNK_ROWS ? o->n : OUT_CHUNK_ROWS;
+  buf = malloc((size_t)block * (size_t)cols * elem);
+  PDK_CHECK_GOTO(buf, ctx, PDK_ERR_MEMORY, "out of memory for an output buffer of %d rows", (int)block);
+  PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(d));
+  for (pdk_index r0 = 0; r0 < o->n; r0 += block) {
+    pdk_index rows = o->n - r0 < block ? o->n - r0 : block;
+    memset(buf, 0, (size_t)rows * (size_t)cols * elem);
+    for (int c = 0; c < num_comp; ++c)
+      scatter_column(buf, cols, col_of[c], (const unsigned char *)comp[c] + (size_t)r0 * elem, rows, elem);
+    hsize_t start[2] = {(hsize_t)r0, 0}, count[2] = {(hsize_t)rows, (hsize_t)cols};
+    PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+    PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(2, count, NULL));
+    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, mtype, mspace, fspace, H5P_DEFAULT, buf));
+    H5Sclose(mspace);
+    mspace = -1;
+  }
+cleanup:
+  free(buf);
+  if (mspace >= 0) H5Sclose(mspace);
+  if (fspace >= 0) H5Sclose(fspace);
+  return err;
+}
+
+/* Creates and writes the dataset `name` in loc from field `field` of p. */
+static int write_field(pdk_output *o, pdk_particles *p, hid_t loc, const char *name, const char *field,
+                       out_layout *layout_out, int *cols_out, pdk_type *type_out) {
+  int err = PDK_SUCCESS;
+  hid_t d = -1;
+  pdk_type type;
+  int num_comp, cols, col_of[9];
+  void *comp[9];
+  PDK_CALL(pdk_particles_field_info(p, field, &type, &num_comp));
+  out_layout layout = field_layout(o->dim, num_comp, &cols, col_of);
+  for (int c = 0; c < num_comp; ++c) comp[c] = pdk_particles_field_data(p, field, c);
+  PDK_CALL_GOTO(create_field_dataset(o, loc, name, type, cols, &d));
+  PDK_CALL_GOTO(write_field_data(o, d, type, num_comp, cols, col_of, comp));
+  if (layout_out) *layout_out = layout;
+  if (cols_out) *cols_out = cols;
+  if (type_out) *type_out = type;
+cleanup:
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+/* ---- XDMF ------------------------------------------------------------------------------------- */
+
+static void xmf_data_item(pdk_output *o, const char *indent, int cols, pdk_type type, const char *path) {
+  int precision;
+  const char *number_type = xdmf_number_type(type, &precision);
+  if (cols == 1)
+    fprintf(o->xmf, "%s<DataItem Dimensions=\"%d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n",
+            indent, (int)o->n, number_type, precision, o->h5_ref, path);
+  else
+    fprintf(o->xmf, "%s<DataItem Dimensions=\"%d %d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n",
+            indent, (int)o->n, cols, number_type, precision, o->h5_ref, path);
+}
+
+static void xmf_attribute(pdk_output *o, const char *name, out_layout layout, int cols, pdk_type type,
+                          const char *path) {
+  fprintf(o->xmf, "      <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, layout_name(layout));
+  xmf_data_item(o, "        ", cols, type, path);
+  fprintf(o->xmf, "      </Attribute>\n");
+}
+
+/* Flushes the three growing files; an error here usually means a full disk. */
+static int flush_files(pdk_output *o) {
+  pdk_ctx *ctx = o->ctx;
+  PDK_CHECK(fflush(o->xmf) == 0 && !ferror(o->xmf), ctx, PDK_ERR_IO, "cannot write '%s': %s",
+            o->part[OUT_XMF], strerror(errno));
+  PDK_CHECK(fflush(o->csv) == 0 && !ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s",
+            o->part[OUT_CSV], strerror(errno));
+  PDK_H5_CALL(ctx, H5Fflush(o->file, H5F_SCOPE_LOCAL));
+  return PDK_SUCCESS;
+}
+
+/* ---- open ------------------------------------------------------------------------------------- */
+
+static int gnuplot_on_path(void) {
+  const char *path = getenv("PATH");
+  if (!path) return 0;
+  const char *q = path;
+  for (;;) {
+    const char *end = strchr(q, ':');
+    size_t len = end ? (size_t)(end - q) : strlen(q);
+    char buf[4096];
+    if (len + 10 < sizeof buf) {
+      if (len == 0) strcpy(buf, "./gnuplot");
+      else {
+        memcpy(buf, q, len);
+        strcpy(buf + len, "/gnuplot");
+      }
+      if (access(buf, X_OK) == 0) return 1;
+    }
+    if (!end) return 0;
+    q = end + 1;
+  }
+}
+
+static int set_units(pdk_output *o, const char *units) {
+  if (!units) {
+    o->unit_time = "time";
+    o->unit_energy = "energy";
+    o->unit_force = "force";
+    o->unit_length = "length";
+  } else if (!strcmp(units, "SI")) {
+    o->unit_time = "s";
+    o->unit_energy = "J";
+    o->unit_force = "N";
+    o->unit_length = "m";
+  } else if (!strcmp(units, "mm-N-s-tonne")) {
+    o->unit_time = "s";
+    o->unit_energy = "mJ";
+    o->unit_force = "N";
+    o->unit_length = "mm";
+  } else {
+    return pdk_ctx_error_set(o->ctx, PDK_ERR_ARG, __func__,
+                             "unknown output units '%s'; use \"SI\", \"mm-N-s-tonne\" or none", units);
+  }
+  return PDK_SUCCESS;
+}
+
+static void add_column(pdk_output *o, const char *name, const char *unit) {
+  snprintf(o->col_name[o->num_cols], OUT_COL_MAX, "%s", name);
+  o->col_unit[o->num_cols] = unit;
+  o->num_cols++;
+}
+
+/* The history columns, in order (see the file comment). */
+static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
+  pdk_ctx *ctx = o->ctx;
+  char buf[OUT_COL_MAX];
+  add_column(o, "step", "-");
+  add_column(o, "time", o->unit_time);
+  add_column(o, "kinetic", o->unit_energy);
+  add_column(o, "strain", o->unit_energy);
+  add_column(o, "external_work", o->unit_energy);
+  add_column(o, "broken", "bonds");
+  o->num_reaction = opts->num_reaction_sets;
+  for (int k = 0; k < o->num_reaction; ++k) {
+    const char *s = opts->reaction_sets[k];
+    PDK_CHECK(s && s[0], ctx, PDK_ERR_ARG, "reaction set %d has no name", k);
+    const char *bare = strncmp(s, "set:", 4) ? s : s + 4;
+    PDK_CHECK(strlen(bare) + 5 < OUT_NAME_MAX, ctx, PDK_ERR_ARG, "reaction set name '%s' is too long", s);
+    sanitize(bare, o->reaction_name[k], sizeof o->reaction_name[k]);
+    snprintf(o->reaction_field[k], OUT_NAME_MAX, "set:%s", bare);
+    for (int j = 0; j < k; ++j)
+      PDK_CHECK(strcmp(o->reaction_name[j], o->reaction_name[k]), ctx, PDK_ERR_ARG,
+                "reaction sets %d and %d both give the history column name '%s'", j, k, o->reaction_name[k]);
+  }
+  for (int k = 0; k < o->num_reaction; ++k) {
+    o->reaction_col[k] = o->num_cols;
+    for (int c = 0; c < o->dim; ++c) {
+      snprintf(buf, sizeof buf, "reaction_%s_%s", o->reaction_name[k], axis_name[c]);
+      add_column(o, buf, o->unit_force);
+    }
+  }
+  for (int k = 0; k < o->num_reaction; ++k) {
+    o->disp_col[k] = -1;
+    const uint8_t *member = pdk_particles_field_data(o->p, o->reaction_field[k], 0);
+    if (!member || !pdk_particles_field_exists(o->p, "x")) continue;
+    pdk_index count = 0;
+    for (pdk_index i = 0; i < o->n; ++i) count += member[i] != 0;
+    if (!count) continue;
+    o->disp_col[k] = o->num_cols;
+    for (int c = 0; c < o->dim; ++c) {
+      snprintf(buf, sizeof buf, "disp_%s_%s", o->reaction_name[k], axis_name[c]);
+      add_column(o, buf, o->unit_length);
+    }
+  }
+  return PDK_SUCCESS;
+}
+
+/* Root attributes and /static. */
+static int write_static(pdk_output *o, const char *scene_text) {
+  pdk_ctx *ctx = o->ctx;
+  pdk_particles *p = o->p;
+  int err = PDK_SUCCESS;
+  hid_t g = -1, gs = -1;
+  PDK_CALL_GOTO(pdk_h5_write_provenance(ctx, o->file, "pdk output"));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, o->file, "dimension", o->dim));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, o->file, "num_particles", o->n));
+  if (scene_text) PDK_CALL_GOTO(pdk_h5_text_write(ctx, o->file, "scene", scene_text));
+  PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(o->file, "static", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(write_field(o, p, g, "id", "id", NULL, NULL, NULL));
+  PDK_CALL_GOTO(write_field(o, p, g, "X", "X", NULL, NULL, NULL));
+  PDK_CALL_GOTO(write_field(o, p, g, "volume", "volume", NULL, NULL, NULL));
+  PDK_H5_CALL_GOTO(ctx, gs, H5Gcreate2(g, "sets", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  int num_fields = pdk_particles_num_fields(p);
+  o->set_name = calloc((size_t)num_fields + 1, sizeof *o->set_name);
+  PDK_CHECK_GOTO(o->set_name, ctx, PDK_ERR_MEMORY, "out of memory");
+  for (int k = 0; k < num_fields; ++k) {
+    const char *f = pdk_particles_field_name(p, k);
+    pdk_type type;
+    int num_comp;
+    if (strncmp(f, "set:", 4)) continue;
+    PDK_CALL_GOTO(pdk_particles_field_info(p, f, &type, &num_comp));
+    if (type != PDK_U8 || num_comp != 1) continue;
+    char *name = o->set_name[o->num_sets];
+    sanitize(f + 4, name, OUT_NAME_MAX);
+    for (int j = 0; j < o->num_sets; ++j)
+      PDK_CHECK_GOTO(strcmp(o->set_name[j], name), ctx, PDK_ERR_ARG,
+                     "two sets give the dataset name '%s' (characters outside [A-Za-z0-9_-] become "
+                     "'_'); rename one", name);
+    PDK_CALL_GOTO(write_field(o, p, gs, name, f, NULL, NULL, NULL));
+    o->num_sets++;
+  }
+cleanup:
+  if (gs >= 0) H5Gclose(gs);
+  if (g >= 0) H5Gclose(g);
+  return err;
+}
+
+static int create_history(pdk_output *o) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t space = -1, dcpl = -1;
+  herr_t st;
+  hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {OUT_HIST_CHUNK};
+  PDK_H5_CALL_GOTO(ctx, o->history, H5Gcreate2(o->file, "history", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, dims, maxdims));
+  PDK_H5_CALL_GOTO(ctx, dcpl, H5Pcreate(H5P_DATASET_CREATE));
+  PDK_H5_CALL_GOTO(ctx, st, H5Pset_chunk(dcpl, 1, chunk));
+  for (int k = 0; k < o->num_cols; ++k) {
+    PDK_H5_CALL_GOTO(ctx, o->col_dset[k], H5Dcreate2(o->history, o->col_name[k], H5T_IEEE_F64LE, space,
+                                                     H5P_DEFAULT, dcpl, H5P_DEFAULT));
+    PDK_CALL_GOTO(pdk_h5_attr_write_string(ctx, o->col_dset[k], "unit", o->col_unit[k]));
+  }
+cleanup:
+  if (dcpl >= 0) H5Pclose(dcpl);
+  if (space >= 0) H5Sclose(space);
+  return err;
+}
+
+static void output_free(pdk_output *o);
+
+int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles *p, pdk_output **out) {
+  int err = PDK_SUCCESS;
+  pdk_output *o = NULL;
+  pdk_output_opts opts = opts_in ? *opts_in : pdk_output_opts_default();
+  const char *dir = opts.dir && opts.dir[0] ? opts.dir : ".";
+  *out = NULL;
+  PDK_CHECK(p, ctx, PDK_ERR_ARG, "no particle store given");
+  PDK_CHECK(opts.name && opts.name[0] && !strchr(opts.name, '/') && !strchr(opts.name, ':'), ctx,
+            PDK_ERR_ARG, "output name '%s' must be a non-empty file stem without '/' or ':' (put "
+            "directories in opts.dir)", opts.name ? opts.name : "(null)");
+  PDK_CHECK(opts.compression >= 0 && opts.compression <= 9, ctx, PDK_ERR_ARG,
+            "output compression must be a deflate level 0..9, got %d", opts.compression);
+  PDK_CHECK(opts.num_reaction_sets >= 0 && opts.num_reaction_sets <= OUT_MAX_REACTION &&
+                (opts.num_reaction_sets == 0 || opts.reaction_sets),
+            ctx, PDK_ERR_ARG, "0 to %d reaction sets can be recorded, got %d", OUT_MAX_REACTION,
+            opts.num_reaction_sets);
+  o = calloc(1, sizeof *o);
+  PDK_CHECK(o, ctx, PDK_ERR_MEMORY, "out of memory creating the output");
+  o->ctx = ctx;
+  o->p = p;
+  o->dim = pdk_particles_dim(p);
+  o->n = pdk_particles_count(p);
+  o->compression = opts.compression;
+  o->file = o->history = -1;
+  for (int k = 0; k < OUT_MAX_COLS; ++k) o->col_dset[k] = -1;
+  PDK_CALL_GOTO(set_units(o, opts.units));
+  o->dir = strdup(dir);
+  o->name = strdup(opts.name);
+  o->h5_ref = pdk_str_printf("%s.h5", opts.name);
+  PDK_CHECK_GOTO(o->dir && o->name && o->h5_ref, ctx, PDK_ERR_MEMORY, "out of memory");
+  {
+    char *escaped = xml_escape(o->h5_ref);
+    PDK_CHECK_GOTO(escaped, ctx, PDK_ERR_MEMORY, "out of memory");
+    free(o->h5_ref);
+    o->h5_ref = escaped;
+  }
+  static const char *const suffix[OUT_NUM_FILES] = {".h5", ".xmf", "_history.csv", "_history.gp",
+                                                    "_history.png"};
+  for (int f = 0; f < OUT_NUM_FILES; ++f) {
+    o->final[f] = pdk_str_printf("%s/%s%s", dir, opts.name, suffix[f]);
+    o->part[f] = pdk_str_printf("%s/%s%s.part", dir, opts.name, suffix[f]);
+    PDK_CHECK_GOTO(o->final[f] && o->part[f], ctx, PDK_ERR_MEMORY, "out of memory");
+  }
+  PDK_CALL_GOTO(define_columns(o, &opts));
+  o->will_plot = opts.plot && gnuplot_on_path();
+  PDK_CALL_GOTO(pdk_dir_create(ctx, dir));
+
+  PDK_H5_CALL_GOTO(ctx, o->file, H5Fcreate(o->part[OUT_H5], H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(write_static(o, opts.scene_text));
+  PDK_CALL_GOTO(create_history(o));
+  {
+    hid_t g;
+    PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(o->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+    H5Gclose(g);
+  }
+
+  o->xmf = fopen(o->part[OUT_XMF], "w");
+  PDK_CHECK_GOTO(o->xmf, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_XMF], strerror(errno));
+  fprintf(o->xmf, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                  "<Xdmf Version=\"2.0\">\n  <Domain>\n"
+                  "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+
+  o->csv = fopen(o->part[OUT_CSV], "w");
+  PDK_CHECK_GOTO(o->csv, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_CSV], strerror(errno));
+  for (int k = 0; k < o->num_cols; ++k)
+    fprintf(o->csv, "%s%s [%s]", k ? "," : "", o->col_name[k], o->col_unit[k]);
+  fprintf(o->csv, "\n");
+  PDK_CALL_GOTO(flush_files(o));
+  *out = o;
+  return PDK_SUCCESS;
+cleanup:
+  output_free(o);
+  return err;
+}
+
+/* ---- writes ----------------------------------------------------------------------------------- */
+
+int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double time,
+                            const char *const *fields, int num_fields) {
+  if (!o) return p ? pdk_ctx_error_set(pdk_particles_ctx(p), PDK_ERR_ARG, __func__, "no output given") : PDK_ERR_ARG;
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t g = -1;
+  char (*dname)[OUT_NAME_MAX] = NULL;
+  char list[1024], path[2 * OUT_NAME_MAX + 32];
+  PDK_CHECK(!o->failed, ctx, PDK_ERR_ARG,
+            "an earlier write to '%s' failed; close the output with success = 0", o->part[OUT_H5]);
+  PDK_CHECK(p && pdk_particles_count(p) == o->n && pdk_particles_dim(p) == o->dim, ctx, PDK_ERR_ARG,
+            "the particle store has %d particles in %d-D, the output was opened for %d in %d-D",
+            p ? (int)pdk_particles_count(p) : 0, p ? pdk_particles_dim(p) : 0, (int)o->n, o->dim);
+  PDK_CHECK(num_fields >= 0 && (num_fields == 0 || fields), ctx, PDK_ERR_ARG,
+            "bad field list (%d names)", num_fields);
+  PDK_CHECK(isfinite(time), ctx, PDK_ERR_ARG, "output time must be finite, got %g", time);
+  dname = calloc((size_t)num_fields + 1, sizeof *dname);
+  PDK_CHECK(dname, ctx, PDK_ERR_MEMORY, "out of memory");
+  int geometry = -1; /* index of "x" in fields, when it can serve as the geometry */
+  for (int k = 0; k < num_fields; ++k) {
+    if (!fields[k] || !pdk_particles_field_exists(p, fields[k])) {
+      field_list(p, list, sizeof list);
+      PDK_CHECK_GOTO(0, ctx, PDK_ERR_NOT_FOUND,
+                     "cannot write field '%s': no such particle field; the fields are: %s",
+                     fields[k] ? fields[k] : "(null)", list);
+    }
+    sanitize(fields[k], dname[k], OUT_NAME_MAX);
+    for (int j = 0; j < k; ++j)
+      PDK_CHECK_GOTO(strcmp(dname[j], dname[k]), ctx, PDK_ERR_ARG,
+                     "fields '%s' and '%s' are listed twice or map to the same dataset name '%s'",
+                     fields[j], fields[k], dname[k]);
+    pdk_type type;
+    int num_comp;
+    PDK_CALL_GOTO(pdk_particles_field_info(p, fields[k], &type, &num_comp));
+    if (!strcmp(fields[k], "x") && type == PDK_F64 && num_comp == o->dim) geometry = k;
+  }
+
+  const int k_out = o->num_steps;
+  snprintf(path, sizeof path, "/steps/%d", k_out);
+  o->failed = 1; /* until this output is complete */
+  PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(o->file, path, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "step", step));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "time", time));
+
+  fprintf(o->xmf, "    <Grid Name=\"step_%ld\" GridType=\"Uniform\">\n", step);
+  fprintf(o->xmf, "      <Time Value=\"%.17g\"/>\n", time);
+  fprintf(o->xmf, "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\"/>\n",
+          (int)o->n);
+  fprintf(o->xmf, "      <Geometry GeometryType=\"XYZ\">\n");
+  if (geometry >= 0) snprintf(path, sizeof path, "/steps/%d/%s", k_out, dname[geometry]);
+  else snprintf(path, sizeof path, "/static/X");
+  xmf_data_item(o, "        ", 3, PDK_F64, path);
+  fprintf(o->xmf, "      </Geometry>\n");
+  xmf_attribute(o, "id", OUT_SCALAR, 1, PDK_I64, "/static/id");
+  xmf_attribute(o, "volume", OUT_SCALAR, 1, PDK_F64, "/static/volume");
+  for (int s = 0; s < o->num_sets; ++s) {
+    char aname[OUT_NAME_MAX + 8];
+    snprintf(aname, sizeof aname, "set_%s", o->set_name[s]);
+    snprintf(path, sizeof path, "/static/sets/%s", o->set_name[s]);
+    xmf_attribute(o, aname, OUT_SCALAR, 1, PDK_U8, path);
+  }
+  for (int k = 0; k < num_fields; ++k) {
+    out_layout layout;
+    int cols;
+    pdk_type type;
+    PDK_CALL_GOTO(write_field(o, p, g, dname[k], fields[k], &layout, &cols, &type));
+    snprintf(path, sizeof path, "/steps/%d/%s", k_out, dname[k]);
+    xmf_attribute(o, dname[k], layout, cols, type, path);
+  }
+  fprintf(o->xmf, "    </Grid>\n");
+  PDK_CALL_GOTO(flush_files(o));
+  o->num_steps++;
+  o->failed = 0;
+cleanup:
+  if (g >= 0) H5Gclose(g);
+  free(dname);
+  return err;
+}
+
+/* Mean displacement x - X of the members of set k, per component, in index order. */
+static void set_displacement(pdk_output *o, int k, double out[3]) {
+  const uint8_t *member = pdk_particles_field_data(o->p, o->reaction_field[k], 0);
+  double sum[3] = {0, 0, 0};
+  pdk_index count = 0;
+  for (int c = 0; c < 3; ++c) out[c] = 0.0;
+  if (!member) return;
+  for (int c = 0; c < o->dim; ++c) {
+    const double *x = pdk_particles_field_data(o->p, "x", c), *X = pdk_particles_X(o->p, c);
+    if (!x) return;
+    count = 0;
+    for (pdk_index i = 0; i < o->n; ++i)
+      if (member[i]) {
+        sum[c] += x[i] - X[i];
+        count++;
+      }
+  }
+  for (int c = 0; c < o->dim; ++c) out[c] = count ? sum[c] / (double)count : 0.0;
+}
+
+int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t fspace = -1, mspace = -1;
+  herr_t st;
+  double row[OUT_MAX_COLS];
+  PDK_CHECK(!o->failed, ctx, PDK_ERR_ARG,
+            "an earlier write to '%s' failed; close the output with success = 0", o->part[OUT_H5]);
+  PDK_CHECK(h, ctx, PDK_ERR_ARG, "no history record given");
+  row[0] = (double)h->step;
+  row[1] = h->time;
+  row[2] = h->kinetic;
+  row[3] = h->strain;
+  row[4] = h->external_work;
+  row[5] = (double)h->broken;
+  for (int k = 0; k < o->num_reaction; ++k)
+    for (int c = 0; c < o->dim; ++c) row[o->reaction_col[k] + c] = h->reaction[k][c];
+  for (int k = 0; k < o->num_reaction; ++k) {
+    if (o->disp_col[k] < 0) continue;
+    double u[3];
+    set_displacement(o, k, u);
+    for (int c = 0; c < o->dim; ++c) row[o->disp_col[k] + c] = u[c];
+  }
+
+  o->failed = 1; /* until the row is complete */
+  hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};
+  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(1, one, NULL));
+  for (int k = 0; k < o->num_cols; ++k) {
+    PDK_H5_CALL_GOTO(ctx, st, H5Dset_extent(o->col_dset[k], size));
+    PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(o->col_dset[k]));
+    PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, one, NULL));
+    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(o->col_dset[k], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &row[k]));
+    H5Sclose(fspace);
+    fspace = -1;
+    if (fabs(row[k]) > o->col_absmax[k]) o->col_absmax[k] = fabs(row[k]);
+  }
+  fprintf(o->csv, "%ld,%.17g,%.17g,%.17g,%.17g,%lld", h->step, row[1], row[2], row[3], row[4],
+          (long long)h->broken);
+  for (int k = 6; k < o->num_cols; ++k) fprintf(o->csv, ",%.17g", row[k]);
+  fprintf(o->csv, "\n");
+  PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV], strerror(errno));
+  o->rows++;
+  o->failed = 0;
+cleanup:
+  if (fspace >= 0) H5Sclose(fspace);
+  if (mspace >= 0) H5Sclose(mspace);
+  return err;
+}
+
+int pdk_output_will_plot(const pdk_output *o) { return o ? o->will_plot : 0; }
+int pdk_output_num_field_steps(const pdk_output *o) { return o ? o->num_steps : 0; }
+long pdk_output_num_history_rows(const pdk_output *o) { return o ? o->rows : 0; }
+
+/* ---- plot ------------------------------------------------------------------------------------- */
+
+/* Component of reaction set k with the largest |value| over the run. */
+static int main_component(const pdk_output *o, int k) {
+  int best = 0;
+  for (int c = 1; c < o->dim; ++c)
+    if (o->col_absmax[o->reaction_col[k] + c] > o->col_absmax[o->reaction_col[k] + best]) best = c;
+  return best;
+}
+
+/* 1 when set k has a displacement column and moved along its main reaction component. */
+static int moved(const pdk_output *o, int k) {
+  return o->disp_col[k] >= 0 && o->col_absmax[o->disp_col[k] + main_component(o, k)] > 0;
+}
+
+/* Writes the gnuplot script (as .part; committed by the caller). CSV columns are 1-based. */
+static int write_plot_script(pdk_output *o) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  char *stem = gnuplot_quote(o->name);
+  FILE *f = NULL;
+  PDK_CHECK_GOTO(stem, ctx, PDK_ERR_MEMORY, "out of memory");
+  f = fopen(o->part[OUT_GP], "w");
+  PDK_CHECK_GOTO(f, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_GP], strerror(errno));
+  int num_disp = 0; /* sets that moved: plotting a fixed set against its zero displacement says nothing */
+  for (int k = 0; k < o->num_reaction; ++k) num_disp += moved(o, k);
+  int panels = 1 + (o->num_reaction > 0) + (num_disp > 0);
+  fprintf(f, "# pdk history plot; rerun with: gnuplot %s_history.gp (in this directory)\n", stem);
+  fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_history.png'\n", stem);
+  fprintf(f, "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+             "  set terminal pngcairo size %d,450 noenhanced\n} else {\n"
+             "  set terminal png size %d,450 noenhanced\n}\n", 500 * panels, 500 * panels);
+  fprintf(f, "set output outfile\nset datafile separator ','\nset grid\nset key top left\n"
+             "set format x '%%g'\nset format y '%%g'\nset xtics rotate by 30 right\n");
+  fprintf(f, "data = '%s_history.csv'\n", stem);
+  fprintf(f, "set multiplot layout 1,%d title '%s'\n", panels, stem);
+  if (o->num_reaction > 0) {
+    fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'reaction [%s]'\nplot ", o->unit_time, o->unit_force);
+    for (int k = 0; k < o->num_reaction; ++k) {
+      int c = main_component(o, k);
+      fprintf(f, "%sdata skip 1 using 2:%d with lines title '%s %s'", k ? ", \\\n     " : "",
+              o->reaction_col[k] + c + 1, o->reaction_name[k], axis_name[c]);
+    }
+    fprintf(f, "\n");
+  }
+  if (num_disp > 0) {
+    fprintf(f, "set xlabel 'mean displacement of the set [%s]'\nset ylabel 'reaction [%s]'\nplot ",
+            o->unit_length, o->unit_force);
+    int first = 1;
+    for (int k = 0; k < o->num_reaction; ++k) {
+      if (!moved(o, k)) continue;
+      int c = main_component(o, k);
+      fprintf(f, "%sdata skip 1 using %d:%d with lines title '%s %s'", first ? "" : ", \\\n     ",
+              o->disp_col[k] + c + 1, o->reaction_col[k] + c + 1, o->reaction_name[k], axis_name[c]);
+      first = 0;
+    }
+    fprintf(f, "\n");
+  }
+  fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'energy [%s]'\n", o->unit_time, o->unit_energy);
+  fprintf(f, "plot data skip 1 using 2:3 with lines title 'kinetic', \\\n"
+             "     data skip 1 using 2:4 with lines title 'strain', \\\n"
+             "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n"
+             "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
+  fprintf(f, "unset multiplot\nset output\n");
+  PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_GP],
+                 strerror(errno));
+cleanup:
+  if (f) fclose(f);
+  free(stem);
+  return err;
+}
+
+/* Runs gnuplot on the committed script, in o->dir, writing the PNG's .part; its stderr is
+ * collected for the error message. */
+static int run_gnuplot(pdk_output *o) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  int pipefd[2] = {-1, -1};
+  char msg[1024] = "";
+  size_t msg_len = 0;
+  char *script = pdk_str_printf("%s_history.gp", o->name);
+  char *outfile = pdk_str_printf("%s_history.png.part", o->name);
+  char *quoted = outfile ? gnuplot_quote(outfile) : NULL;
+  char *expr = quoted ? pdk_str_printf("outfile='%s'", quoted) : NULL;
+  PDK_CHECK_GOTO(script && expr, ctx, PDK_ERR_MEMORY, "out of memory");
+  PDK_CHECK_GOTO(pipe(pipefd) == 0, ctx, PDK_ERR_EXTERNAL, "pipe() for gnuplot failed: %s", strerror(errno));
+  fflush(NULL);
+  pid_t pid = fork();
+  PDK_CHECK_GOTO(pid >= 0, ctx, PDK_ERR_EXTERNAL, "fork() for gnuplot failed: %s", strerror(errno));
+  if (pid == 0) { /* child: only async-signal-safe calls until exec */
+    int devnull = open("/dev/null", O_RDWR);
+    if (devnull >= 0) {
+      dup2(devnull, 0);
+      dup2(devnull, 1);
+    }
+    dup2(pipefd[1], 2);
+    close(pipefd[0]);
+    if (chdir(o->dir) != 0) _exit(126);
+    execlp("gnuplot", "gnuplot", "-e", expr, script, (char *)NULL);
+    _exit(127);
+  }
+  close(pipefd[1]);
+  pipefd[1] = -1;
+  for (;;) {
+    char buf[512];
+    ssize_t got = read(pipefd[0], buf, sizeof buf);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    size_t take = (size_t)got < sizeof msg - 1 - msg_len ? (size_t)got : sizeof msg - 1 - msg_len;
+    memcpy(msg + msg_len, buf, take);
+    msg_len += take;
+  }
+  msg[msg_len] = '\0';
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  for (size_t k = 0; k < msg_len; ++k)
+    if (msg[k] == '\n') msg[k] = ' ';
+  PDK_CHECK_GOTO(WIFEXITED(status) && WEXITSTATUS(status) == 0 && pdk_file_exists(o->part[OUT_PNG]),
+                 ctx, PDK_ERR_EXTERNAL,
+                 "gnuplot failed on '%s' (%s %d)%s%s; the data files are complete, only the plot "
+                 "is missing: rerun 'gnuplot %s_history.gp' in '%s'",
+                 o->final[OUT_GP], WIFEXITED(status) ? "exit status" : "signal",
+                 WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "", msg,
+                 o->name, o->dir);
+cleanup:
+  if (pipefd[0] >= 0) close(pipefd[0]);
+  if (pipefd[1] >= 0) close(pipefd[1]);
+  free(script);
+  free(outfile);
+  free(quoted);
+  free(expr);
+  return err;
+}
+
+/* ---- close ------------------------------------------------------------------------------------ */
+
+/* Closes every open handle (no error reporting: used on every path). */
+static void close_handles(pdk_output *o) {
+  if (o->xmf) fclose(o->xmf);
+  if (o->csv) fclose(o->csv);
+  o->xmf = o->csv = NULL;
+  for (int k = 0; k < OUT_MAX_COLS; ++k)
+    if (o->col_dset[k] >= 0) {
+      H5Dclose(o->col_dset[k]);
+      o->col_dset[k] = -1;
+    }
+  if (o->history >= 0) H5Gclose(o->history);
+  if (o->file >= 0) H5Fclose(o->file);
+  o->history = o->file = -1;
+}
+
+static void output_free(pdk_output *o) {
+  if (!o) return;
+  close_handles(o);
+  for (int f = 0; f < OUT_NUM_FILES; ++f) {
+    if (o->part[f]) pdk_file_remove(o->part[f]);
+    free(o->part[f]);
+    free(o->final[f]);
+  }
+  free(o->set_name);
+  free(o->dir);
+  free(o->name);
+  free(o->h5_ref);
+  free(o);
+}
+
+/* Completes every file and renames it: .h5 and .csv, then the plot, then the .xmf. Returns the
+ * plot's error, if any, after everything else succeeded. */
+static int finish(pdk_output *o) {
+  pdk_ctx *ctx = o->ctx;
+  herr_t st;
+  fprintf(o->xmf, "    </Grid>\n  </Domain>\n</Xdmf>\n");
+  int bad = fflush(o->xmf) != 0 || ferror(o->xmf);
+  bad |= fclose(o->xmf) != 0;
+  o->xmf = NULL;
+  PDK_CHECK(!bad, ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_XMF], strerror(errno));
+  bad = fflush(o->csv) != 0 || ferror(o->csv);
+  bad |= fclose(o->csv) != 0;
+  o->csv = NULL;
+  PDK_CHECK(!bad, ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV], strerror(errno));
+  for (int k = 0; k < o->num_cols; ++k) {
+    st = H5Dclose(o->col_dset[k]);
+    o->col_dset[k] = -1;
+    PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Dclose of history column '%s' failed", o->col_name[k]);
+  }
+  st = H5Gclose(o->history);
+  o->history = -1;
+  PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
+  hid_t file = o->file;
+  o->file = -1;
+  PDK_H5_CALL(ctx, H5Fclose(file));
+
+  PDK_CALL(pdk_file_commit(ctx, o->part[OUT_H5], o->final[OUT_H5]));
+  PDK_CALL(pdk_file_commit(ctx, o->part[OUT_CSV], o->final[OUT_CSV]));
+  int plot_err = PDK_SUCCESS;
+  if (o->will_plot && o->rows > 0) {
+    PDK_CALL(write_plot_script(o));
+    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_GP], o->final[OUT_GP]));
+    plot_err = run_gnuplot(o);
+    if (!plot_err) plot_err = pdk_file_commit(ctx, o->part[OUT_PNG], o->final[OUT_PNG]);
+    if (plot_err) pdk_file_remove(o->part[OUT_PNG]);
+  }
+  PDK_CALL(pdk_file_commit(ctx, o->part[OUT_XMF], o->final[OUT_XMF]));
+  return plot_err;
+}
+
+int pdk_output_close(pdk_output **op, int success) {
+  if (!op || !*op) return PDK_SUCCESS;
+  pdk_output *o = *op;
+  *op = NULL;
+  int err = PDK_SUCCESS;
+  if (success && o->failed)
+    err = pdk_ctx_error_set(o->ctx, PDK_ERR_ARG, __func__,
+                            "an earlier write to '%s' failed, so the output is incomplete; its "
+                            "files were removed", o->part[OUT_H5]);
+  else if (success)
+    err = finish(o);
+  output_free(o); /* removes whatever .part files remain */
+  return err;
+}
