@@ -7,7 +7,10 @@
  *   bench_families [--n N]... [--dim 2|3] [--threads T]... [--repeat R] [--kernels ref|simd]
  *                  [--order morton|lattice|random]
  *
- * Prints, per configuration: median build time (wall, and CPU time of all threads), particles/s,
+ * Checks that every configuration builds bitwise the same families (hash of bond_start, bond_j).
+ * Prints, per configuration: median build time (wall, and CPU time of all threads), the time to
+ * allocate and first-touch a fresh array the size of bond_j on as many threads (touch_s: the
+ * page-fault floor), particles/s,
  * directed bonds/s, bonds per particle, bytes held per bond (bond_j alone, and with bond_start),
  * and the process's peak memory.
  */
@@ -37,6 +40,43 @@ static double cpu_time(void) {
   struct timespec ts;
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A 64-bit hash of the CSR arrays (word-wise multiply-xorshift): every configuration must give
+ * the same families. */
+static uint64_t hash_words(uint64_t h, const void *data, size_t bytes) {
+  const unsigned char *b = data;
+  for (size_t k = 0; k < bytes; k += 8) {
+    uint64_t w = 0;
+    memcpy(&w, b + k, bytes - k < 8 ? bytes - k : 8);
+    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+  }
+  return h;
+}
+
+static uint64_t families_hash(const pdk_families *f) {
+  uint64_t h = hash_words(1469598103934665603ull, pdk_families_bond_start(f),
+                          ((size_t)pdk_families_num_particles(f) + 1) * sizeof(pdk_bond_index));
+  return hash_words(h, pdk_families_bond_j(f),
+                    (size_t)pdk_families_num_bonds(f) * sizeof(pdk_index));
+}
+
+/* Seconds to allocate and first-touch (write) `bytes` fresh bytes with `threads` threads, static
+ * schedule: the page-fault floor of any build that produces a bond_j of that size. */
+static double touch_floor(size_t bytes, int threads) {
+  const double t0 = pdk_wtime();
+  unsigned char *a = malloc(bytes);
+  if (!a) return -1;
+  const long pages = (long)((bytes + 4095) / 4096);
+#pragma omp parallel for default(none) shared(a, pages, bytes) schedule(static) num_threads(threads)
+  for (long q = 0; q < pages; ++q) {
+    const size_t off = (size_t)q * 4096, len = bytes - off < 4096 ? bytes - off : 4096;
+    memset(a + off, 1, len);
+  }
+  const double dt = pdk_wtime() - t0;
+  free(a);
+  return dt;
 }
 
 static void usage(void) {
@@ -128,9 +168,9 @@ int main(int argc, char **argv) {
     }
   }
   printf("# bench_families: horizon 3.015 dx, order %s, median of %d repeats\n", order, repeat);
-  printf("# %-3s %-8s %-5s %-3s %10s %10s %9s %12s %12s %8s %8s %9s %10s\n", "dim", "n", "kern",
-         "thr", "reorder_s", "build_s", "cpu_s", "particles/s", "bonds/s", "bonds/p", "B/bond",
-         "B/bond+s", "peak_MiB");
+  printf("# %-3s %-8s %-5s %-3s %10s %10s %9s %8s %12s %12s %8s %8s %9s %10s\n", "dim", "n", "kern",
+         "thr", "reorder_s", "build_s", "cpu_s", "touch_s", "particles/s", "bonds/s", "bonds/p",
+         "B/bond", "B/bond+s", "peak_MiB");
   const double dx = 1e-3, horizon = 3.015 * dx;
   for (int d = 0; d < num_dims; ++d) {
     for (int in = 0; in < num_n; ++in) {
@@ -153,7 +193,9 @@ int main(int argc, char **argv) {
       const pdk_index n = pdk_particles_count(p[0]);
       double *times = malloc((size_t)num_kernels * num_threads * repeat * sizeof *times);
       double *cpu = malloc((size_t)num_kernels * num_threads * repeat * sizeof *cpu);
+      double *floor_s = malloc((size_t)num_threads * repeat * sizeof *floor_s);
       long long bonds[2] = {0, 0};
+      uint64_t hash = 0;
       size_t bytes[2] = {0, 0};
       for (int r = 0; r < repeat; ++r) {
         for (int k = 0; k < num_kernels; ++k) {
@@ -173,25 +215,40 @@ int main(int argc, char **argv) {
             times[(k * num_threads + t) * repeat + r] = pdk_wtime() - t0;
             cpu[(k * num_threads + t) * repeat + r] = cpu_time() - c0;
             bonds[k] = pdk_families_num_bonds(f);
+            if (r == 0) { /* same families for every kernel family and thread count */
+              const uint64_t h = families_hash(f);
+              if (k == 0 && t == 0) hash = h;
+              if (h != hash) {
+                fprintf(stderr,
+                        "%d-D n = %d: families with %s kernels on %d threads differ from "
+                        "the first configuration\n",
+                        dim, (int)n, kernels[k], threads[t]);
+                return 1;
+              }
+            }
             bytes[k] = pdk_families_memory_bytes(f);
             pdk_families_destroy(&f);
           }
         }
+        for (int t = 0; t < num_threads; ++t)
+          floor_s[t * repeat + r] = touch_floor((size_t)bonds[0] * sizeof(pdk_index), threads[t]);
       }
       for (int k = 0; k < num_kernels; ++k) {
         for (int t = 0; t < num_threads; ++t) {
           double med = median(times + (k * num_threads + t) * repeat, repeat);
           double med_cpu = median(cpu + (k * num_threads + t) * repeat, repeat);
-          printf(
-              "  %-3d %-8d %-5s %-3d %10.4f %10.4f %9.4f %12.4g %12.4g %8.2f %8.2f %9.3f %10.1f\n",
-              dim, (int)n, kernels[k], threads[t], reorder_s[k], med, med_cpu, n / med,
-              bonds[k] / med, (double)bonds[k] / n, 4.0, (double)bytes[k] / (double)bonds[k],
-              (double)pdk_peak_memory_bytes() / (1 << 20));
+          double med_floor = median(floor_s + t * repeat, repeat);
+          printf("  %-3d %-8d %-5s %-3d %10.4f %10.4f %9.4f %8.4f %12.4g %12.4g %8.2f %8.2f %9.3f "
+                 "%10.1f\n",
+                 dim, (int)n, kernels[k], threads[t], reorder_s[k], med, med_cpu, med_floor,
+                 n / med, bonds[k] / med, (double)bonds[k] / n, 4.0,
+                 (double)bytes[k] / (double)bonds[k], (double)pdk_peak_memory_bytes() / (1 << 20));
         }
       }
       fflush(stdout);
       free(times);
       free(cpu);
+      free(floor_s);
       for (int k = 0; k < num_kernels; ++k)
         pdk_particles_destroy(&p[k]);
     }

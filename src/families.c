@@ -6,25 +6,29 @@
  *   bond_j:     [num_bonds] int32; the neighbour of each bond, ascending within a family
  *
  * Method.
- *  1. Cells (src/cells.c): grid of edge slightly above the horizon, particles counting-sorted by
- *     cell into contiguous coordinate arrays.
+ *  1. Cells (src/cells.c): grid of edge slightly above the horizon; the occupied cells, each with
+ *     its occupied neighbours, and the particles sorted by cell into contiguous coordinate arrays.
  *  2. Bound the bond count before allocating anything large: an upper bound from cell occupancies
- *     (every particle of the 3^d cells around a particle's cell), and, when that exceeds the memory
+ *     (every particle of the 3^d cells around a particle's cell). When that exceeds the memory
  *     limit, a lower bound (cell pairs whose particles are all within the horizon of each other)
- *     that fails a huge horizon at once, else an exact count with early exit.
- *  3. Per cell c, gather the candidates: the particles of the 3^d neighbour cells that lie within
- *     the horizon of c's bounding box, in ascending particle index (neighbour cells visited in the
- *     order of their first particle, and merged when their index ranges interleave). Every
- *     particle i of c then scans this one contiguous buffer with the family_scan kernel of the
- *     context's table; the kernel keeps candidate order, so each family comes out ascending
- *     without a sort. When the store was reordered with pdk_families_cell_edge's edge, cells are
- *     contiguous index ranges and no merge happens.
+ *     fails a huge horizon at once, and otherwise the count pass below stops as soon as the count
+ *     passes the limit.
+ *  3. Per cell c, gather the candidates: the particles of the 3^d neighbour cells (in 3-D only
+ * those within the horizon of c's bounding box; in 2-D the test would save too little) in ascending
+ *     particle index: neighbour cells are visited in the order of their first particle, and merged
+ *     when their index ranges interleave. Every particle i of c then scans this one contiguous
+ *     buffer with the family_scan kernel of the context's table; the kernel keeps candidate order,
+ *     so each family comes out ascending without a sort. When the store was reordered with
+ *     pdk_families_cell_edge's edge, cells are contiguous index ranges and no merge happens.
  *  4. Pre-cracks remove the bonds they cut; a cell tests only the cracks whose bounding box comes
  *     within the horizon of its own, a bond only those its bounding box touches.
- *  5. Threads: the non-empty cells, in the order of their first particle, are split into one block
- *     per thread with equal particle counts (a static schedule). A first parallel pass counts each
+ *  5. Threads: the cells, in the order of their first particle, are split into one block per
+ *     thread with equal particle counts (a static schedule). A first parallel pass counts each
  *     family, a prefix sum gives bond_start, a second pass writes bond_j. Every family depends
  *     only on its particle, so the result is bitwise the same for any thread count.
+ *     Why scan twice: a single pass into per-thread buffers would first-touch bond-sized memory
+ *     twice (buffers, then bond_j), and on the reference VM first touch costs 0.12-0.3 s per
+ *     471 MB (the 10^6 cube's bond_j) on 2 threads, more than the count pass (about 0.1 s).
  */
 #define _DEFAULT_SOURCE /* sysconf(_SC_PHYS_PAGES) */
 #include <math.h>
@@ -445,22 +449,15 @@ static void merge_runs(scan_buf *t, pdk_index m, pdk_index *run_start, int num_r
   t->cid = t->tid, t->tid = p;
 }
 
-/* Visits the 3^d neighbour cells of cell c (c itself included) that hold particles. */
+/* Visits the occupied cells c2 among the 3^d grid cells around cell c (c itself included). */
 #define FOR_EACH_NEIGHBOUR_CELL(cl, c, c2, BODY)                                                   \
   do {                                                                                             \
-    int64_t cc_[3];                                                                                \
-    pdk_cells_coords((cl), (c), cc_);                                                              \
-    const int zr_ = (cl)->dim == 3 ? 1 : 0;                                                        \
-    for (int64_t z_ = cc_[2] - zr_; z_ <= cc_[2] + zr_; ++z_)                                      \
-      for (int64_t y_ = cc_[1] - 1; y_ <= cc_[1] + 1; ++y_)                                        \
-        for (int64_t x_ = cc_[0] - 1; x_ <= cc_[0] + 1; ++x_) {                                    \
-          if (x_ < 0 || y_ < 0 || z_ < 0 || x_ >= (cl)->num[0] || y_ >= (cl)->num[1] ||            \
-              z_ >= (cl)->num[2])                                                                  \
-            continue;                                                                              \
-          const int64_t c2 = x_ + (cl)->num[0] * (y_ + (cl)->num[1] * z_);                         \
-          if ((cl)->cell_start[c2] == (cl)->cell_start[c2 + 1]) continue;                          \
-          BODY                                                                                     \
-        }                                                                                          \
+    const pdk_index *nb_ = (cl)->neighbours + (size_t)(c)*PDK_CELLS_NB;                            \
+    for (int q_ = 0; q_ < PDK_CELLS_NB; ++q_) {                                                    \
+      const int64_t c2 = nb_[q_];                                                                  \
+      if (c2 < 0) continue;                                                                        \
+      BODY                                                                                         \
+    }                                                                                              \
   } while (0)
 
 /* Fills t's candidate buffer for cell c (see the file comment, step 3) and its crack list;
@@ -527,15 +524,16 @@ static pdk_index gather_candidates(const scan_shared *sh, int64_t c, scan_buf *t
         const __m128d d2 =
             _mm_add_pd(_mm_add_pd(_mm_mul_pd(ex, ex), _mm_mul_pd(ey, ey)), _mm_mul_pd(ez, ez));
         const int keep = _mm_movemask_pd(_mm_cmple_pd(d2, vprune2));
-        cx[m] = x0[s];
-        cy[m] = x1[s];
-        cz[m] = x2[s];
-        cid[m] = slot_id[s];
+        const pdk_index id0 = slot_id[s], id1 = slot_id[s + 1];
+        _mm_storel_pd(cx + m, px); /* stores from registers: no reload after a store */
+        _mm_storel_pd(cy + m, py);
+        _mm_storel_pd(cz + m, pz);
+        cid[m] = id0;
         m += keep & 1;
-        cx[m] = x0[s + 1];
-        cy[m] = x1[s + 1];
-        cz[m] = x2[s + 1];
-        cid[m] = slot_id[s + 1];
+        _mm_storeh_pd(cx + m, px);
+        _mm_storeh_pd(cy + m, py);
+        _mm_storeh_pd(cz + m, pz);
+        cid[m] = id1;
         m += keep >> 1;
       }
 #endif

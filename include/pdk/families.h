@@ -72,9 +72,9 @@ double pdk_families_horizon(const pdk_families *f);
 size_t pdk_families_memory_bytes(const pdk_families *f);        /* bond_start + bond_j */
 
 /* The cell edge pdk_families_build uses for store p and this horizon: a relative 1.5e-8 above the
- * horizon (so round-off can never put two neighbours two cells apart), more when a huge box or a
- * tiny horizon forces a coarser grid. Pass it to pdk_particles_reorder_morton for the fastest
- * build. Returns 0 and records an error in the context for a bad horizon or coordinates. */
+ * horizon (so round-off can never put two neighbours two cells apart), more only when the body
+ * spans more than 2^21 horizons along an axis. Pass it to pdk_particles_reorder_morton for the
+ * fastest build. Returns 0 and records an error in the context for a bad horizon or coordinates. */
 double pdk_families_cell_edge(pdk_particles *p, double horizon);
 
 #ifdef __cplusplus
