@@ -9,5 +9,6 @@
 #include "pdk/families.h"
 #include "pdk/model.h"
 #include "pdk/explicit.h"
+#include "pdk/plasticity.h"
 
 #endif
