@@ -1,0 +1,403 @@
+/* Checkpoint and restart: the whole state of an explicit run in one HDF5 file; the layout is in
+ * include/pdk/output.h.
+ *
+ * What makes a run continue bitwise after a restart: the state a step reads is exactly
+ *   - every registered particle field (x, v, f, the model's fields, sets, ...), generic over the
+ *     registry, stored [num_comp][n] in the field's own type;
+ *   - the model's bond state bond_alive [num_bonds] and critical stretches s0 [n], and its
+ *     counters num_broken, num_flagged;
+ *   - the solver's time, step, dt, strain energy of the last pass and accumulated external work.
+ * Everything else is rebuilt identically from the scene (families, constraint maps, reaction
+ * masks) or is scratch that the next force pass overwrites (PMB/LPS s0_next, correspondence W).
+ * The correspondence model's private num_alive (intact bonds when K^-1 was last computed) is not
+ * stored: after a restore it holds the full family counts, so the next pass recomputes K^-1 for
+ * every particle with broken bonds, from the same bond state, giving the same bits as the stored
+ * "Kinv" field it overwrites.
+ *
+ * Reading checks everything before it changes anything: file kind and format, dimension,
+ * particle and bond counts, model kind, bond state, each field's type and shape, and the ids,
+ * reference positions and volumes bit for bit. The first difference is the error.
+ */
+#include <string.h>
+
+#include "explicit_impl.h"
+#include "h5io.h"
+#include "pdk/output.h"
+
+#define CKPT_KIND "pdk checkpoint"
+#define CKPT_FORMAT 1
+
+/* Writes field `name` of p as /fields/<name> [num_comp][n]. */
+static int write_field(pdk_ctx *ctx, hid_t g, pdk_particles *p, const char *name) {
+  int err = PDK_SUCCESS;
+  hid_t space = -1, mspace = -1, d = -1;
+  herr_t st;
+  pdk_type type;
+  int num_comp;
+  const pdk_index n = pdk_particles_count(p);
+  PDK_CALL(pdk_particles_field_info(p, name, &type, &num_comp));
+  PDK_CHECK(!strchr(name, '/') && strcmp(name, "."), ctx, PDK_ERR_ARG,
+            "field name '%s' cannot be stored in a checkpoint (it contains '/' or is '.')", name);
+  hsize_t dims[2] = {(hsize_t)num_comp, (hsize_t)n}, count[2] = {1, (hsize_t)n}, mdims[1] = {(hsize_t)n};
+  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(2, dims, NULL));
+  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(1, mdims, NULL));
+  PDK_H5_CALL_GOTO(ctx, d, H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, d, "type", (int64_t)type));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, d, "components", num_comp));
+  for (int c = 0; c < num_comp; ++c) {
+    hsize_t start[2] = {(hsize_t)c, 0};
+    PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
+    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, pdk_h5_mem_type(type), mspace, space, H5P_DEFAULT,
+                                       pdk_particles_field_data(p, name, c)));
+  }
+cleanup:
+  if (d >= 0) H5Dclose(d);
+  if (mspace >= 0) H5Sclose(mspace);
+  if (space >= 0) H5Sclose(space);
+  return err;
+}
+
+/* Writes a 1-D dataset `name` of `count` entries of `type` from data. */
+static int write_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count,
+                       const void *data) {
+  int err = PDK_SUCCESS;
+  hid_t space = -1, d = -1;
+  herr_t st;
+  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, &count, NULL));
+  PDK_H5_CALL_GOTO(ctx, d, H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT,
+                                      H5P_DEFAULT));
+  if (count) PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
+cleanup:
+  if (d >= 0) H5Dclose(d);
+  if (space >= 0) H5Sclose(space);
+  return err;
+}
+
+int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text) {
+  int err = PDK_SUCCESS;
+  hid_t file = -1, g = -1;
+  char *part = NULL;
+  PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
+  PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to checkpoint");
+  pdk_model *m = e->m;
+  pdk_particles *p = e->p;
+  const pdk_index n = pdk_particles_count(p);
+  const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
+  part = pdk_str_printf("%s.part", path);
+  PDK_CHECK(part, ctx, PDK_ERR_MEMORY, "out of memory");
+  PDK_H5_CALL_GOTO(ctx, file, H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_write_provenance(ctx, file, CKPT_KIND));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "format", CKPT_FORMAT));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "dimension", pdk_particles_dim(p)));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_particles", n));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_bonds", nb));
+  PDK_CALL_GOTO(pdk_h5_attr_write_string(ctx, file, "model_kind", pdk_model_kind_name(m->opts.kind)));
+  if (scene_text) PDK_CALL_GOTO(pdk_h5_text_write(ctx, file, "scene", scene_text));
+
+  PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "time", e->time));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "step", e->step));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt", e->dt));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "strain", e->strain));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "external_work", e->external_work));
+  H5Gclose(g);
+  g = -1;
+
+  PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_broken", m->num_broken));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_flagged", m->num_flagged));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "has_bond_state", m->bond_alive != NULL));
+  if (m->bond_alive) PDK_CALL_GOTO(write_array(ctx, g, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
+  if (m->s0) PDK_CALL_GOTO(write_array(ctx, g, "s0", PDK_F64, (hsize_t)n, m->s0));
+  H5Gclose(g);
+  g = -1;
+
+  PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "fields", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  for (int k = 0; k < pdk_particles_num_fields(p); ++k)
+    PDK_CALL_GOTO(write_field(ctx, g, p, pdk_particles_field_name(p, k)));
+  H5Gclose(g);
+  g = -1;
+  {
+    hid_t closing = file;
+    herr_t st;
+    file = -1;
+    PDK_H5_CALL_GOTO(ctx, st, H5Fclose(closing));
+  }
+  PDK_CALL_GOTO(pdk_file_commit(ctx, part, path));
+cleanup:
+  if (g >= 0) H5Gclose(g);
+  if (file >= 0) H5Fclose(file);
+  if (err && part) pdk_file_remove(part);
+  free(part);
+  return err;
+}
+
+/* ---- read ------------------------------------------------------------------------------------- */
+
+/* Opens a checkpoint and checks that it is one. */
+static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
+  int err = PDK_SUCCESS;
+  hid_t file = -1;
+  char *kind = NULL;
+  int64_t format = 0;
+  *out = -1;
+  PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
+  PDK_CHECK(pdk_file_exists(path), ctx, PDK_ERR_IO, "checkpoint '%s' does not exist", path);
+  PDK_H5_CALL_GOTO(ctx, file, H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT));
+  PDK_CHECK_GOTO(pdk_h5_attr_exists(file, "kind"), ctx, PDK_ERR_IO,
+                 "'%s' is an HDF5 file but not a pdk checkpoint (no 'kind' attribute)", path);
+  PDK_CALL_GOTO(pdk_h5_attr_read_string(ctx, file, "kind", &kind));
+  PDK_CHECK_GOTO(!strcmp(kind, CKPT_KIND), ctx, PDK_ERR_IO,
+                 "'%s' is a '%s' file, not a pdk checkpoint", path, kind);
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "format", &format));
+  PDK_CHECK_GOTO(format == CKPT_FORMAT, ctx, PDK_ERR_UNSUPPORTED,
+                 "checkpoint '%s' has format %lld; this pdk reads format %d", path, (long long)format,
+                 CKPT_FORMAT);
+  *out = file;
+  file = -1;
+cleanup:
+  free(kind);
+  if (file >= 0) H5Fclose(file);
+  return err;
+}
+
+int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time, char **scene_text) {
+  int err = PDK_SUCCESS;
+  hid_t file = -1, g = -1;
+  if (scene_text) *scene_text = NULL;
+  PDK_CALL(open_checkpoint(ctx, path, &file));
+  PDK_H5_CALL_GOTO(ctx, g, H5Gopen2(file, "solver", H5P_DEFAULT));
+  if (step) {
+    int64_t s;
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, g, "step", &s));
+    *step = (long)s;
+  }
+  if (time) PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, g, "time", time));
+  if (scene_text) PDK_CALL_GOTO(pdk_h5_text_read(ctx, file, "scene", scene_text));
+cleanup:
+  if (g >= 0) H5Gclose(g);
+  H5Fclose(file);
+  return err;
+}
+
+/* The error for a checkpoint that does not fit the simulation. */
+#define CKPT_MISMATCH(ctx, path, ...)                                                           \
+  do {                                                                                          \
+    char what_[512];                                                                            \
+    snprintf(what_, sizeof what_, __VA_ARGS__);                                                 \
+    err = pdk_ctx_error_set((ctx), PDK_ERR_ARG, __func__,                                       \
+                            "checkpoint '%s' does not fit this simulation: %s; the scene changed "  \
+                            "since the checkpoint was written (restart with the scene stored in "   \
+                            "its 'scene' attribute, or start afresh)", (path), what_);          \
+    goto cleanup;                                                                               \
+  } while (0)
+
+/* Shape of /fields/<name>: type, components and the dataset's dims; *found = 0 when absent. */
+static int field_shape(pdk_ctx *ctx, hid_t g, const char *name, int *found, pdk_type *type,
+                       int *num_comp, hsize_t dims[2]) {
+  int err = PDK_SUCCESS;
+  hid_t d = -1, space = -1;
+  int64_t t = -1, nc = 0;
+  *found = H5Lexists(g, name, H5P_DEFAULT) > 0;
+  if (!*found) return PDK_SUCCESS;
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(g, name, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, d, "type", &t));
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, d, "components", &nc));
+  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
+  dims[0] = dims[1] = 0;
+  PDK_CHECK_GOTO(H5Sget_simple_extent_ndims(space) == 2, ctx, PDK_ERR_IO,
+                 "checkpoint field '%s' is not a 2-D dataset", name);
+  H5Sget_simple_extent_dims(space, dims, NULL);
+  PDK_CHECK_GOTO(pdk_type_size((pdk_type)t) > 0 && t >= 0 && t <= PDK_U8 && nc >= 1 && nc <= 9 &&
+                     dims[0] == (hsize_t)nc,
+                 ctx, PDK_ERR_IO, "checkpoint field '%s' has a bad type %lld or component count %lld",
+                 name, (long long)t, (long long)nc);
+  *type = (pdk_type)t;
+  *num_comp = (int)nc;
+cleanup:
+  if (space >= 0) H5Sclose(space);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+/* Reads component c of /fields/<name> (n entries) into dst, in memory type `type`. */
+static int read_component(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, int c, hsize_t n,
+                          void *dst) {
+  int err = PDK_SUCCESS;
+  hid_t d = -1, space = -1, mspace = -1;
+  herr_t st;
+  hsize_t start[2] = {(hsize_t)c, 0}, count[2] = {1, n};
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(g, name, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
+  PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
+  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(1, &n, NULL));
+  PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, pdk_h5_mem_type(type), mspace, space, H5P_DEFAULT, dst));
+cleanup:
+  if (mspace >= 0) H5Sclose(mspace);
+  if (space >= 0) H5Sclose(space);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count, void *dst) {
+  int err = PDK_SUCCESS;
+  hid_t d = -1, space = -1;
+  herr_t st;
+  hsize_t dims[1] = {0};
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(g, name, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
+  PDK_CHECK_GOTO(H5Sget_simple_extent_ndims(space) == 1, ctx, PDK_ERR_IO, "'%s' is not 1-D", name);
+  H5Sget_simple_extent_dims(space, dims, NULL);
+  PDK_CHECK_GOTO(dims[0] == count, ctx, PDK_ERR_IO, "'%s' has %llu entries, expected %llu", name,
+                 (unsigned long long)dims[0], (unsigned long long)count);
+  if (count) PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, dst));
+cleanup:
+  if (space >= 0) H5Sclose(space);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+/* Particle geometry that must match bit for bit: the checkpoint's id, X and volume against p's. */
+static int check_geometry(pdk_ctx *ctx, const char *path, hid_t g, pdk_particles *p) {
+  static const char *const names[3] = {"id", "X", "volume"};
+  int err = PDK_SUCCESS;
+  const pdk_index n = pdk_particles_count(p);
+  unsigned char *buf = malloc((size_t)n * 8);
+  PDK_CHECK(buf, ctx, PDK_ERR_MEMORY, "out of memory checking a checkpoint");
+  for (int k = 0; k < 3; ++k) {
+    pdk_type type;
+    int num_comp;
+    PDK_CALL_GOTO(pdk_particles_field_info(p, names[k], &type, &num_comp));
+    size_t elem = pdk_type_size(type);
+    for (int c = 0; c < num_comp; ++c) {
+      const unsigned char *mine = pdk_particles_field_data(p, names[k], c);
+      PDK_CALL_GOTO(read_component(ctx, g, names[k], type, c, (hsize_t)n, buf));
+      if (!memcmp(buf, mine, (size_t)n * elem)) continue;
+      pdk_index i = 0;
+      while (i < n && !memcmp(buf + (size_t)i * elem, mine + (size_t)i * elem, elem)) ++i;
+      if (type == PDK_I64)
+        CKPT_MISMATCH(ctx, path, "particle %d has id %lld in the checkpoint and %lld here", (int)i,
+                      (long long)((int64_t *)buf)[i], (long long)((const int64_t *)mine)[i]);
+      CKPT_MISMATCH(ctx, path, "particle %d (id %lld) has %s[%d] = %.17g in the checkpoint and %.17g here",
+                    (int)i, (long long)pdk_particles_id(p)[i], names[k], c, ((double *)buf)[i],
+                    ((const double *)mine)[i]);
+    }
+  }
+cleanup:
+  free(buf);
+  return err;
+}
+
+int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
+  int err = PDK_SUCCESS;
+  hid_t file = -1, gs = -1, gm = -1, gf = -1;
+  char *model_kind = NULL;
+  char (*extra)[PDK_FIELD_NAME_MAX] = NULL; /* checkpoint fields the simulation lacks */
+  int num_extra = 0;
+  PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to restore into");
+  pdk_model *m = e->m;
+  pdk_particles *p = e->p;
+  const pdk_index n = pdk_particles_count(p);
+  const int dim = pdk_particles_dim(p);
+  const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
+  PDK_CALL(open_checkpoint(ctx, path, &file));
+
+  /* 1. Check everything; change nothing. */
+  int64_t v;
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "dimension", &v));
+  if (v != dim) CKPT_MISMATCH(ctx, path, "it is %lld-D, this simulation is %d-D", (long long)v, dim);
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "num_particles", &v));
+  if (v != n)
+    CKPT_MISMATCH(ctx, path, "it has %lld particles, this simulation has %d", (long long)v, (int)n);
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "num_bonds", &v));
+  if (v != nb)
+    CKPT_MISMATCH(ctx, path, "it has %lld bonds, this simulation has %lld (a different horizon, "
+                  "lattice or pre-crack)", (long long)v, (long long)nb);
+  PDK_CALL_GOTO(pdk_h5_attr_read_string(ctx, file, "model_kind", &model_kind));
+  if (strcmp(model_kind, pdk_model_kind_name(m->opts.kind)))
+    CKPT_MISMATCH(ctx, path, "its model is '%s', this simulation's is '%s'", model_kind,
+                  pdk_model_kind_name(m->opts.kind));
+  PDK_H5_CALL_GOTO(ctx, gm, H5Gopen2(file, "model", H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "has_bond_state", &v));
+  if ((v != 0) != (m->bond_alive != NULL))
+    CKPT_MISMATCH(ctx, path, "bonds %s break in the checkpoint but %s here (critical stretch)",
+                  v ? "can" : "cannot", m->bond_alive ? "can" : "cannot");
+  PDK_CHECK_GOTO(!m->s0 || H5Lexists(gm, "s0", H5P_DEFAULT) > 0, ctx, PDK_ERR_IO,
+                 "checkpoint '%s' lacks /model/s0", path);
+
+  PDK_H5_CALL_GOTO(ctx, gf, H5Gopen2(file, "fields", H5P_DEFAULT));
+  for (int k = 0; k < pdk_particles_num_fields(p); ++k) {
+    const char *name = pdk_particles_field_name(p, k);
+    pdk_type type, ctype;
+    int num_comp, cnum_comp, found;
+    hsize_t dims[2];
+    PDK_CALL_GOTO(pdk_particles_field_info(p, name, &type, &num_comp));
+    PDK_CALL_GOTO(field_shape(ctx, gf, name, &found, &ctype, &cnum_comp, dims));
+    if (!found) CKPT_MISMATCH(ctx, path, "it has no particle field '%s'", name);
+    if (ctype != type || cnum_comp != num_comp || dims[1] != (hsize_t)n)
+      CKPT_MISMATCH(ctx, path, "field '%s' is type %d x %d components of %llu particles there, "
+                    "type %d x %d here", name, (int)ctype, cnum_comp, (unsigned long long)dims[1],
+                    (int)type, num_comp);
+  }
+  {
+    H5G_info_t info;
+    herr_t st;
+    PDK_H5_CALL_GOTO(ctx, st, H5Gget_info(gf, &info));
+    extra = calloc((size_t)info.nlinks + 1, sizeof *extra);
+    PDK_CHECK_GOTO(extra, ctx, PDK_ERR_MEMORY, "out of memory");
+    for (hsize_t k = 0; k < info.nlinks; ++k) {
+      char name[PDK_FIELD_NAME_MAX];
+      ssize_t len = H5Lget_name_by_idx(gf, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT);
+      PDK_CHECK_GOTO(len > 0 && len < PDK_FIELD_NAME_MAX, ctx, PDK_ERR_IO,
+                     "checkpoint '%s': bad field name at index %llu", path, (unsigned long long)k);
+      if (pdk_particles_field_exists(p, name)) continue;
+      pdk_type type;
+      int num_comp, found;
+      hsize_t dims[2];
+      PDK_CALL_GOTO(field_shape(ctx, gf, name, &found, &type, &num_comp, dims));
+      PDK_CHECK_GOTO(dims[1] == (hsize_t)n, ctx, PDK_ERR_IO, "checkpoint field '%s' has %llu entries, "
+                     "expected %d", name, (unsigned long long)dims[1], (int)n);
+      strcpy(extra[num_extra++], name);
+    }
+  }
+  PDK_CALL_GOTO(check_geometry(ctx, path, gf, p));
+
+  /* 2. Restore. */
+  for (int k = 0; k < num_extra; ++k) {
+    pdk_type type;
+    int num_comp, found;
+    hsize_t dims[2];
+    PDK_CALL_GOTO(field_shape(ctx, gf, extra[k], &found, &type, &num_comp, dims));
+    PDK_CALL_GOTO(pdk_particles_field_add(p, extra[k], type, num_comp));
+  }
+  for (int k = 0; k < pdk_particles_num_fields(p); ++k) {
+    const char *name = pdk_particles_field_name(p, k);
+    pdk_type type;
+    int num_comp;
+    PDK_CALL_GOTO(pdk_particles_field_info(p, name, &type, &num_comp));
+    for (int c = 0; c < num_comp; ++c)
+      PDK_CALL_GOTO(read_component(ctx, gf, name, type, c, (hsize_t)n, pdk_particles_field_data(p, name, c)));
+  }
+  if (m->bond_alive) PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
+  if (m->s0) PDK_CALL_GOTO(read_array(ctx, gm, "s0", PDK_F64, (hsize_t)n, m->s0));
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_broken", &v));
+  m->num_broken = (pdk_bond_index)v;
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_flagged", &v));
+  m->num_flagged = (pdk_index)v;
+  PDK_H5_CALL_GOTO(ctx, gs, H5Gopen2(file, "solver", H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "time", &e->time));
+  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "step", &v));
+  e->step = (long)v;
+  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt", &e->dt));
+  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "strain", &e->strain));
+  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "external_work", &e->external_work));
+cleanup:
+  free(extra);
+  free(model_kind);
+  if (gs >= 0) H5Gclose(gs);
+  if (gf >= 0) H5Gclose(gf);
+  if (gm >= 0) H5Gclose(gm);
+  H5Fclose(file);
+  return err;
+}
