@@ -28,6 +28,22 @@ const char *pdk_scene_path(const pdk_scene *s);
 const char *pdk_scene_name(const pdk_scene *s); /* "name" key, default: file stem */
 const char *pdk_scene_text(const pdk_scene *s); /* the scene after overrides, as YAML text */
 int pdk_scene_threads(const pdk_scene *s);      /* solver.threads, 0 = default */
+int pdk_scene_dimension(const pdk_scene *s);    /* 2 or 3 */
+
+/* Where a key of the scene was given: "<file>:<line>", or "<file>: --set <key.path>=<value>" when
+ * an override set it. An absent key (a default) gives the location of its nearest present parent.
+ * Key paths join mapping keys with '.' and index lists from 0: "boundary_conditions[1].y". */
+void pdk_scene_key_location(const pdk_scene *s, const char *key_path, char *buf, size_t len);
+/* Records, in the context, a message about a scene key in the scene's form
+ *   <file>:<line>: <key.path>: <what is wrong>; <what is allowed>
+ * (the caller's fmt supplies the part after the key path) and returns code. For applications that
+ * find a problem with a scene after loading it (the `pdk` command, output writers). */
+int pdk_scene_error(const pdk_scene *s, pdk_ctx *ctx, int code, const char *key_path,
+                    const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
 
 /* What the output section asks for. */
 typedef struct pdk_scene_output {

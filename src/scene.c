@@ -1,0 +1,1307 @@
+/* Scene loading: the libcyaml schema, translation of libcyaml's errors, defaults, range and
+ * consistency checks, and the resolved scene (src/scene_impl.h). docs/scenes.md documents every
+ * key; keep the two in step.
+ *
+ * Steps of pdk_scene_load:
+ *   1. read the file; parse it with libyaml, apply the overrides, record the line of every key
+ *      path, emit the final YAML text (src/scene_yaml.c);
+ *   2. load that text with libcyaml against the schema below, which depends on the dimension only
+ *      through the number of entries of a point ([x, y] or [x, y, z]); libcyaml's own errors come
+ *      through the log callback as a message plus a backtrace of mapping fields and sequence
+ *      entries, turned here into a key path and from it into "<file>:<line>: <key.path>: ...";
+ *   3. fill defaults for absent keys (a key is absent when step 1 did not record it), check
+ *      ranges and consistency, convert units of choice (E, nu -> K, G), and store the option
+ *      structs that pdk_sim_create (src/sim.c) hands to the constructors.
+ *
+ * Numbers that must be integers (dimension, steps, threads, intervals, seed) are loaded as floats
+ * and checked here, because libcyaml 1.3.1 reads "1.5" as the integer 1 without complaint, and so
+ * that 1e5 is accepted as a step count.
+ */
+#include <ctype.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "ext.h"
+#include "scene_impl.h"
+
+#define SC_MAX_FIELDS 16
+#define MAX_REACTION_SETS 8 /* pdk_history.reaction holds 8 */
+#define SC_NAME_MAX (PDK_FIELD_NAME_MAX - 8)
+#define KEY_MAX 256
+
+/* ---- data loaded by libcyaml ------------------------------------------------------------------- */
+
+typedef struct sc_box {
+  double lo[3], hi[3];
+} sc_box;
+typedef struct sc_ball {
+  double center[3];
+  double radius;
+} sc_ball;
+typedef struct sc_halfspace {
+  double point[3], normal[3];
+} sc_halfspace;
+typedef struct sc_polygon {
+  double (*vertices)[3];
+  unsigned vertices_count;
+} sc_polygon;
+/* A hole, a notch or a set: exactly one region kind. */
+typedef struct sc_region {
+  char *name; /* sets only */
+  sc_box *box;
+  sc_ball *disk, *ball;
+  sc_halfspace *halfspace;
+  sc_polygon *polygon;
+  bool invert; /* notches and sets */
+} sc_region;
+typedef struct sc_precrack {
+  double (*segment)[3];
+  unsigned segment_count;
+  double (*polygon)[3];
+  unsigned polygon_count;
+} sc_precrack;
+typedef struct sc_geometry {
+  int lattice;
+  double spacing, horizon_factor, jitter, seed, thickness;
+  sc_box box;
+  sc_region *holes;
+  unsigned holes_count;
+  sc_region *notches;
+  unsigned notches_count;
+  sc_precrack *precracks;
+  unsigned precracks_count;
+} sc_geometry;
+typedef struct sc_material {
+  double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
+} sc_material;
+typedef struct sc_model {
+  int kind, influence, stabilization, law, precision;
+  double gaussian_width, stabilization_coefficient, critical_stretch, alpha;
+  bool partial_volume;
+} sc_model;
+typedef struct sc_bc {
+  char *set;
+  int type, function;
+  double x, y, z, duration, period;
+} sc_bc;
+typedef struct sc_initial {
+  double velocity[3];
+  double velocity_gradient[3][3];
+} sc_initial;
+typedef struct sc_solver {
+  int type;
+  double end_time, steps, dt, safety, threads;
+  bool force_dt;
+} sc_solver;
+typedef struct sc_output {
+  double field_interval, history_interval, checkpoint_interval;
+  char **fields;
+  unsigned fields_count;
+  char **reactions;
+  unsigned reactions_count;
+} sc_output;
+typedef struct sc_scene {
+  char *name, *description;
+  double dimension;
+  sc_geometry geometry;
+  sc_material material;
+  sc_model model;
+  sc_region *sets;
+  unsigned sets_count;
+  sc_bc *boundary_conditions;
+  unsigned boundary_conditions_count;
+  sc_initial initial_conditions;
+  sc_solver solver;
+  sc_output output;
+} sc_scene;
+
+/* ---- the schema -------------------------------------------------------------------------------- */
+
+static const cyaml_strval_t lattice_names[] = {
+    {"square", PDK_LATTICE_SQUARE}, {"hex", PDK_LATTICE_HEX}, {"cubic", PDK_LATTICE_CUBIC}};
+static const cyaml_strval_t kind_names[] = {
+    {"pmb", PDK_MODEL_PMB}, {"lps", PDK_MODEL_LPS}, {"correspondence", PDK_MODEL_CORRESPONDENCE}};
+static const cyaml_strval_t influence_names[] = {
+    {"constant", PDK_INFLUENCE_CONSTANT}, {"inv_r", PDK_INFLUENCE_INV_R},
+    {"inv_r2", PDK_INFLUENCE_INV_R2},     {"linear", PDK_INFLUENCE_LINEAR},
+    {"cubic", PDK_INFLUENCE_CUBIC},       {"gaussian", PDK_INFLUENCE_GAUSSIAN}};
+static const cyaml_strval_t stab_names[] = {
+    {"none", PDK_STAB_NONE}, {"silling", PDK_STAB_SILLING}, {"hourglass", PDK_STAB_HOURGLASS}};
+static const cyaml_strval_t law_names[] = {{"linear_elastic", PDK_LAW_LINEAR_ELASTIC},
+                                           {"svk", PDK_LAW_SVK},
+                                           {"neo_hooke", PDK_LAW_NEO_HOOKE}};
+static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
+                                                 {"float", PDK_PRECISION_FLOAT}};
+static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
+                                               {"velocity", PDK_BC_VELOCITY},
+                                               {"body_force", PDK_BC_BODY_FORCE}};
+static const cyaml_strval_t function_names[] = {
+    {"constant", PDK_TFUN_CONSTANT}, {"linear", PDK_TFUN_LINEAR}, {"ramp", PDK_TFUN_RAMP},
+    {"smooth", PDK_TFUN_SMOOTH},     {"sine", PDK_TFUN_SINE}};
+static const cyaml_strval_t solver_names[] = {{"explicit", 0}};
+
+#define N_OF(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
+#define OPT (CYAML_FLAG_OPTIONAL)
+#define OPT_PTR (CYAML_FLAG_OPTIONAL | CYAML_FLAG_POINTER)
+#define ENUM_FLAGS (CYAML_FLAG_OPTIONAL | CYAML_FLAG_STRICT)
+
+/* Built at run time because a point has `dim` entries; lives on the loader's stack. */
+typedef struct scene_schema {
+  cyaml_schema_value_t num, str, point, region_entry, notch_entry, set_entry, precrack_entry,
+      bc_entry, top;
+  cyaml_schema_field_t box[SC_MAX_FIELDS], ball[SC_MAX_FIELDS], halfspace[SC_MAX_FIELDS],
+      polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
+      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
+      model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS], initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS],
+      output[SC_MAX_FIELDS], scene[SC_MAX_FIELDS];
+} scene_schema;
+
+static void field_add(cyaml_schema_field_t *fields, cyaml_schema_field_t f) {
+  int i = 0;
+  while (fields[i].key) ++i;
+  /* SC_MAX_FIELDS - 1 entries at most, leaving the zeroed terminator (CYAML_FIELD_END) */
+  if (i < SC_MAX_FIELDS - 1) fields[i] = f;
+}
+
+#define ADD(arr, ...) field_add(sc->arr, (cyaml_schema_field_t)__VA_ARGS__)
+
+/* The fields of a region kind, shared by holes, notches and sets. */
+static void schema_region_kinds(scene_schema *sc, cyaml_schema_field_t *f) {
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("box", OPT_PTR, sc_region, box, sc->box));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("disk", OPT_PTR, sc_region, disk, sc->ball));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("ball", OPT_PTR, sc_region, ball, sc->ball));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("halfspace", OPT_PTR, sc_region, halfspace,
+                                                             sc->halfspace));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("polygon", OPT_PTR, sc_region, polygon,
+                                                             sc->polygon));
+}
+
+static void schema_build(scene_schema *sc, int dim) {
+  memset(sc, 0, sizeof *sc);
+  const uint32_t d = (uint32_t)dim;
+  sc->num = (cyaml_schema_value_t){CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double)};
+  sc->str = (cyaml_schema_value_t){CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 0, 255)};
+  /* A point inside a list: libcyaml steps through a sequence by the sequence value's data_size
+   * (the CYAML_FIELD_* macros set it to the entry size), so a point's data_size is one double,
+   * and a list of points, declared double (*)[3], steps by sizeof(double[3]). */
+  sc->point = (cyaml_schema_value_t){CYAML_VALUE_SEQUENCE_FIXED(CYAML_FLAG_DEFAULT, double, &sc->num, d)};
+
+  ADD(box, CYAML_FIELD_SEQUENCE_FIXED("lo", 0, sc_box, lo, &sc->num, d));
+  ADD(box, CYAML_FIELD_SEQUENCE_FIXED("hi", 0, sc_box, hi, &sc->num, d));
+  ADD(ball, CYAML_FIELD_SEQUENCE_FIXED("center", 0, sc_ball, center, &sc->num, d));
+  ADD(ball, CYAML_FIELD_FLOAT("radius", 0, sc_ball, radius));
+  ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("point", 0, sc_halfspace, point, &sc->num, d));
+  ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("normal", 0, sc_halfspace, normal, &sc->num, d));
+  ADD(polygon, CYAML_FIELD_SEQUENCE("vertices", CYAML_FLAG_POINTER, sc_polygon, vertices, &sc->point, 3, 4096));
+
+  schema_region_kinds(sc, sc->hole);
+  schema_region_kinds(sc, sc->notch);
+  ADD(notch, CYAML_FIELD_BOOL("invert", OPT, sc_region, invert));
+  ADD(set, CYAML_FIELD_STRING_PTR("name", 0, sc_region, name, 1, 255));
+  schema_region_kinds(sc, sc->set);
+  ADD(set, CYAML_FIELD_BOOL("invert", OPT, sc_region, invert));
+  /* Holes, notches and sets load into the same struct; each accepts its own keys. */
+  sc->region_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->hole)};
+  sc->notch_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->notch)};
+  sc->set_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->set)};
+
+  ADD(precrack, CYAML_FIELD_SEQUENCE("segment", OPT_PTR, sc_precrack, segment, &sc->point, 2, 2));
+  ADD(precrack, CYAML_FIELD_SEQUENCE("polygon", OPT_PTR, sc_precrack, polygon, &sc->point, 3, 4096));
+  sc->precrack_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_precrack, sc->precrack)};
+
+  ADD(geometry, CYAML_FIELD_ENUM("lattice", ENUM_FLAGS, sc_geometry, lattice, lattice_names, N_OF(lattice_names)));
+  ADD(geometry, CYAML_FIELD_FLOAT("spacing", 0, sc_geometry, spacing));
+  ADD(geometry, CYAML_FIELD_FLOAT("horizon_factor", OPT, sc_geometry, horizon_factor));
+  ADD(geometry, CYAML_FIELD_FLOAT("jitter", OPT, sc_geometry, jitter));
+  ADD(geometry, CYAML_FIELD_FLOAT("seed", OPT, sc_geometry, seed));
+  ADD(geometry, CYAML_FIELD_FLOAT("thickness", OPT, sc_geometry, thickness));
+  ADD(geometry, CYAML_FIELD_MAPPING("box", 0, sc_geometry, box, sc->box));
+  ADD(geometry, CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
+  ADD(geometry, CYAML_FIELD_SEQUENCE("notches", OPT_PTR, sc_geometry, notches, &sc->notch_entry, 0, 10000));
+  ADD(geometry, CYAML_FIELD_SEQUENCE("precracks", OPT_PTR, sc_geometry, precracks, &sc->precrack_entry, 0, 10000));
+
+  ADD(material, CYAML_FIELD_FLOAT("density", 0, sc_material, density));
+  ADD(material, CYAML_FIELD_FLOAT("youngs_modulus", OPT, sc_material, youngs_modulus));
+  ADD(material, CYAML_FIELD_FLOAT("poisson_ratio", OPT, sc_material, poisson_ratio));
+  ADD(material, CYAML_FIELD_FLOAT("bulk_modulus", OPT, sc_material, bulk_modulus));
+  ADD(material, CYAML_FIELD_FLOAT("shear_modulus", OPT, sc_material, shear_modulus));
+
+  ADD(model, CYAML_FIELD_ENUM("kind", ENUM_FLAGS, sc_model, kind, kind_names, N_OF(kind_names)));
+  ADD(model, CYAML_FIELD_ENUM("influence", ENUM_FLAGS, sc_model, influence, influence_names, N_OF(influence_names)));
+  ADD(model, CYAML_FIELD_FLOAT("gaussian_width", OPT, sc_model, gaussian_width));
+  ADD(model, CYAML_FIELD_ENUM("stabilization", ENUM_FLAGS, sc_model, stabilization, stab_names, N_OF(stab_names)));
+  ADD(model, CYAML_FIELD_FLOAT("stabilization_coefficient", OPT, sc_model, stabilization_coefficient));
+  ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, law_names, N_OF(law_names)));
+  ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names, N_OF(precision_names)));
+  ADD(model, CYAML_FIELD_FLOAT("critical_stretch", OPT, sc_model, critical_stretch));
+  ADD(model, CYAML_FIELD_FLOAT("alpha", OPT, sc_model, alpha));
+  ADD(model, CYAML_FIELD_BOOL("partial_volume", OPT, sc_model, partial_volume));
+
+  ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
+  ADD(bc, CYAML_FIELD_ENUM("type", CYAML_FLAG_STRICT, sc_bc, type, bc_type_names, N_OF(bc_type_names)));
+  ADD(bc, CYAML_FIELD_FLOAT("x", OPT, sc_bc, x));
+  ADD(bc, CYAML_FIELD_FLOAT("y", OPT, sc_bc, y));
+  ADD(bc, CYAML_FIELD_FLOAT("z", OPT, sc_bc, z));
+  ADD(bc, CYAML_FIELD_ENUM("function", ENUM_FLAGS, sc_bc, function, function_names, N_OF(function_names)));
+  ADD(bc, CYAML_FIELD_FLOAT("duration", OPT, sc_bc, duration));
+  ADD(bc, CYAML_FIELD_FLOAT("period", OPT, sc_bc, period));
+  sc->bc_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_bc, sc->bc)};
+
+  ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_initial, velocity, &sc->num, d));
+  ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity_gradient", OPT, sc_initial, velocity_gradient, &sc->point, d));
+
+  ADD(solver, CYAML_FIELD_ENUM("type", ENUM_FLAGS, sc_solver, type, solver_names, N_OF(solver_names)));
+  ADD(solver, CYAML_FIELD_FLOAT("end_time", OPT, sc_solver, end_time));
+  ADD(solver, CYAML_FIELD_FLOAT("steps", OPT, sc_solver, steps));
+  ADD(solver, CYAML_FIELD_FLOAT("dt", OPT, sc_solver, dt));
+  ADD(solver, CYAML_FIELD_FLOAT("safety", OPT, sc_solver, safety));
+  ADD(solver, CYAML_FIELD_BOOL("force_dt", OPT, sc_solver, force_dt));
+  ADD(solver, CYAML_FIELD_FLOAT("threads", OPT, sc_solver, threads));
+
+  ADD(output, CYAML_FIELD_FLOAT("field_interval", OPT, sc_output, field_interval));
+  ADD(output, CYAML_FIELD_SEQUENCE("fields", OPT_PTR, sc_output, fields, &sc->str, 0, 64));
+  ADD(output, CYAML_FIELD_FLOAT("history_interval", OPT, sc_output, history_interval));
+  ADD(output, CYAML_FIELD_SEQUENCE("reactions", OPT_PTR, sc_output, reactions, &sc->str, 0, 64));
+  ADD(output, CYAML_FIELD_FLOAT("checkpoint_interval", OPT, sc_output, checkpoint_interval));
+
+  ADD(scene, CYAML_FIELD_STRING_PTR("name", OPT, sc_scene, name, 1, 255));
+  ADD(scene, CYAML_FIELD_STRING_PTR("description", OPT, sc_scene, description, 0, CYAML_UNLIMITED));
+  ADD(scene, CYAML_FIELD_FLOAT("dimension", 0, sc_scene, dimension));
+  ADD(scene, CYAML_FIELD_MAPPING("geometry", 0, sc_scene, geometry, sc->geometry));
+  ADD(scene, CYAML_FIELD_MAPPING("material", 0, sc_scene, material, sc->material));
+  ADD(scene, CYAML_FIELD_MAPPING("model", OPT, sc_scene, model, sc->model));
+  ADD(scene, CYAML_FIELD_SEQUENCE("sets", OPT_PTR, sc_scene, sets, &sc->set_entry, 0, 10000));
+  ADD(scene, CYAML_FIELD_SEQUENCE("boundary_conditions", OPT_PTR, sc_scene, boundary_conditions, &sc->bc_entry, 0, 64));
+  ADD(scene, CYAML_FIELD_MAPPING("initial_conditions", OPT, sc_scene, initial_conditions, sc->initial));
+  ADD(scene, CYAML_FIELD_MAPPING("solver", 0, sc_scene, solver, sc->solver));
+  ADD(scene, CYAML_FIELD_MAPPING("output", OPT, sc_scene, output, sc->output));
+  sc->top = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, sc_scene, sc->scene)};
+}
+
+/* ---- schema lookup by key path (for messages) -------------------------------------------------- */
+
+/* The schema value at key path `path` (segments "a.b[2].c"), or NULL. */
+static const cyaml_schema_value_t *schema_at(const cyaml_schema_value_t *v, const char *path) {
+  const char *c = path;
+  while (v && *c) {
+    if (*c == '.') ++c;
+    if (*c == '[') {
+      if (v->type != CYAML_SEQUENCE && v->type != CYAML_SEQUENCE_FIXED) return NULL;
+      v = v->sequence.entry;
+      c = strchr(c, ']');
+      if (!c) return NULL;
+      ++c;
+      continue;
+    }
+    size_t len = strcspn(c, ".[");
+    if (v->type != CYAML_MAPPING) return NULL;
+    const cyaml_schema_field_t *f = v->mapping.fields, *hit = NULL;
+    for (; f && f->key; ++f)
+      if (strlen(f->key) == len && !strncmp(f->key, c, len)) hit = f;
+    if (!hit) return NULL;
+    v = &hit->value;
+    c += len;
+  }
+  return v;
+}
+
+static void list_keys(const cyaml_schema_value_t *v, int required_only, char *buf, size_t len) {
+  size_t pos = 0;
+  buf[0] = '\0';
+  if (!v || v->type != CYAML_MAPPING) return;
+  for (const cyaml_schema_field_t *f = v->mapping.fields; f && f->key; ++f) {
+    if (required_only && (f->value.flags & CYAML_FLAG_OPTIONAL)) continue;
+    int w = snprintf(buf + pos, len - pos, "%s%s", pos ? ", " : "", f->key);
+    if (w < 0 || (size_t)w >= len - pos) return;
+    pos += (size_t)w;
+  }
+}
+
+static void list_enum(const cyaml_schema_value_t *v, char *buf, size_t len) {
+  size_t pos = 0;
+  buf[0] = '\0';
+  if (!v || v->type != CYAML_ENUM) return;
+  for (uint32_t i = 0; i < v->enumeration.count; ++i) {
+    int w = snprintf(buf + pos, len - pos, "%s%s", i ? ", " : "", v->enumeration.strings[i].str);
+    if (w < 0 || (size_t)w >= len - pos) return;
+    pos += (size_t)w;
+  }
+}
+
+static const char *type_words(const cyaml_schema_value_t *v) {
+  if (!v) return "a value of another type";
+  switch (v->type) {
+  case CYAML_FLOAT: return "a number";
+  case CYAML_INT:
+  case CYAML_UINT: return "a whole number";
+  case CYAML_BOOL: return "true or false";
+  case CYAML_STRING: return "a word or quoted string";
+  case CYAML_ENUM: return "one of the listed words";
+  case CYAML_MAPPING: return "a mapping of keys (key: value)";
+  case CYAML_SEQUENCE:
+  case CYAML_SEQUENCE_FIXED: return "a list [a, b, ...]";
+  default: return "a value of another type";
+  }
+}
+
+/* What to write instead, for a value of the wrong type. */
+static void type_hint(const cyaml_schema_value_t *v, char *buf, size_t len) {
+  char keys[512];
+  if (!v) {
+    snprintf(buf, len, "see docs/scenes.md");
+    return;
+  }
+  switch (v->type) {
+  case CYAML_FLOAT:
+  case CYAML_INT:
+  case CYAML_UINT: snprintf(buf, len, "write for example 0.5, 2e-3 or 200e9"); break;
+  case CYAML_BOOL: snprintf(buf, len, "write true or false"); break;
+  case CYAML_STRING: snprintf(buf, len, "write a word or a quoted string"); break;
+  case CYAML_MAPPING:
+    list_keys(v, 0, keys, sizeof keys);
+    snprintf(buf, len, "give its keys on the lines below it, or as {key: value, ...}; keys: %s",
+             keys);
+    break;
+  case CYAML_SEQUENCE:
+  case CYAML_SEQUENCE_FIXED: snprintf(buf, len, "write a list, [a, b, ...] or '- a' lines"); break;
+  default: snprintf(buf, len, "see docs/scenes.md"); break;
+  }
+}
+
+/* ---- libcyaml log capture and translation ------------------------------------------------------ */
+
+typedef struct cy_log {
+  char text[4096];
+  size_t len;
+} cy_log;
+
+static void cy_log_fn(cyaml_log_t level, void *ctx, const char *fmt, va_list args) {
+  cy_log *log = ctx;
+  if (level < CYAML_LOG_ERROR || log->len + 1 >= sizeof log->text) return;
+  int w = vsnprintf(log->text + log->len, sizeof log->text - log->len, fmt, args);
+  if (w > 0) log->len += (size_t)w;
+  if (log->len >= sizeof log->text) log->len = sizeof log->text - 1;
+}
+
+/* Turns libcyaml's message and backtrace into a scene message. Returns 0 when the log holds
+ * nothing recognizable (the caller keeps the generic libcyaml failure message). The backtrace is
+ * innermost first: "  in mapping field 'k' (line ...)", "  in sequence entry 'n' (...)", "  in
+ * mapping (...)". While an entry is being loaded, n counts it (1-based); for "Insufficient" and
+ * "Excessive entries" n is the count reached, and the error is about the sequence itself. */
+static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc, const cy_log *log) {
+  char msg[512] = "";
+  char frames[32][KEY_MAX];
+  int is_entry[32];
+  int nf = 0;
+  const char *c = log->text;
+  while (*c) {
+    const char *eol = strchr(c, '\n');
+    size_t len = eol ? (size_t)(eol - c) : strlen(c);
+    char line[512];
+    if (len >= sizeof line) len = sizeof line - 1;
+    memcpy(line, c, len);
+    line[len] = '\0';
+    c += len + (eol ? 1 : 0);
+    char name[KEY_MAX];
+    unsigned idx;
+    if (!strncmp(line, "Load: ", 6) && strcmp(line, "Load: Backtrace:")) {
+      if (!msg[0]) snprintf(msg, sizeof msg, "%s", line + 6);
+    } else if (sscanf(line, "  in mapping field '%255[^']'", name) == 1 && nf < 32) {
+      snprintf(frames[nf], KEY_MAX, "%s", name);
+      is_entry[nf++] = 0;
+    } else if (sscanf(line, "  in sequence entry '%u'", &idx) == 1 && nf < 32) {
+      snprintf(frames[nf], KEY_MAX, "%u", idx);
+      is_entry[nf++] = 1;
+    }
+  }
+  if (!msg[0]) return 0;
+  int about_sequence = !strncmp(msg, "Insufficient entries", 20) || !strncmp(msg, "Excessive entries", 17);
+  /* For a missing key, the innermost frame is the last field libcyaml saw in that mapping (or the
+   * first field of an empty one): not part of the mapping's path. */
+  const int missing = !strncmp(msg, "Missing required mapping field", 30);
+  int first = 0;
+  if (about_sequence && nf > 0 && is_entry[0]) first = 1;
+  if (missing && nf > 0 && !is_entry[0]) first = 1;
+  /* Key path, outermost first. */
+  char path[KEY_MAX] = "";
+  for (int f = nf - 1; f >= first; --f) {
+    size_t pos = strlen(path);
+    if (is_entry[f]) {
+      unsigned n = (unsigned)strtoul(frames[f], NULL, 10);
+      snprintf(path + pos, sizeof path - pos, "[%u]", n > 0 ? n - 1 : 0);
+    } else {
+      snprintf(path + pos, sizeof path - pos, "%s%s", pos ? "." : "", frames[f]);
+    }
+  }
+  char arg[256] = "", allowed[512];
+  const char *colon = strchr(msg, ':');
+  if (colon) snprintf(arg, sizeof arg, "%s", colon + 2 <= msg + strlen(msg) ? colon + 2 : "");
+  const pdk_scene_key *key = pdk_scene_key_get(s, path);
+  const char *got = key && key->value ? key->value : NULL;
+
+  if (!strncmp(msg, "Unexpected key", 14)) {
+    list_keys(schema_at(&sc->top, path), 0, allowed, sizeof allowed);
+    char full[2 * KEY_MAX + 2];
+    snprintf(full, sizeof full, "%s%s%s", path, path[0] ? "." : "", arg);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, full, "unknown key '%s'; %s allows: %s", arg,
+                           path[0] ? path : "the top level", allowed);
+  }
+  if (missing) {
+    char full[2 * KEY_MAX + 2], parent[KEY_MAX];
+    snprintf(full, sizeof full, "%s%s%s", path, path[0] ? "." : "", arg);
+    snprintf(parent, sizeof parent, "%s", path);
+    list_keys(schema_at(&sc->top, parent), 1, allowed, sizeof allowed);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, full,
+                           "required key is missing; %s needs: %s (see docs/scenes.md)",
+                           parent[0] ? parent : "the top level", allowed);
+  }
+  if (!strncmp(msg, "Invalid ENUM value", 18)) {
+    list_enum(schema_at(&sc->top, path), allowed, sizeof allowed);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "unknown value '%s'; allowed: %s", arg,
+                           allowed);
+  }
+  if (!strncmp(msg, "Invalid FLOAT value", 19) || !strncmp(msg, "Invalid INT value", 17) ||
+      !strncmp(msg, "Invalid UINT value", 18))
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be a number, got '%s'; write for "
+                           "example 0.5, 2e-3 or 200e9", got ? got : arg);
+  if (!strncmp(msg, "Invalid BOOL value", 18))
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be true or false, got '%s'",
+                           got ? got : arg);
+  if (!strncmp(msg, "Expecting ", 10)) {
+    const cyaml_schema_value_t *v = schema_at(&sc->top, path);
+    char hint[600];
+    type_hint(v, hint, sizeof hint);
+    const char *what = strstr(msg, "SEQUENCE_START")  ? "a list"
+                       : strstr(msg, "MAPPING_START") ? "a mapping"
+                       : got                          ? NULL
+                                                      : "a single value";
+    if (v && v->type == CYAML_ENUM) {
+      list_enum(v, allowed, sizeof allowed);
+      return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be one word, got %s; allowed: %s",
+                             what ? what : "something else", allowed);
+    }
+    if (what)
+      return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be %s, got %s; %s", type_words(v),
+                             what, hint);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be %s, got '%s'; %s", type_words(v),
+                           got, hint);
+  }
+  if (about_sequence) {
+    const cyaml_schema_value_t *v = schema_at(&sc->top, path);
+    unsigned have = 0, want = 0;
+    const int is_point = v && v->type == CYAML_SEQUENCE_FIXED && v->sequence.entry &&
+                         v->sequence.entry->type == CYAML_FLOAT;
+    const int excess = !strncmp(msg, "Excessive", 9);
+    if (excess)
+      sscanf(msg, "Excessive entries (%u max)", &want);
+    else
+      sscanf(msg, "Insufficient entries (%u of %u min)", &have, &want);
+    /* libcyaml stops at the first entry too many; the document says how many there are. */
+    char entry[KEY_MAX + 16];
+    unsigned count = 0;
+    do
+      snprintf(entry, sizeof entry, "%s[%u]", path, count);
+    while (pdk_scene_key_get(s, entry) && ++count < 1000000);
+    if (!excess) count = have;
+    if (is_point)
+      return pdk_scene_error(s, ctx, PDK_ERR_ARG, path,
+                             "must have %u numbers, got %u; a point has one number per axis "
+                             "(dimension is %d)", want, count, s->dim);
+    if (v && v->type == CYAML_SEQUENCE_FIXED)
+      return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must have %u entries, got %u", want,
+                             count);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must have at %s %u entries, got %u",
+                           excess ? "most" : "least", want, count);
+  }
+  if (!strncmp(msg, "Mapping field already seen", 26))
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "given twice; give each key once");
+  if (!strncmp(msg, "String length", 13) || strstr(msg, "string length"))
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "%s; names are 1 to 255 characters", msg);
+  return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "%s; see docs/scenes.md", msg);
+}
+
+static int scene_schema_load(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc,
+                             const cyaml_config_t *cfg, const char *yaml, size_t len,
+                             sc_scene **out) {
+  int err = PDK_SUCCESS;
+  PDK_CYAML_CALL_GOTO(ctx, cyaml_load_data((const uint8_t *)yaml, len, cfg, &sc->top,
+                                           (cyaml_data_t **)out, NULL));
+cleanup:
+  if (err) {
+    const cy_log *log = cfg->log_ctx;
+    int translated = cy_translate(ctx, s, sc, log);
+    if (translated) err = translated;
+  }
+  return err;
+}
+
+/* ---- checks ------------------------------------------------------------------------------------ */
+
+typedef struct loader {
+  pdk_ctx *ctx;
+  pdk_scene *s;
+  char key[KEY_MAX];
+} loader;
+
+/* Formats a key path into ld->key and returns it. */
+static const char *K(loader *ld, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static const char *K(loader *ld, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(ld->key, sizeof ld->key, fmt, ap);
+  va_end(ap);
+  return ld->key;
+}
+
+static int has(const loader *ld, const char *path) { return pdk_scene_key_get(ld->s, path) != NULL; }
+
+#define FAIL(ld, key, ...) return pdk_scene_error((ld)->s, (ld)->ctx, PDK_ERR_ARG, (key), __VA_ARGS__)
+#define REQUIRE(ld, cond, key, ...)                                                              \
+  do {                                                                                           \
+    if (!(cond)) FAIL(ld, key, __VA_ARGS__);                                                     \
+  } while (0)
+
+static int check_whole(loader *ld, const char *key, double v, double lo, double hi, long *out) {
+  if (hi >= 1e15)
+    REQUIRE(ld, isfinite(v) && v == floor(v) && v >= lo && v <= hi, key,
+            "must be a whole number >= %.0f, got %g", lo, v);
+  REQUIRE(ld, isfinite(v) && v == floor(v) && v >= lo && v <= hi, key,
+          "must be a whole number in [%.0f, %.0f], got %g", lo, hi, v);
+  *out = (long)v;
+  return PDK_SUCCESS;
+}
+
+static int check_point(loader *ld, const char *key, const double *v) {
+  for (int a = 0; a < ld->s->dim; ++a)
+    REQUIRE(ld, isfinite(v[a]), key, "entry %d is %g; coordinates must be finite numbers", a, v[a]);
+  return PDK_SUCCESS;
+}
+
+static void fmt_point(char *buf, size_t len, int dim, const double *v) {
+  if (dim == 2)
+    snprintf(buf, len, "[%g, %g]", v[0], v[1]);
+  else
+    snprintf(buf, len, "[%g, %g, %g]", v[0], v[1], v[2]);
+}
+
+static int valid_name(const char *n) {
+  if (!n || !n[0] || strlen(n) > SC_NAME_MAX) return 0;
+  for (const char *c = n; *c; ++c)
+    if (!isalnum((unsigned char)*c) && *c != '_' && *c != '-' && *c != '.') return 0;
+  return 1;
+}
+
+/* Region kind of an sc_region: fills out->region (and its polygon vertices) and out->key.
+ * `base` is the region's key path ("geometry.holes[0]", "sets[1]"). */
+static int region_resolve(loader *ld, const sc_region *r, const char *base, int allow_halfspace,
+                          pdk_scene_region *out) {
+  const int dim = ld->s->dim;
+  const char *kinds[5] = {"box", "disk", "ball", "halfspace", "polygon"};
+  const void *given[5] = {r->box, r->disk, r->ball, r->halfspace, r->polygon};
+  int which = -1, count = 0;
+  for (int k = 0; k < 5; ++k)
+    if (given[k]) {
+      if (which >= 0 && count == 1)
+        FAIL(ld, base, "gives both %s and %s; give exactly one region: box, disk (ball), "
+             "halfspace or polygon", kinds[which], kinds[k]);
+      which = k;
+      ++count;
+    }
+  REQUIRE(ld, which >= 0, base, "gives no region; give one of box, disk (2-D) or ball, halfspace, "
+          "polygon (2-D)");
+  snprintf(out->key, sizeof out->key, "%s.%s", base, kinds[which]);
+  char sub[KEY_MAX];
+  switch (which) {
+  case 0:
+    snprintf(sub, sizeof sub, "%s.lo", out->key);
+    PDK_CALL(check_point(ld, sub, r->box->lo));
+    snprintf(sub, sizeof sub, "%s.hi", out->key);
+    PDK_CALL(check_point(ld, sub, r->box->hi));
+    for (int a = 0; a < dim; ++a)
+      REQUIRE(ld, r->box->lo[a] <= r->box->hi[a], sub,
+              "must be >= lo on every axis; axis %d has lo %g > hi %g", a, r->box->lo[a],
+              r->box->hi[a]);
+    out->region = pdk_region_box(r->box->lo, r->box->hi);
+    break;
+  case 1:
+  case 2: {
+    const sc_ball *b = which == 1 ? r->disk : r->ball;
+    snprintf(sub, sizeof sub, "%s.center", out->key);
+    PDK_CALL(check_point(ld, sub, b->center));
+    snprintf(sub, sizeof sub, "%s.radius", out->key);
+    REQUIRE(ld, isfinite(b->radius) && b->radius > 0, sub, "must be > 0, got %g", b->radius);
+    out->region = pdk_region_ball(b->center, b->radius);
+    break;
+  }
+  case 3:
+    REQUIRE(ld, allow_halfspace, out->key,
+            "a half-space is unbounded, so it cannot be a hole; use geometry.notches for cuts "
+            "that reach the boundary");
+    snprintf(sub, sizeof sub, "%s.point", out->key);
+    PDK_CALL(check_point(ld, sub, r->halfspace->point));
+    snprintf(sub, sizeof sub, "%s.normal", out->key);
+    PDK_CALL(check_point(ld, sub, r->halfspace->normal));
+    {
+      double n2 = 0;
+      for (int a = 0; a < dim; ++a) n2 += r->halfspace->normal[a] * r->halfspace->normal[a];
+      REQUIRE(ld, n2 > 0, sub, "must not be zero; it points out of the half-space");
+    }
+    out->region = pdk_region_halfspace(r->halfspace->point, r->halfspace->normal);
+    break;
+  case 4: {
+    REQUIRE(ld, dim == 2, out->key, "a polygon is a 2-D region; in 3-D use box, ball or halfspace");
+    int nv = (int)r->polygon->vertices_count;
+    out->vertices = malloc((size_t)nv * 2 * sizeof(double));
+    if (!out->vertices)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for a polygon");
+    for (int v = 0; v < nv; ++v) {
+      snprintf(sub, sizeof sub, "%s.vertices[%d]", out->key, v);
+      PDK_CALL(check_point(ld, sub, r->polygon->vertices[v]));
+      out->vertices[2 * v] = r->polygon->vertices[v][0];
+      out->vertices[2 * v + 1] = r->polygon->vertices[v][1];
+    }
+    out->region = pdk_region_polygon(out->vertices, nv);
+    break;
+  }
+  }
+  out->region.invert = r->invert ? 1 : 0;
+  int err = pdk_region_check(ld->ctx, dim, &out->region);
+  if (err) return pdk_scene_blame(ld->s, ld->ctx, err, out->key);
+  return PDK_SUCCESS;
+}
+
+/* A hole must leave material and lie inside the body's box. */
+static int hole_check(loader *ld, const pdk_scene_region *h) {
+  const int dim = ld->s->dim;
+  const double *blo = ld->s->lattice.lo, *bhi = ld->s->lattice.hi;
+  char lo_s[96], hi_s[96];
+  fmt_point(lo_s, sizeof lo_s, dim, blo);
+  fmt_point(hi_s, sizeof hi_s, dim, bhi);
+  int corners_in = 1;
+  for (int m = 0; m < (1 << dim); ++m) {
+    double x[3];
+    for (int a = 0; a < dim; ++a) x[a] = (m >> a) & 1 ? bhi[a] : blo[a];
+    corners_in &= pdk_region_contains(&h->region, dim, x);
+  }
+  REQUIRE(ld, !corners_in, h->key,
+          "covers the whole body (geometry.box %s..%s), so nothing would remain; a hole must "
+          "leave material", lo_s, hi_s);
+  double rlo[3] = {0, 0, 0}, rhi[3] = {0, 0, 0};
+  const pdk_region *r = &h->region;
+  for (int a = 0; a < dim; ++a) {
+    switch (r->kind) {
+    case PDK_REGION_BOX: rlo[a] = r->lo[a]; rhi[a] = r->hi[a]; break;
+    case PDK_REGION_BALL: rlo[a] = r->center[a] - r->radius; rhi[a] = r->center[a] + r->radius; break;
+    case PDK_REGION_POLYGON:
+      rlo[a] = rhi[a] = r->vertices[a];
+      for (int v = 1; v < r->num_vertices; ++v) {
+        rlo[a] = fmin(rlo[a], r->vertices[2 * v + a]);
+        rhi[a] = fmax(rhi[a], r->vertices[2 * v + a]);
+      }
+      break;
+    case PDK_REGION_HALFSPACE: break;
+    }
+  }
+  for (int a = 0; a < dim; ++a)
+    REQUIRE(ld, rlo[a] >= blo[a] && rhi[a] <= bhi[a], h->key,
+            "reaches outside the body (geometry.box %s..%s): it spans [%g, %g] on axis %c; a hole "
+            "must lie inside the box (use geometry.notches for cuts that reach the boundary)",
+            lo_s, hi_s, rlo[a], rhi[a], "xyz"[a]);
+  return PDK_SUCCESS;
+}
+
+static int resolve_geometry(loader *ld, const sc_geometry *g) {
+  pdk_scene *s = ld->s;
+  const int dim = s->dim;
+  pdk_lattice_opts *lo = &s->lattice;
+  *lo = pdk_lattice_opts_default();
+  if (has(ld, "geometry.lattice")) {
+    lo->type = (pdk_lattice_type)g->lattice;
+    REQUIRE(ld, (dim == 3) == (lo->type == PDK_LATTICE_CUBIC), "geometry.lattice",
+            "'%s' is a %d-D lattice but dimension is %d; use %s", lattice_names[g->lattice].str,
+            lo->type == PDK_LATTICE_CUBIC ? 3 : 2, dim, dim == 2 ? "square or hex" : "cubic");
+  } else {
+    lo->type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
+  }
+  REQUIRE(ld, isfinite(g->spacing) && g->spacing > 0, "geometry.spacing",
+          "must be > 0, got %g; the lattice spacing is a length", g->spacing);
+  lo->spacing = g->spacing;
+  s->horizon_factor = has(ld, "geometry.horizon_factor") ? g->horizon_factor : 3.015;
+  REQUIRE(ld, isfinite(s->horizon_factor) && s->horizon_factor > 1, "geometry.horizon_factor",
+          "must be > 1, got %g; the horizon is horizon_factor x spacing (3.015 is usual)",
+          s->horizon_factor);
+  s->horizon = s->horizon_factor * g->spacing;
+  lo->jitter = g->jitter;
+  REQUIRE(ld, isfinite(g->jitter) && g->jitter >= 0 && g->jitter < 0.5, "geometry.jitter",
+          "must be in [0, 0.5) (a fraction of the spacing), got %g", g->jitter);
+  long seed = 1;
+  if (has(ld, "geometry.seed")) PDK_CALL(check_whole(ld, "geometry.seed", g->seed, 0, 9007199254740992.0, &seed));
+  lo->seed = (uint64_t)seed;
+  if (has(ld, "geometry.thickness")) {
+    REQUIRE(ld, dim == 2, "geometry.thickness",
+            "only 2-D scenes have a thickness (dimension is 3); remove it");
+    REQUIRE(ld, isfinite(g->thickness) && g->thickness > 0, "geometry.thickness",
+            "must be > 0, got %g (the out-of-plane thickness, a length)", g->thickness);
+    lo->thickness = g->thickness;
+  }
+  PDK_CALL(check_point(ld, "geometry.box.lo", g->box.lo));
+  PDK_CALL(check_point(ld, "geometry.box.hi", g->box.hi));
+  for (int a = 0; a < dim; ++a)
+    REQUIRE(ld, g->box.hi[a] > g->box.lo[a], "geometry.box.hi",
+            "must exceed lo on every axis; axis %c has lo %g, hi %g", "xyz"[a], g->box.lo[a],
+            g->box.hi[a]);
+  memcpy(lo->lo, g->box.lo, sizeof lo->lo);
+  memcpy(lo->hi, g->box.hi, sizeof lo->hi);
+  pdk_index count = 0;
+  int err = pdk_lattice_count(ld->ctx, lo, &count);
+  if (err) return pdk_scene_blame(s, ld->ctx, err, "geometry.box");
+
+  s->num_holes = (int)g->holes_count;
+  s->num_notches = (int)g->notches_count;
+  s->holes = calloc(g->holes_count + 1, sizeof *s->holes);
+  s->notches = calloc(g->notches_count + 1, sizeof *s->notches);
+  if (!s->holes || !s->notches)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for holes");
+  for (int k = 0; k < s->num_holes; ++k) {
+    PDK_CALL(region_resolve(ld, &g->holes[k], K(ld, "geometry.holes[%d]", k), 0, &s->holes[k]));
+    PDK_CALL(hole_check(ld, &s->holes[k]));
+  }
+  for (int k = 0; k < s->num_notches; ++k)
+    PDK_CALL(region_resolve(ld, &g->notches[k], K(ld, "geometry.notches[%d]", k), 1, &s->notches[k]));
+
+  /* Pre-cracks: segments in 2-D, planar polygons in 3-D. */
+  size_t nvert = 0;
+  for (unsigned k = 0; k < g->precracks_count; ++k)
+    nvert += g->precracks[k].segment_count + g->precracks[k].polygon_count;
+  s->num_precracks = (int)g->precracks_count;
+  s->precracks = calloc(g->precracks_count + 1, sizeof *s->precracks);
+  s->crack_vertices = malloc((nvert + 1) * 3 * sizeof(double));
+  if (!s->precracks || !s->crack_vertices)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for pre-cracks");
+  double *v = s->crack_vertices;
+  for (int k = 0; k < s->num_precracks; ++k) {
+    const sc_precrack *c = &g->precracks[k];
+    const char *base = K(ld, "geometry.precracks[%d]", k);
+    REQUIRE(ld, !(c->segment && c->polygon), base, "gives both segment and polygon; a 2-D "
+            "pre-crack is a segment, a 3-D one a polygon");
+    REQUIRE(ld, c->segment || c->polygon, base, "gives no crack; give %s",
+            dim == 2 ? "segment: [[x0, y0], [x1, y1]]" : "polygon: [[x, y, z], ...] (>= 3 points)");
+    if (dim == 2)
+      REQUIRE(ld, c->segment, K(ld, "geometry.precracks[%d].polygon", k),
+              "a 2-D pre-crack is a segment: [[x0, y0], [x1, y1]]");
+    else
+      REQUIRE(ld, c->polygon, K(ld, "geometry.precracks[%d].segment", k),
+              "a 3-D pre-crack is a planar polygon: [[x, y, z], ...] with >= 3 points");
+    const double (*pts)[3] = (const double (*)[3])(c->segment ? c->segment : c->polygon);
+    int np = (int)(c->segment ? c->segment_count : c->polygon_count);
+    char sub[KEY_MAX];
+    snprintf(sub, sizeof sub, "geometry.precracks[%d].%s", k, c->segment ? "segment" : "polygon");
+    for (int p = 0; p < np; ++p) {
+      char pk[KEY_MAX + 16];
+      snprintf(pk, sizeof pk, "%s[%d]", sub, p);
+      PDK_CALL(check_point(ld, pk, pts[p]));
+      for (int a = 0; a < dim; ++a) v[p * dim + a] = pts[p][a];
+    }
+    if (dim == 2) {
+      double dx = v[2] - v[0], dy = v[3] - v[1];
+      REQUIRE(ld, dx * dx + dy * dy > 0, sub, "has zero length; give two different end points");
+    }
+    s->precracks[k].num_vertices = np;
+    s->precracks[k].vertices = v;
+    v += (size_t)np * (size_t)dim;
+  }
+  return PDK_SUCCESS;
+}
+
+static int resolve_material_model(loader *ld, const sc_material *mat, const sc_model *mo) {
+  pdk_scene *s = ld->s;
+  pdk_model_opts *m = &s->model;
+  *m = pdk_model_opts_default();
+  m->kind = has(ld, "model.kind") ? (pdk_model_kind)mo->kind : PDK_MODEL_PMB;
+  const char *kname = pdk_model_kind_name(m->kind);
+  REQUIRE(ld, isfinite(mat->density) && mat->density > 0, "material.density",
+          "must be > 0, got %g (mass per volume, e.g. 7850 kg/m^3 for steel)", mat->density);
+  m->density = mat->density;
+  const int hE = has(ld, "material.youngs_modulus"), hnu = has(ld, "material.poisson_ratio");
+  const int hK = has(ld, "material.bulk_modulus"), hG = has(ld, "material.shear_modulus");
+  if ((hE || hnu) && (hK || hG))
+    FAIL(ld, hK ? "material.bulk_modulus" : "material.shear_modulus",
+         "mixes with %s; give either youngs_modulus and poisson_ratio, or bulk_modulus and "
+         "shear_modulus", hE ? "youngs_modulus" : "poisson_ratio");
+  if (hE || hnu) {
+    REQUIRE(ld, hE, "material.youngs_modulus",
+            "is missing; poisson_ratio is given, so youngs_modulus is needed too");
+    REQUIRE(ld, hnu, "material.poisson_ratio",
+            "is missing; youngs_modulus is given, so poisson_ratio is needed too");
+    const double E = mat->youngs_modulus, nu = mat->poisson_ratio;
+    REQUIRE(ld, isfinite(E) && E > 0, "material.youngs_modulus", "must be > 0, got %g", E);
+    REQUIRE(ld, isfinite(nu) && nu > -1 && nu < 0.5, "material.poisson_ratio",
+            "must be in (-1, 0.5), got %g (0.5 is incompressible, which has no finite bulk "
+            "modulus)", nu);
+    m->bulk_modulus = E / (3 * (1 - 2 * nu));
+    m->shear_modulus = E / (2 * (1 + nu));
+  } else if (hK || hG) {
+    REQUIRE(ld, hK, "material.bulk_modulus", "is missing; shear_modulus is given, so bulk_modulus "
+            "is needed too");
+    REQUIRE(ld, hG || m->kind == PDK_MODEL_PMB, "material.shear_modulus",
+            "is missing; the %s model needs bulk_modulus and shear_modulus (only pmb needs the bulk "
+            "modulus alone)", kname);
+    REQUIRE(ld, isfinite(mat->bulk_modulus) && mat->bulk_modulus > 0, "material.bulk_modulus",
+            "must be > 0, got %g", mat->bulk_modulus);
+    if (hG)
+      REQUIRE(ld, isfinite(mat->shear_modulus) && mat->shear_modulus > 0, "material.shear_modulus",
+              "must be > 0, got %g", mat->shear_modulus);
+    m->bulk_modulus = mat->bulk_modulus;
+    m->shear_modulus = hG ? mat->shear_modulus : 0;
+  } else {
+    FAIL(ld, "material", "gives no elastic constants; give youngs_modulus and poisson_ratio, or "
+         "bulk_modulus and shear_modulus");
+  }
+
+  const int corr = m->kind == PDK_MODEL_CORRESPONDENCE;
+  const char *corr_only[] = {"model.influence", "model.gaussian_width", "model.stabilization",
+                             "model.stabilization_coefficient", "model.law"};
+  for (int k = 0; k < 5; ++k)
+    REQUIRE(ld, corr || !has(ld, corr_only[k]), corr_only[k],
+            "only the correspondence model uses it (model.kind is %s); remove it or set "
+            "model.kind: correspondence", kname);
+  if (has(ld, "model.influence")) m->influence = (pdk_influence)mo->influence;
+  if (has(ld, "model.gaussian_width")) {
+    REQUIRE(ld, m->influence == PDK_INFLUENCE_GAUSSIAN, "model.gaussian_width",
+            "only the gaussian influence function uses it; set model.influence: gaussian or "
+            "remove it");
+    REQUIRE(ld, isfinite(mo->gaussian_width) && mo->gaussian_width > 0, "model.gaussian_width",
+            "must be > 0 (a fraction of the horizon), got %g", mo->gaussian_width);
+    m->gaussian_width = mo->gaussian_width;
+  }
+  m->stabilization = has(ld, "model.stabilization") ? (pdk_stabilization)mo->stabilization
+                     : corr                         ? PDK_STAB_SILLING
+                                                    : PDK_STAB_NONE;
+  if (has(ld, "model.stabilization_coefficient")) {
+    REQUIRE(ld, isfinite(mo->stabilization_coefficient) && mo->stabilization_coefficient >= 0,
+            "model.stabilization_coefficient", "must be >= 0, got %g",
+            mo->stabilization_coefficient);
+    m->stab_coefficient = mo->stabilization_coefficient;
+  }
+  if (has(ld, "model.law")) m->law = (pdk_law)mo->law;
+  if (has(ld, "model.precision")) m->precision = (pdk_precision)mo->precision;
+  REQUIRE(ld, isfinite(mo->critical_stretch) && mo->critical_stretch >= 0, "model.critical_stretch",
+          "must be >= 0 (0: bonds never break), got %g", mo->critical_stretch);
+  m->critical_stretch = mo->critical_stretch;
+  REQUIRE(ld, isfinite(mo->alpha) && mo->alpha >= 0, "model.alpha", "must be >= 0, got %g",
+          mo->alpha);
+  REQUIRE(ld, mo->alpha == 0 || mo->critical_stretch > 0, "model.alpha",
+          "only acts with bond breaking; set model.critical_stretch > 0 or remove alpha");
+  m->alpha = mo->alpha;
+  m->lattice_constant = mo->partial_volume ? s->lattice.spacing : 0;
+  return PDK_SUCCESS;
+}
+
+static int find_set(const pdk_scene *s, const char *name) {
+  for (int k = 0; k < s->num_sets; ++k)
+    if (!strcmp(s->sets[k].name, name)) return k;
+  return -1;
+}
+
+static void list_sets(const pdk_scene *s, char *buf, size_t len) {
+  size_t pos = 0;
+  buf[0] = '\0';
+  for (int k = 0; k < s->num_sets; ++k) {
+    int w = snprintf(buf + pos, len - pos, "%s%s", k ? ", " : "", s->sets[k].name);
+    if (w < 0 || (size_t)w >= len - pos) return;
+    pos += (size_t)w;
+  }
+  if (!s->num_sets) snprintf(buf, len, "(no sets are defined)");
+}
+
+static int resolve_sets(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  s->sets = calloc(d->sets_count + 1, sizeof *s->sets);
+  if (!s->sets) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
+  for (int k = 0; k < (int)d->sets_count; ++k) {
+    const sc_region *r = &d->sets[k];
+    const char *nk = K(ld, "sets[%d].name", k);
+    REQUIRE(ld, valid_name(r->name), nk,
+            "'%s' is not a valid set name; use 1 to %d letters, digits, '_', '-' or '.'", r->name,
+            SC_NAME_MAX);
+    REQUIRE(ld, strcmp(r->name, "all"), nk,
+            "'all' is reserved (it means every particle in boundary conditions); pick another name");
+    int prev = find_set(s, r->name);
+    REQUIRE(ld, prev < 0, nk, "the set '%s' is already defined by sets[%d]; set names are unique",
+            r->name, prev);
+    pdk_scene_region *out = &s->sets[k];
+    out->name = strdup(r->name);
+    size_t flen = strlen(r->name) + 5;
+    out->field = malloc(flen);
+    s->num_sets = k + 1;
+    if (!out->name || !out->field)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
+    snprintf(out->field, flen, "set:%s", r->name);
+    PDK_CALL(region_resolve(ld, r, K(ld, "sets[%d]", k), 1, out));
+    /* The set's messages name the set entry, whose line is the start of "- name: ...". */
+    snprintf(out->key, sizeof out->key, "sets[%d]", k);
+  }
+  return PDK_SUCCESS;
+}
+
+static int resolve_bcs(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  const int nb = (int)d->boundary_conditions_count;
+  s->bcs = calloc((size_t)nb + 1, sizeof *s->bcs);
+  s->bc_fields = calloc((size_t)nb + 1, sizeof *s->bc_fields);
+  if (!s->bcs || !s->bc_fields)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for boundary conditions");
+  s->num_bcs = nb;
+  for (int k = 0; k < nb; ++k) {
+    const sc_bc *b = &d->boundary_conditions[k];
+    pdk_bc *bc = &s->bcs[k];
+    char base[64], sub[KEY_MAX];
+    snprintf(base, sizeof base, "boundary_conditions[%d]", k);
+    snprintf(sub, sizeof sub, "%s.set", base);
+    if (strcmp(b->set, "all")) {
+      int set = find_set(s, b->set);
+      char names[512];
+      list_sets(s, names, sizeof names);
+      REQUIRE(ld, set >= 0, sub, "names the set '%s', which is not defined; defined sets: %s (or "
+              "'all' for every particle)", b->set, names);
+      s->bc_fields[k] = strdup(s->sets[set].field);
+      if (!s->bc_fields[k])
+        return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for boundary conditions");
+    }
+    bc->set = s->bc_fields[k];
+    bc->kind = (pdk_bc_kind)b->type;
+    const double comp[3] = {b->x, b->y, b->z};
+    const pdk_tfun_kind fk = has(ld, K(ld, "%s.function", base)) ? (pdk_tfun_kind)b->function
+                                                                 : PDK_TFUN_CONSTANT;
+    const int hdur = has(ld, K(ld, "%s.duration", base)), hper = has(ld, K(ld, "%s.period", base));
+    const int needs_dur = fk == PDK_TFUN_RAMP || fk == PDK_TFUN_SMOOTH;
+    const char *fname = function_names[fk].str;
+    snprintf(sub, sizeof sub, "%s.duration", base);
+    if (needs_dur) {
+      REQUIRE(ld, hdur, sub, "is missing; function %s rises over a duration; give duration > 0",
+              fname);
+      REQUIRE(ld, isfinite(b->duration) && b->duration > 0, sub, "must be > 0, got %g",
+              b->duration);
+    } else {
+      REQUIRE(ld, !hdur, sub, "only the ramp and smooth functions use a duration (function is "
+              "%s); remove it", fname);
+    }
+    snprintf(sub, sizeof sub, "%s.period", base);
+    if (fk == PDK_TFUN_SINE) {
+      REQUIRE(ld, hper, sub, "is missing; function sine needs a period > 0");
+      REQUIRE(ld, isfinite(b->period) && b->period > 0, sub, "must be > 0, got %g", b->period);
+    } else {
+      REQUIRE(ld, !hper, sub, "only the sine function uses a period (function is %s); remove it",
+              fname);
+    }
+    for (int c = 0; c < 3; ++c) {
+      snprintf(sub, sizeof sub, "%s.%c", base, "xyz"[c]);
+      if (!has(ld, sub)) continue;
+      REQUIRE(ld, c < s->dim, sub, "z is not a component in a 2-D scene; use x and y");
+      REQUIRE(ld, isfinite(comp[c]), sub, "must be a finite number, got %g", comp[c]);
+      bc->components |= 1u << c;
+      pdk_tfun *tf = &bc->value[c];
+      tf->kind = fk;
+      switch (fk) {
+      case PDK_TFUN_CONSTANT: tf->a = comp[c]; break;
+      case PDK_TFUN_LINEAR: tf->a = 0; tf->b = comp[c]; break;
+      case PDK_TFUN_RAMP:
+      case PDK_TFUN_SMOOTH: tf->a = comp[c]; tf->b = b->duration; break;
+      case PDK_TFUN_SINE: tf->a = comp[c]; tf->b = b->period; break;
+      }
+    }
+    REQUIRE(ld, bc->components, base, "gives no component; give x, y%s with the value of each "
+            "constrained component", s->dim == 3 ? " or z" : "");
+  }
+  s->solver.bcs = s->bcs;
+  s->solver.num_bcs = nb;
+  return PDK_SUCCESS;
+}
+
+static int resolve_solver(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  const sc_solver *so = &d->solver;
+  pdk_explicit_opts *e = &s->solver;
+  for (int c = 0; c < s->dim; ++c) {
+    REQUIRE(ld, isfinite(d->initial_conditions.velocity[c]), "initial_conditions.velocity",
+            "entry %d is %g; velocities must be finite", c, d->initial_conditions.velocity[c]);
+    e->v0_const[c] = d->initial_conditions.velocity[c];
+    for (int a = 0; a < s->dim; ++a) {
+      REQUIRE(ld, isfinite(d->initial_conditions.velocity_gradient[c][a]),
+              K(ld, "initial_conditions.velocity_gradient[%d]", c),
+              "entry %d is %g; entries must be finite", a,
+              d->initial_conditions.velocity_gradient[c][a]);
+      e->v0_grad[c][a] = d->initial_conditions.velocity_gradient[c][a];
+    }
+  }
+  const int hend = has(ld, "solver.end_time"), hsteps = has(ld, "solver.steps");
+  REQUIRE(ld, !(hend && hsteps), "solver.steps", "given together with solver.end_time; give one "
+          "of them (end_time: the run lasts that long; steps: that many steps)");
+  REQUIRE(ld, hend || hsteps, "solver", "gives neither end_time nor steps; give one of them");
+  if (hend) {
+    REQUIRE(ld, isfinite(so->end_time) && so->end_time > 0, "solver.end_time",
+            "must be > 0, got %g (a time)", so->end_time);
+    s->end_time = so->end_time;
+  } else {
+    PDK_CALL(check_whole(ld, "solver.steps", so->steps, 1, 1e15, &s->steps));
+  }
+  REQUIRE(ld, isfinite(so->dt) && so->dt >= 0, "solver.dt",
+          "must be >= 0 (0: safety x the estimated stable step), got %g", so->dt);
+  e->dt = so->dt;
+  e->safety = has(ld, "solver.safety") ? so->safety : 0.8;
+  REQUIRE(ld, isfinite(e->safety) && e->safety > 0 && e->safety <= 1, "solver.safety",
+          "must be in (0, 1] (the fraction of the stable time step used), got %g", e->safety);
+  e->force_dt = so->force_dt ? 1 : 0;
+  long threads = 0;
+  PDK_CALL(check_whole(ld, "solver.threads", so->threads, 0, 4096, &threads));
+  s->threads = (int)threads;
+  return PDK_SUCCESS;
+}
+
+static int resolve_output(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  const sc_output *o = &d->output;
+  pdk_scene_output *out = &s->output;
+  PDK_CALL(check_whole(ld, "output.field_interval", o->field_interval, 0, 1e15, &out->field_interval));
+  out->history_interval = 10;
+  if (has(ld, "output.history_interval"))
+    PDK_CALL(check_whole(ld, "output.history_interval", o->history_interval, 1, 1e15, &out->history_interval));
+  PDK_CALL(check_whole(ld, "output.checkpoint_interval", o->checkpoint_interval, 0, 1e15, &out->checkpoint_interval));
+
+  const char *default_fields[] = {"u", "v"};
+  const int hf = has(ld, "output.fields");
+  const int nf = hf ? (int)o->fields_count : 2;
+  s->fields = calloc((size_t)nf + 1, sizeof *s->fields);
+  if (!s->fields) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  for (int k = 0; k < nf; ++k) {
+    const char *f = hf ? o->fields[k] : default_fields[k];
+    const char *key = K(ld, "output.fields[%d]", k);
+    REQUIRE(ld, valid_name(f) || !strncmp(f, "set:", 4), key,
+            "'%s' is not a field name; fields are names such as u, v, f, x", f);
+    for (int j = 0; j < k; ++j)
+      REQUIRE(ld, strcmp(s->fields[j], f), key, "'%s' is listed twice; list each field once", f);
+    s->fields[k] = strdup(f);
+    out->num_fields = k + 1;
+    if (!s->fields[k]) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  }
+  out->fields = (const char *const *)s->fields;
+
+  /* Reaction sets: given, or by default the sets of the displacement and velocity conditions. */
+  int nr = 0;
+  const char *names[MAX_REACTION_SETS];
+  if (has(ld, "output.reactions")) {
+    for (int k = 0; k < (int)o->reactions_count; ++k) {
+      const char *key = K(ld, "output.reactions[%d]", k);
+      char sets[512];
+      list_sets(s, sets, sizeof sets);
+      REQUIRE(ld, find_set(s, o->reactions[k]) >= 0, key,
+              "names the set '%s', which is not defined; defined sets: %s", o->reactions[k], sets);
+      for (int j = 0; j < nr; ++j)
+        REQUIRE(ld, strcmp(names[j], o->reactions[k]), key, "'%s' is listed twice",
+                o->reactions[k]);
+      REQUIRE(ld, nr < MAX_REACTION_SETS, key,
+              "at most %d reaction sets are recorded; list fewer", MAX_REACTION_SETS);
+      names[nr++] = o->reactions[k];
+    }
+  } else {
+    for (int k = 0; k < s->num_bcs && nr < MAX_REACTION_SETS; ++k) {
+      const char *set = d->boundary_conditions[k].set;
+      if (s->bcs[k].kind == PDK_BC_BODY_FORCE || !strcmp(set, "all")) continue;
+      int dup = 0;
+      for (int j = 0; j < nr; ++j) dup |= !strcmp(names[j], set);
+      if (!dup) names[nr++] = set;
+    }
+  }
+  s->reaction_names = calloc((size_t)nr + 1, sizeof(char *));
+  s->reaction_fields = calloc((size_t)nr + 1, sizeof(char *));
+  if (!s->reaction_names || !s->reaction_fields)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  for (int k = 0; k < nr; ++k) {
+    size_t len = strlen(names[k]) + 5;
+    s->reaction_names[k] = strdup(names[k]);
+    s->reaction_fields[k] = malloc(len);
+    out->num_reaction_sets = k + 1;
+    if (!s->reaction_names[k] || !s->reaction_fields[k])
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+    snprintf(s->reaction_fields[k], len, "set:%s", names[k]);
+  }
+  out->reaction_sets = (const char *const *)s->reaction_names;
+  s->solver.reaction_sets = (const char *const *)s->reaction_fields;
+  s->solver.num_reaction_sets = nr;
+  return PDK_SUCCESS;
+}
+
+/* Step 3: defaults, checks, conversions. */
+static int scene_resolve(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  REQUIRE(ld, d->dimension == 2 || d->dimension == 3, "dimension", "must be 2 or 3, got %g",
+          d->dimension);
+  if (has(ld, "name")) {
+    REQUIRE(ld, valid_name(d->name), "name", "'%s' is not a valid name (it names the output "
+            "files); use 1 to %d letters, digits, '_', '-' or '.'", d->name, SC_NAME_MAX);
+    free(s->name);
+    s->name = strdup(d->name);
+    if (!s->name) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  }
+  s->solver = pdk_explicit_opts_default();
+  PDK_CALL(resolve_geometry(ld, &d->geometry));
+  PDK_CALL(resolve_material_model(ld, &d->material, &d->model));
+  PDK_CALL(resolve_sets(ld, d));
+  PDK_CALL(resolve_bcs(ld, d));
+  PDK_CALL(resolve_solver(ld, d));
+  PDK_CALL(resolve_output(ld, d));
+  return PDK_SUCCESS;
+}
+
+/* ---- public API -------------------------------------------------------------------------------- */
+
+static char *file_stem(const char *path) {
+  const char *base = strrchr(path, '/');
+  base = base ? base + 1 : path;
+  size_t len = strlen(base);
+  const char *dot = strrchr(base, '.');
+  if (dot && dot != base) len = (size_t)(dot - base);
+  char *out = malloc(len + 1);
+  if (!out) return NULL;
+  memcpy(out, base, len);
+  out[len] = '\0';
+  return out;
+}
+
+int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides, int num_overrides,
+                   pdk_scene **out) {
+  int err = PDK_SUCCESS;
+  pdk_scene *s = NULL;
+  char *file_text = NULL, *yaml = NULL;
+  size_t file_len = 0, yaml_len = 0;
+  sc_scene *data = NULL;
+  scene_schema sc;
+  cy_log log;
+  cyaml_config_t cfg;
+  loader ld;
+  int dim = 2;
+  memset(&log, 0, sizeof log);
+  memset(&cfg, 0, sizeof cfg);
+  cfg.log_fn = cy_log_fn;
+  cfg.log_ctx = &log;
+  cfg.mem_fn = cyaml_mem;
+  cfg.log_level = CYAML_LOG_ERROR;
+  cfg.flags = CYAML_CFG_DEFAULT;
+  schema_build(&sc, 2);
+
+  PDK_CHECK(out, ctx, PDK_ERR_ARG, "pdk_scene_load: out is NULL");
+  *out = NULL;
+  PDK_CHECK(path, ctx, PDK_ERR_ARG, "pdk_scene_load: no scene path given");
+  PDK_CHECK(num_overrides >= 0 && (num_overrides == 0 || overrides), ctx, PDK_ERR_ARG,
+            "pdk_scene_load: %d overrides but no array", num_overrides);
+  s = calloc(1, sizeof *s);
+  PDK_CHECK(s, ctx, PDK_ERR_MEMORY, "out of memory loading a scene");
+  s->dim = 2;
+  s->path = strdup(path);
+  s->name = file_stem(path);
+  s->overrides = calloc((size_t)num_overrides + 1, sizeof(char *));
+  PDK_CHECK_GOTO(s->path && s->name && s->overrides, ctx, PDK_ERR_MEMORY,
+                 "out of memory loading a scene");
+  for (int k = 0; k < num_overrides; ++k) {
+    PDK_CHECK_GOTO(overrides[k], ctx, PDK_ERR_ARG, "pdk_scene_load: override %d is NULL", k);
+    s->overrides[k] = strdup(overrides[k]);
+    s->num_overrides = k + 1;
+    PDK_CHECK_GOTO(s->overrides[k], ctx, PDK_ERR_MEMORY, "out of memory loading a scene");
+  }
+
+  /* 1. file -> document -> overrides -> key lines -> final YAML */
+  PDK_CALL_GOTO(pdk_scene_read_file(ctx, path, &file_text, &file_len));
+  PDK_CALL_GOTO(pdk_scene_yaml_prepare(ctx, s, file_text, file_len, &yaml, &yaml_len, &dim));
+  s->dim = dim;
+
+  /* 2. schema load */
+  schema_build(&sc, dim);
+  PDK_CALL_GOTO(scene_schema_load(ctx, s, &sc, &cfg, yaml, yaml_len, &data));
+  if (!data) {
+    err = pdk_ctx_error_set(ctx, PDK_ERR_ARG, NULL,
+                            "%s:1: (scene): the scene is empty; it needs at least dimension, "
+                            "geometry, material and solver (see docs/scenes.md)", path);
+    goto cleanup;
+  }
+
+  /* 3. defaults and checks */
+  ld.ctx = ctx;
+  ld.s = s;
+  ld.key[0] = '\0';
+  PDK_CALL_GOTO(scene_resolve(&ld, data));
+
+  if (num_overrides == 0) {
+    s->text = file_text;
+    file_text = NULL;
+  } else {
+    size_t hlen = strlen(path) + 64;
+    for (int k = 0; k < num_overrides; ++k) hlen += strlen(overrides[k]) + 8;
+    s->text = malloc(hlen + yaml_len + 1);
+    PDK_CHECK_GOTO(s->text, ctx, PDK_ERR_MEMORY, "out of memory loading a scene");
+    size_t pos = (size_t)snprintf(s->text, hlen, "# %s with overrides:", path);
+    for (int k = 0; k < num_overrides; ++k)
+      pos += (size_t)snprintf(s->text + pos, hlen - pos, " --set %s", overrides[k]);
+    s->text[pos++] = '\n';
+    memcpy(s->text + pos, yaml, yaml_len + 1);
+  }
+  *out = s;
+  s = NULL;
+cleanup:
+  if (data) cyaml_free(&cfg, &sc.top, data, 0);
+  free(yaml);
+  free(file_text);
+  pdk_scene_destroy(&s);
+  return err;
+}
+
+static void regions_free(pdk_scene_region *r, int n) {
+  if (!r) return;
+  for (int k = 0; k < n; ++k) {
+    free(r[k].vertices);
+    free(r[k].name);
+    free(r[k].field);
+  }
+  free(r);
+}
+
+static void strings_free(char **v, int n) {
+  if (!v) return;
+  for (int k = 0; k < n; ++k) free(v[k]);
+  free(v);
+}
+
+void pdk_scene_destroy(pdk_scene **sp) {
+  if (!sp || !*sp) return;
+  pdk_scene *s = *sp;
+  free(s->path);
+  free(s->name);
+  free(s->text);
+  pdk_scene_keys_free(s->keys, s->num_keys);
+  strings_free(s->overrides, s->num_overrides);
+  regions_free(s->holes, s->num_holes);
+  regions_free(s->notches, s->num_notches);
+  regions_free(s->sets, s->num_sets);
+  free(s->precracks);
+  free(s->crack_vertices);
+  free(s->bcs);
+  strings_free(s->bc_fields, s->num_bcs);
+  strings_free(s->reaction_fields, s->output.num_reaction_sets);
+  strings_free(s->fields, s->output.num_fields);
+  strings_free(s->reaction_names, s->output.num_reaction_sets);
+  free(s);
+  *sp = NULL;
+}
+
+const char *pdk_scene_path(const pdk_scene *s) { return s->path; }
+const char *pdk_scene_name(const pdk_scene *s) { return s->name; }
+const char *pdk_scene_text(const pdk_scene *s) { return s->text; }
+int pdk_scene_threads(const pdk_scene *s) { return s->threads; }
+int pdk_scene_dimension(const pdk_scene *s) { return s->dim; }
+const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s) { return &s->output; }

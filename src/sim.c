@@ -1,0 +1,284 @@
+/* Building a simulation from a loaded scene (include/pdk/scene.h).
+ *
+ * The order of construction, each step's failure blamed on the scene key that caused it:
+ *   threads (solver.threads) -> lattice over geometry.box -> cut geometry.holes, geometry.notches
+ *   -> define sets -> Morton reorder by the cells of the horizon -> families with
+ *   geometry.precracks -> model -> explicit solver (boundary_conditions, initial_conditions,
+ *   solver) -> output fields ("u" when output.fields asks for it).
+ *
+ * The time step: the solver is created with force_dt set, and the scene's solver.dt is compared
+ * here with the solver's stable estimate, so that a dt above it is refused with a message citing
+ * solver.dt (the solver's own refusal cannot name the scene key).
+ *
+ * The simulation owns copies of everything its objects borrow (boundary-condition set names,
+ * reaction set names), so it may outlive the scene.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene_impl.h"
+
+struct pdk_sim {
+  pdk_ctx *ctx;
+  pdk_particles *p;
+  pdk_families *fam;
+  pdk_model *m;
+  pdk_explicit *e;
+  long num_steps;
+  int has_u;
+  pdk_bc *bcs;          /* [num_bcs], set names point into bc_fields */
+  char **bc_fields;     /* [num_bcs] "set:<name>" or NULL */
+  int num_bcs;
+  char **reaction_fields; /* [num_reactions] */
+  int num_reactions;
+};
+
+static char *dup_or_null(const char *s, int *fail) {
+  if (!s) return NULL;
+  char *d = strdup(s);
+  if (!d) *fail = 1;
+  return d;
+}
+
+static void field_list(pdk_particles *p, char *buf, size_t len) {
+  size_t pos = 0;
+  buf[0] = '\0';
+  for (int k = 0; k < pdk_particles_num_fields(p); ++k) {
+    int w = snprintf(buf + pos, len - pos, "%s%s", k ? ", " : "", pdk_particles_field_name(p, k));
+    if (w < 0 || (size_t)w >= len - pos) return;
+    pos += (size_t)w;
+  }
+}
+
+static int cut_regions(pdk_sim *sim, const pdk_scene *s, const pdk_scene_region *r, int n,
+                       int is_hole) {
+  for (int k = 0; k < n; ++k) {
+    pdk_index removed = 0;
+    int err = pdk_particles_cut(sim->p, &r[k].region, &removed);
+    if (err) return pdk_scene_blame(s, sim->ctx, err, r[k].key);
+    if (removed == 0) {
+      char what[256];
+      pdk_region_describe(&r[k].region, s->dim, what, sizeof what);
+      return pdk_scene_error(
+          s, sim->ctx, PDK_ERR_ARG, r[k].key,
+          is_hole ? "%s removes no particle: it fits between lattice points; make it larger than "
+                    "the spacing %g or remove it"
+                  : "%s removes no particle: it misses the body (or what is left of it); move it "
+                    "or remove it",
+          what, s->lattice.spacing);
+    }
+  }
+  return PDK_SUCCESS;
+}
+
+/* Two displacement or velocity conditions must not prescribe the same component of a particle.
+ * The solver refuses that too, but checking here lets the message name the scene entries. */
+static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
+  const pdk_index n = pdk_particles_count(sim->p);
+  for (int k = 0; k < s->num_bcs; ++k)
+    for (int j = 0; j < k; ++j) {
+      const pdk_bc *a = &s->bcs[j], *b = &s->bcs[k];
+      if (a->kind == PDK_BC_BODY_FORCE || b->kind == PDK_BC_BODY_FORCE) continue;
+      unsigned both = a->components & b->components;
+      if (!both) continue;
+      const uint8_t *ma = a->set ? pdk_particles_field_data(sim->p, a->set, 0) : NULL;
+      const uint8_t *mb = b->set ? pdk_particles_field_data(sim->p, b->set, 0) : NULL;
+      pdk_index count = 0, first = -1;
+      for (pdk_index i = 0; i < n; ++i)
+        if ((!ma || ma[i]) && (!mb || mb[i])) {
+          if (first < 0) first = i;
+          ++count;
+        }
+      if (!count) continue;
+      char key[64];
+      int c = 0;
+      while (!(both & (1u << c))) ++c;
+      snprintf(key, sizeof key, "boundary_conditions[%d]", k);
+      return pdk_scene_error(
+          s, sim->ctx, PDK_ERR_ARG, key,
+          "prescribes %c on %d particles that boundary_conditions[%d] prescribes too (the first "
+          "at X = [%g, %g%s]); give each component of a particle one condition: make the sets "
+          "disjoint or drop the component from one of them",
+          "xyz"[c], (int)count, j, pdk_particles_X(sim->p, 0)[first],
+          pdk_particles_X(sim->p, 1)[first], s->dim == 3 ? ", ..." : "");
+    }
+  return PDK_SUCCESS;
+}
+
+int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
+  int err = PDK_SUCCESS;
+  pdk_sim *sim = NULL;
+  PDK_CHECK(out && s, ctx, PDK_ERR_ARG, "pdk_sim_create: scene or out is NULL");
+  *out = NULL;
+  sim = calloc(1, sizeof *sim);
+  PDK_CHECK(sim, ctx, PDK_ERR_MEMORY, "out of memory creating a simulation");
+  sim->ctx = ctx;
+
+  if (s->threads > 0) {
+    err = pdk_ctx_set_num_threads(ctx, s->threads);
+    if (err) {
+      err = pdk_scene_blame(s, ctx, err, "solver.threads");
+      goto cleanup;
+    }
+  }
+
+  /* Body: lattice, holes, notches, sets. */
+  err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
+  if (err) {
+    err = pdk_scene_blame(s, ctx, err, "geometry");
+    goto cleanup;
+  }
+  PDK_CALL_GOTO(cut_regions(sim, s, s->holes, s->num_holes, 1));
+  PDK_CALL_GOTO(cut_regions(sim, s, s->notches, s->num_notches, 0));
+  for (int k = 0; k < s->num_sets; ++k) {
+    err = pdk_particles_set_define(sim->p, s->sets[k].name, &s->sets[k].region, NULL);
+    if (err) {
+      err = pdk_scene_blame(s, ctx, err, s->sets[k].key);
+      goto cleanup;
+    }
+  }
+
+  /* Order by the cells of the horizon, then families. */
+  double edge = pdk_families_cell_edge(sim->p, s->horizon);
+  if (edge <= 0) {
+    err = pdk_scene_blame(s, ctx, pdk_ctx_error_code(ctx) ? pdk_ctx_error_code(ctx) : PDK_ERR_ARG,
+                          "geometry.horizon_factor");
+    goto cleanup;
+  }
+  PDK_CALL_GOTO(pdk_particles_reorder_morton(sim->p, edge, NULL));
+  pdk_families_opts fo = pdk_families_opts_default();
+  fo.horizon = s->horizon;
+  fo.precracks = s->precracks;
+  fo.num_precracks = s->num_precracks;
+  err = pdk_families_build(sim->p, &fo, &sim->fam);
+  if (err) {
+    err = pdk_scene_blame(s, ctx, err, s->num_precracks ? "geometry.precracks" : "geometry");
+    goto cleanup;
+  }
+
+  /* Model. */
+  err = pdk_model_create(sim->p, sim->fam, &s->model, &sim->m);
+  if (err) {
+    const char *key = err == PDK_ERR_UNSUPPORTED && s->model.precision == PDK_PRECISION_FLOAT
+                          ? "model.precision"
+                          : "model";
+    err = pdk_scene_blame(s, ctx, err, key);
+    goto cleanup;
+  }
+
+  /* Solver, with copies of the names it borrows. */
+  PDK_CALL_GOTO(check_bc_overlap(sim, s));
+  int fail = 0;
+  sim->num_bcs = s->num_bcs;
+  sim->bcs = calloc((size_t)s->num_bcs + 1, sizeof *sim->bcs);
+  sim->bc_fields = calloc((size_t)s->num_bcs + 1, sizeof *sim->bc_fields);
+  sim->num_reactions = s->solver.num_reaction_sets;
+  sim->reaction_fields = calloc((size_t)sim->num_reactions + 1, sizeof *sim->reaction_fields);
+  PDK_CHECK_GOTO(sim->bcs && sim->bc_fields && sim->reaction_fields, ctx, PDK_ERR_MEMORY,
+                 "out of memory creating a simulation");
+  for (int k = 0; k < s->num_bcs; ++k) {
+    sim->bcs[k] = s->bcs[k];
+    sim->bc_fields[k] = dup_or_null(s->bc_fields[k], &fail);
+    sim->bcs[k].set = sim->bc_fields[k];
+  }
+  for (int k = 0; k < sim->num_reactions; ++k)
+    sim->reaction_fields[k] = dup_or_null(s->reaction_fields[k], &fail);
+  PDK_CHECK_GOTO(!fail, ctx, PDK_ERR_MEMORY, "out of memory creating a simulation");
+  pdk_explicit_opts eo = s->solver;
+  eo.bcs = sim->bcs;
+  eo.num_bcs = sim->num_bcs;
+  eo.reaction_sets = (const char *const *)sim->reaction_fields;
+  eo.num_reaction_sets = sim->num_reactions;
+  eo.force_dt = 1; /* checked below, against the scene's force_dt, to cite solver.dt */
+  err = pdk_explicit_create(sim->m, &eo, &sim->e);
+  if (err) {
+    const char *msg = pdk_ctx_error_message(ctx);
+    err = pdk_scene_blame(s, ctx, err,
+                          s->num_bcs && strstr(msg, "boundary condition") ? "boundary_conditions"
+                                                                          : "solver");
+    goto cleanup;
+  }
+  const double stable = pdk_explicit_stable_dt(sim->e);
+  if (s->solver.dt > stable && !s->solver.force_dt) {
+    err = pdk_scene_error(s, ctx, PDK_ERR_ARG, "solver.dt",
+                          "%g exceeds the estimated stable time step %g (%.3g times it); use "
+                          "dt <= %g, leave dt at 0 to step at solver.safety (%g) x the estimate, "
+                          "or set solver.force_dt: true if you know better",
+                          s->solver.dt, stable, s->solver.dt / stable, stable, s->solver.safety);
+    goto cleanup;
+  }
+  const double dt = pdk_explicit_dt(sim->e);
+  if (s->steps > 0) {
+    sim->num_steps = s->steps;
+  } else {
+    /* ceil(end_time / dt), not counting a last step that round-off alone would add */
+    double q = s->end_time / dt;
+    PDK_CHECK_GOTO(q < 1e15, ctx, PDK_ERR_ARG,
+                   "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt",
+                   s->path, s->end_time, q, dt);
+    sim->num_steps = (long)ceil(q * (1 - 1e-12));
+    if (sim->num_steps < 1) sim->num_steps = 1;
+  }
+
+  /* Output fields. */
+  for (int k = 0; k < s->output.num_fields; ++k)
+    if (!strcmp(s->output.fields[k], "u")) {
+      PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "u", PDK_F64, s->dim));
+      sim->has_u = 1;
+    }
+  for (int k = 0; k < s->output.num_fields; ++k) {
+    if (pdk_particles_field_exists(sim->p, s->output.fields[k])) continue;
+    char names[1024], key[64];
+    field_list(sim->p, names, sizeof names);
+    snprintf(key, sizeof key, "output.fields[%d]", k);
+    err = pdk_scene_error(s, ctx, PDK_ERR_NOT_FOUND, key,
+                          "'%s' is not a field of this simulation; fields: %s%s",
+                          s->output.fields[k], names, sim->has_u ? "" : ", u (displacement)");
+    goto cleanup;
+  }
+  PDK_CALL_GOTO(pdk_sim_update_output_fields(sim));
+  *out = sim;
+  return PDK_SUCCESS;
+cleanup:
+  pdk_sim_destroy(&sim);
+  return err;
+}
+
+void pdk_sim_destroy(pdk_sim **simp) {
+  if (!simp || !*simp) return;
+  pdk_sim *sim = *simp;
+  pdk_explicit_destroy(&sim->e);
+  pdk_model_destroy(&sim->m);
+  pdk_families_destroy(&sim->fam);
+  pdk_particles_destroy(&sim->p);
+  if (sim->bc_fields)
+    for (int k = 0; k < sim->num_bcs; ++k) free(sim->bc_fields[k]);
+  if (sim->reaction_fields)
+    for (int k = 0; k < sim->num_reactions; ++k) free(sim->reaction_fields[k]);
+  free(sim->bc_fields);
+  free(sim->reaction_fields);
+  free(sim->bcs);
+  free(sim);
+  *simp = NULL;
+}
+
+pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim->p; }
+pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
+pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
+pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
+long pdk_sim_num_steps(const pdk_sim *sim) { return sim->num_steps; }
+
+int pdk_sim_update_output_fields(pdk_sim *sim) {
+  if (!sim->has_u) return PDK_SUCCESS;
+  const int dim = pdk_particles_dim(sim->p);
+  const pdk_index n = pdk_particles_count(sim->p);
+  for (int c = 0; c < dim; ++c) {
+    double *u = pdk_particles_field_data(sim->p, "u", c);
+    const double *x = pdk_particles_field_data(sim->p, "x", c);
+    const double *X = pdk_particles_X(sim->p, c);
+    PDK_CHECK(u && x, sim->ctx, PDK_ERR_NOT_FOUND, "the fields u and x must exist to update u");
+    for (pdk_index i = 0; i < n; ++i) u[i] = x[i] - X[i];
+  }
+  return PDK_SUCCESS;
+}
