@@ -410,6 +410,12 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
         ee[a] = exp(2.0 * (ed[a] + theta / 3.0));
       spectral3(V, ee, be);
       congruence3(Finv, be, Cp_new);
+      /* det C_p^-1 = 1 holds in exact arithmetic (isochoric flow); rescale so that its round-off
+       * does not accumulate into the pressure, tau_m = K (ln J + ln det C_p^-1 / 2) */
+      const double scale = 1.0 / cbrt(det3(Cp_new));
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          Cp_new[i][j] *= scale;
       mat_to_voigt(Cp_new, st.cp_inv);
       if (dim == 2) st.cp_inv[3] = st.cp_inv[4] = 0.0;
     }
