@@ -17,6 +17,14 @@ static inline void ju_update(const pdk_jc_params *p, int dim, const double F[3][
   if (err) T_FAIL("pdk_jc_update returned %d", err);
 }
 
+/* Histories equal bit for bit (field by field: struct padding is not compared). */
+static inline int ju_state_equal(const pdk_jc_state *a, const pdk_jc_state *b) {
+  return memcmp(a->cp_inv, b->cp_inv, sizeof a->cp_inv) == 0 &&
+         memcmp(&a->eps_p, &b->eps_p, sizeof(double)) == 0 &&
+         memcmp(&a->damage, &b->damage, sizeof(double)) == 0 &&
+         memcmp(&a->temp_rise, &b->temp_rise, sizeof(double)) == 0 && a->failed == b->failed;
+}
+
 static inline void ju_identity(double M[3][3]) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

@@ -139,7 +139,7 @@ static triax_out run_triax(const pdk_jc_params *p, int dim, double eta, double d
       pdk_jc_state after = st;
       axi_F(dim, la + 0.1, lr - 0.05, F);
       ju_update(p, dim, F, dt, &st, &st, P, &r);
-      T_ASSERT(memcmp(&after, &st, sizeof st) == 0, "%s: failed history changed", what);
+      T_ASSERT(ju_state_equal(&after, &st), "%s: failed history changed", what);
       if (p->failed_mode == PDK_JC_FAILED_ZERO)
         for (int i = 0; i < dim; ++i)
           for (int j = 0; j < dim; ++j)
@@ -184,7 +184,7 @@ static void check_bitwise(const pdk_jc_params *p1, double dt1, const pdk_jc_para
     }
     ju_update(p1, dim, F, dt1, &s1, &s1, P1, &r1);
     ju_update(p2, dim, F, dt2, &s2, &s2, P2, &r2);
-    if (memcmp(&s1, &s2, sizeof s1) || memcmp(P1, P2, sizeof P1) ||
+    if (!ju_state_equal(&s1, &s2) || memcmp(P1, P2, sizeof P1) ||
         memcmp(r1.sigma, r2.sigma, sizeof r1.sigma) || r1.W != r2.W ||
         r1.dW_plastic != r2.dW_plastic)
       T_FAIL("%s: step %d differs: eps_p %.17g vs %.17g, P00 %.17g vs %.17g", what, k, s1.eps_p,
