@@ -538,6 +538,14 @@ cleanup:
   return err;
 }
 
+static int scene_schema_free(pdk_ctx *ctx, const scene_schema *sc, const cyaml_config_t *cfg,
+                             sc_scene *data) {
+  int err = PDK_SUCCESS;
+  PDK_CYAML_CALL_GOTO(ctx, cyaml_free(cfg, &sc->top, data, 0));
+cleanup:
+  return err;
+}
+
 /* ---- checks ------------------------------------------------------------------------------------ */
 
 typedef struct loader {
@@ -761,7 +769,12 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   memcpy(lo->hi, g->box.hi, sizeof lo->hi);
   pdk_index count = 0;
   int err = pdk_lattice_count(ld->ctx, lo, &count);
-  if (err) return pdk_scene_blame(s, ld->ctx, err, "geometry.box");
+  if (err) {
+    /* Too many points: the spacing is the usual culprit; too few: the box. */
+    double cells = 1;
+    for (int a = 0; a < dim; ++a) cells *= (g->box.hi[a] - g->box.lo[a]) / g->spacing;
+    return pdk_scene_blame(s, ld->ctx, err, cells > 1e9 ? "geometry.spacing" : "geometry.box");
+  }
 
   s->num_holes = (int)g->holes_count;
   s->num_notches = (int)g->notches_count;
@@ -1252,12 +1265,17 @@ int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
     memcpy(s->text + pos, yaml, yaml_len + 1);
   }
   *out = s;
-  s = NULL;
 cleanup:
-  if (data) cyaml_free(&cfg, &sc.top, data, 0);
+  if (data) {
+    int free_err = scene_schema_free(ctx, &sc, &cfg, data);
+    if (!err) err = free_err;
+  }
   free(yaml);
   free(file_text);
-  pdk_scene_destroy(&s);
+  if (err) {
+    *out = NULL;
+    pdk_scene_destroy(&s);
+  }
   return err;
 }
 
