@@ -18,6 +18,14 @@
  *   the point fails when D >= D_c and then carries no stress (PDK_JC_FAILED_ZERO) or only a
  *   compressive pressure (PDK_JC_FAILED_COMPRESSION).
  *
+ * Use in a model (correspondence pass 1, per particle i): F_i = N_i K_i^-1 as now; then
+ *   pdk_jc_update(params, dim, F_i, dt, &hist_old[i], &hist_new[i], P_i, &res)
+ * with hist_old the committed histories and hist_new a scratch copy (a trial force pass leaves
+ * hist_old alone; a committing pass swaps or copies them), A_i = P_i K_i^-1, W_i = res.W, and
+ * res.failed_now / hist.failed as the signal to degrade or break the particle's bonds. A nonzero
+ * return (det F <= 0) should be handled like the Neo-Hooke inversion flag. Call
+ * pdk_jc_params_check once at model creation; the update itself does not validate parameters.
+ *
  * Units: any consistent set; the defaults are SI (Pa, kg/m^3, J/(kg K), K, 1/s). Energies are per
  * unit reference volume [energy/length^3] = [pressure].
  *

@@ -55,26 +55,30 @@
  *   q = 0 (a purely hydrostatic state; plastic flow then only happens at T* = 1, where
  *   sigma_y = 0) eta is taken as 0. eps_f <= 0 (only with D1 <= 0 or negative rate/temperature
  *   brackets) fails the point at once.
- *   D_c: the point fails when D >= D_c. The thesis (Bode 2021, section 8.1, text line 2099) lists
- *   D_c = 0.3 among the fracture constants of Broumand & Khoei (2015) "without going into further
- *   detail"; it never defines it. We read it as the critical damage of continuum damage mechanics
- *   (Lemaitre's D_c, the value at which a crack is inserted in Broumand & Khoei's X-FEM model): so
- *   at constant triaxiality (and rate and temperature) the point fails at
- *   eps_p = D_c eps_f(eta), i.e. D_c scales the Johnson-Cook failure strain. (Plain Johnson-Cook
- *   1985 fails at D = 1: set D_c = 1.) Before failure the stress is undamaged (COUPLING_NONE,
- *   Johnson-Cook's own uncoupled model) or tau = (1 - D) tau~ with the return acting on the
- *   effective stress tau~ (COUPLING_EFFECTIVE, strain equivalence). From the step on which
- *   D >= D_c the point carries no stress (FAILED_ZERO) or only a compressive pressure
- *   K ln J for J < 1 (FAILED_COMPRESSION); its history is frozen.
+ *   D_c: the point fails when D >= D_c. The thesis (Bode 2021, section 8.1, text line 2099 of the
+ *   seed) lists D_c = 0.3 with D1..D3 as "fracture constants ... as in Broumand & Khoei (2015)",
+ *   "without going into further detail": it never says what D_c does, and that paper is not
+ *   available here. We read D_c as the critical damage of continuum damage mechanics (the value
+ *   of D at which the material point is considered fractured, as Lemaitre's D_c), the reading
+ *   that makes D_c = 0.3 meaningful next to a Johnson-Cook D that reaches 1 at the Johnson-Cook
+ *   fracture strain. Consequence: at constant triaxiality (rate, temperature) the point fails at
+ *   eps_p = D_c eps_f(eta); D_c scales the Johnson-Cook failure strain (V-JC: "scaled as the
+ *   damage law defines with D_c"). Plain Johnson-Cook 1985 is D_c = 1. Before failure the stress
+ *   is undamaged (COUPLING_NONE, default: Johnson-Cook's own uncoupled model, which is what the
+ *   thesis names) or tau = (1 - D) tau~ with the return acting on the effective stress tau~
+ *   (COUPLING_EFFECTIVE, strain equivalence; the stress then drops to 1 - D_c = 70% before the
+ *   point fails). From the step on which D >= D_c the point carries no stress (FAILED_ZERO) or
+ *   only a compressive pressure K ln J for J < 1 (FAILED_COMPRESSION); its history is frozen.
  *
- * Energies (per reference volume): W = (1 - D) W~ (D = 0 without coupling), dW_plastic =
- *   (1 - (D_n + D)/2) int sigma_y d eps_p over the step (tau~ : d eps_p = q d eps_p for the radial
- * return; the integral of the hardening curve is exact, with the step's rate factor and start
- *   temperature; sigma_y,n+1 d_gamma would be a first-order rectangle rule that overstates the
- *   dissipation by about half a step's hardening times d_gamma, 5e-4 of the work in t080),
- *   dW_damage = W~ (D - D_n) with coupling, plus, on the failing step, the stored energy before
- *   failure minus what the failed point keeps. Work P:dF = dW + dW_plastic + dW_damage to first
- *   order in the step.
+ * Energies (per reference volume): W = (1 - D) W~ (D = 0 without coupling);
+ *   dW_plastic = (1 - (D_n + D)/2) int sigma_y d eps_p over the step (tau~ : d eps_p = q d eps_p
+ *   for the radial return; the integral of the hardening curve is exact, with the step's rate
+ *   factor and start temperature; sigma_y,n+1 d_gamma would be a first-order rectangle rule that
+ *   overstates the dissipation by about half a step's hardening times d_gamma, 5e-4 of the work
+ *   in t080); dW_damage = W~ (D - D_n) with coupling, plus, on the failing step, the stored
+ *   energy before failure minus what the failed point keeps. Work P:dF = dW + dW_plastic +
+ *   dW_damage to second order per step without coupling (t080: 2.7e-6 of the work over 500
+ *   steps, the trapezoid error of the work integral itself).
  *
  * Contract: pure; no allocation, no globals, no OpenMP. Errors are returned, not reported; the
  * caller (a model driver) names the particle.
