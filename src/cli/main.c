@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "pdk/pdk.h"
 
 static const char *usage_main =
@@ -11,6 +12,8 @@ static const char *usage_main =
     "pdk: peridynamics solid mechanics with ductile fracture.\n"
     "\n"
     "commands:\n"
+    "  run       run a scene: pdk run SCENE [-o DIR] [--threads N] [--set KEY=VALUE ...]\n"
+    "  check     validate a scene without running it\n"
     "  info      print version, build flags, SIMD features, topology and thread binding\n"
     "\n"
     "options:\n"
@@ -83,6 +86,8 @@ int main(int argc, char **argv) {
     return 0;
   }
   if (!strcmp(cmd, "info")) return cmd_info(argc - 2, argv + 2);
+  if (!strcmp(cmd, "run")) return pdk_cli_run(argc - 2, argv + 2);
+  if (!strcmp(cmd, "check")) return pdk_cli_check(argc - 2, argv + 2);
   fprintf(stderr, "pdk: unknown command '%s'\n\n%s", cmd, usage_main);
   return 2;
 }

@@ -1,0 +1,327 @@
+/* `pdk run` and `pdk check`: load a scene, build the simulation, run it with progress, write the
+ * output files, checkpoint on request and on Ctrl-C. */
+#include <errno.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "pdk/output.h"
+#include "pdk/scene.h"
+
+static volatile sig_atomic_t interrupted = 0;
+static void on_sigint(int sig) {
+  (void)sig;
+  interrupted = 1;
+}
+
+const char *pdk_cli_usage_run =
+    "usage: pdk run SCENE [options]\n"
+    "\n"
+    "Runs the scene: builds the particles, families, model and solver it describes, advances the\n"
+    "solver, and writes the results to DIR (default out/<scene name>):\n"
+    "  <name>.h5 + <name>.xmf   fields for ParaView (open the .xmf)\n"
+    "  <name>_history.csv       energies, reactions, broken bonds per history step\n"
+    "  <name>_history.png       plot of the histories (when gnuplot is installed)\n"
+    "  <name>_checkpoint.h5     state for --restart (at checkpoint_interval, the end, and Ctrl-C)\n"
+    "Files are written under temporary names and renamed when complete.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output DIR     output folder (created if missing)\n"
+    "  --threads N          threads (default: solver.threads, PDK_NUM_THREADS, one per core)\n"
+    "  --set KEY=VALUE      override a scene key, e.g. --set geometry.spacing=1e-3 (repeatable);\n"
+    "                       overrides are validated like the file\n"
+    "  --restart FILE       continue from a checkpoint of the same scene\n"
+    "  -q, --quiet          no progress line, only errors and the summary\n"
+    "  -h, --help           show this help\n"
+    "\n"
+    "exit status: 0 done, 1 the run failed, 2 bad command line or scene, 130 interrupted (a\n"
+    "checkpoint was written).\n";
+
+const char *pdk_cli_usage_check =
+    "usage: pdk check SCENE [--set KEY=VALUE ...]\n"
+    "\n"
+    "Validates the scene and builds the simulation (particles, sets, families, model, solver and\n"
+    "its time step) without running it or writing anything. Prints what the run would be.\n"
+    "exit status: 0 valid, 2 invalid (the message names file, line and key).\n";
+
+typedef struct run_args {
+  const char *scene;
+  const char *outdir;
+  const char *restart;
+  const char *overrides[64];
+  int num_overrides;
+  int threads;
+  int quiet;
+} run_args;
+
+static int parse_args(int argc, char **argv, run_args *a, const char *usage, int allow_run_opts) {
+  memset(a, 0, sizeof *a);
+  for (int k = 0; k < argc; ++k) {
+    const char *s = argv[k];
+    int has_next = k + 1 < argc;
+    if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
+      fputs(usage, stdout);
+      return -1;
+    } else if (!strcmp(s, "--set") && has_next) {
+      if (a->num_overrides == 64) {
+        fprintf(stderr, "pdk: at most 64 --set overrides\n");
+        return 2;
+      }
+      a->overrides[a->num_overrides++] = argv[++k];
+    } else if (allow_run_opts && (!strcmp(s, "-o") || !strcmp(s, "--output")) && has_next) {
+      a->outdir = argv[++k];
+    } else if (allow_run_opts && !strcmp(s, "--restart") && has_next) {
+      a->restart = argv[++k];
+    } else if (allow_run_opts && !strcmp(s, "--threads") && has_next) {
+      char *end = NULL;
+      long v = strtol(argv[++k], &end, 10);
+      if (!argv[k][0] || *end || v < 1 || v > 4096) {
+        fprintf(stderr, "pdk: --threads '%s' is not a thread count; use an integer from 1 to 4096\n", argv[k]);
+        return 2;
+      }
+      a->threads = (int)v;
+    } else if (allow_run_opts && (!strcmp(s, "-q") || !strcmp(s, "--quiet"))) {
+      a->quiet = 1;
+    } else if (s[0] == '-') {
+      fprintf(stderr, "pdk: unknown or incomplete option '%s'\n\n%s", s, usage);
+      return 2;
+    } else if (!a->scene) {
+      a->scene = s;
+    } else {
+      fprintf(stderr, "pdk: more than one scene given ('%s' and '%s')\n", a->scene, s);
+      return 2;
+    }
+  }
+  if (!a->scene) {
+    fprintf(stderr, "pdk: no scene file given\n\n%s", usage);
+    return 2;
+  }
+  return 0;
+}
+
+static int mkdir_p(const char *path) {
+  char buf[4096];
+  size_t len = strlen(path);
+  if (len == 0 || len >= sizeof buf) return -1;
+  memcpy(buf, path, len + 1);
+  for (char *q = buf + 1; *q; ++q) {
+    if (*q != '/') continue;
+    *q = '\0';
+    if (mkdir(buf, 0777) && errno != EEXIST) return -1;
+    *q = '/';
+  }
+  if (mkdir(buf, 0777) && errno != EEXIST) return -1;
+  return 0;
+}
+
+static void fmt_duration(char *buf, size_t len, double s) {
+  if (!isfinite(s) || s < 0) snprintf(buf, len, "--");
+  else if (s < 60) snprintf(buf, len, "%.1fs", s);
+  else if (s < 3600) snprintf(buf, len, "%dm%02ds", (int)(s / 60), (int)fmod(s, 60));
+  else snprintf(buf, len, "%dh%02dm", (int)(s / 3600), (int)fmod(s / 60, 60));
+}
+
+/* Loads the scene and builds the simulation; prints the error and returns the exit status. */
+static int load_and_build(pdk_ctx *ctx, const run_args *a, pdk_scene **scene, pdk_sim **sim) {
+  if (pdk_scene_load(ctx, a->scene, a->overrides, a->num_overrides, scene)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    return 2;
+  }
+  if (!a->threads && pdk_scene_threads(*scene) > 0 &&
+      pdk_ctx_set_num_threads(ctx, pdk_scene_threads(*scene))) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    return 2;
+  }
+  if (pdk_sim_create(ctx, *scene, sim)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    return 2;
+  }
+  return 0;
+}
+
+static int make_ctx(int threads, pdk_ctx **ctx) {
+  pdk_ctx_opts o = pdk_ctx_opts_default();
+  o.num_threads = threads;
+  char why[512];
+  if (pdk_ctx_create(&o, ctx, why, sizeof why)) {
+    fprintf(stderr, "pdk: %s\n", why);
+    return 2;
+  }
+  return 0;
+}
+
+static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
+  pdk_particles *p = pdk_sim_particles(sim);
+  pdk_families *f = pdk_sim_families(sim);
+  pdk_explicit *e = pdk_sim_explicit(sim);
+  const pdk_model_opts *mo = pdk_model_opts_get(pdk_sim_model(sim));
+  fprintf(out, "scene %s (%s): %d-D, %d particles, %lld bonds (%.1f per particle), model %s\n",
+          pdk_scene_name(scene), pdk_scene_path(scene), pdk_particles_dim(p),
+          (int)pdk_particles_count(p), (long long)pdk_families_num_bonds(f),
+          (double)pdk_families_num_bonds(f) / pdk_particles_count(p), pdk_model_kind_name(mo->kind));
+  fprintf(out, "explicit: dt %.4g (stable estimate %.4g), %ld steps to t = %.4g, %d thread(s)\n",
+          pdk_explicit_dt(e), pdk_explicit_stable_dt(e), pdk_sim_num_steps(sim),
+          pdk_sim_num_steps(sim) * pdk_explicit_dt(e), pdk_ctx_num_threads(ctx));
+}
+
+int pdk_cli_check(int argc, char **argv) {
+  run_args a;
+  int rc = parse_args(argc, argv, &a, pdk_cli_usage_check, 0);
+  if (rc) return rc < 0 ? 0 : rc;
+  pdk_ctx *ctx = NULL;
+  pdk_scene *scene = NULL;
+  pdk_sim *sim = NULL;
+  if ((rc = make_ctx(0, &ctx))) return rc;
+  rc = load_and_build(ctx, &a, &scene, &sim);
+  if (!rc) {
+    describe(stdout, ctx, scene, sim);
+    printf("ok: %s is valid\n", a.scene);
+  }
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&scene);
+  pdk_ctx_destroy(&ctx);
+  return rc;
+}
+
+int pdk_cli_run(int argc, char **argv) {
+  run_args a;
+  int rc = parse_args(argc, argv, &a, pdk_cli_usage_run, 1);
+  if (rc) return rc < 0 ? 0 : rc;
+  pdk_ctx *ctx = NULL;
+  pdk_scene *scene = NULL;
+  pdk_sim *sim = NULL;
+  pdk_output *out = NULL;
+  char dir[4096], ckpt[4200];
+  double wall0 = pdk_wtime();
+  if ((rc = make_ctx(a.threads, &ctx))) return rc;
+  if ((rc = load_and_build(ctx, &a, &scene, &sim))) goto done;
+  pdk_explicit *e = pdk_sim_explicit(sim);
+  pdk_particles *p = pdk_sim_particles(sim);
+  const pdk_scene_output *so = pdk_scene_output_get(scene);
+  if (a.outdir) snprintf(dir, sizeof dir, "%s", a.outdir);
+  else snprintf(dir, sizeof dir, "out/%s", pdk_scene_name(scene));
+  snprintf(ckpt, sizeof ckpt, "%s/%s_checkpoint.h5", dir, pdk_scene_name(scene));
+  if (mkdir_p(dir)) {
+    fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n", dir, strerror(errno));
+    rc = 1;
+    goto done;
+  }
+  if (a.restart && pdk_checkpoint_read(ctx, a.restart, e)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    rc = 2;
+    goto done;
+  }
+  if (!a.quiet) describe(stderr, ctx, scene, sim);
+  {
+    pdk_output_opts oo;
+    memset(&oo, 0, sizeof oo);
+    oo.dir = dir;
+    oo.name = pdk_scene_name(scene);
+    oo.scene_text = pdk_scene_text(scene);
+    oo.reaction_sets = so->reaction_sets;
+    oo.num_reaction_sets = so->num_reaction_sets;
+    oo.plot = 1;
+    if (pdk_output_open(ctx, &oo, p, &out)) {
+      fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+      rc = 1;
+      goto done;
+    }
+  }
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_sigint;
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+
+  const long total = pdk_sim_num_steps(sim);
+  const long start = pdk_explicit_step(e);
+  const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
+  const long field_every = so->field_interval;
+  const long ckpt_every = so->checkpoint_interval;
+  const int tty = !a.quiet && isatty(STDERR_FILENO);
+  double last_print = 0.0;
+  pdk_history h;
+  int err = pdk_explicit_run(e, 0, &h);
+  if (!err) err = pdk_output_write_history(out, &h);
+  if (!err) err = pdk_sim_update_output_fields(sim);
+  if (!err) err = pdk_output_write_fields(out, p, h.step, h.time, so->fields, so->num_fields);
+  double run0 = pdk_wtime();
+  while (!err && pdk_explicit_step(e) < total && !interrupted) {
+    long s = pdk_explicit_step(e);
+    long next = total;
+    long cand[3] = {(s / hist_every + 1) * hist_every,
+                    field_every > 0 ? (s / field_every + 1) * field_every : total,
+                    ckpt_every > 0 ? (s / ckpt_every + 1) * ckpt_every : total};
+    for (int k = 0; k < 3; ++k) next = cand[k] < next ? cand[k] : next;
+    /* advance in chunks of at most 100 steps so Ctrl-C and the progress line stay responsive */
+    long chunk = next - s < 100 ? next - s : 100;
+    if ((err = pdk_explicit_run(e, chunk, &h))) break;
+    s = pdk_explicit_step(e);
+    if (s % hist_every == 0 || s == total) err = pdk_output_write_history(out, &h);
+    if (!err && ((field_every > 0 && s % field_every == 0) || s == total)) {
+      err = pdk_sim_update_output_fields(sim);
+      if (!err) err = pdk_output_write_fields(out, p, s, h.time, so->fields, so->num_fields);
+    }
+    if (!err && ckpt_every > 0 && s % ckpt_every == 0 && s < total)
+      err = pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene));
+    double now = pdk_wtime();
+    if (tty && (now - last_print > 0.25 || s == total)) {
+      double el = now - run0, frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
+      char w[32], eta[32];
+      fmt_duration(w, sizeof w, now - wall0);
+      fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
+      fprintf(stderr, "\rstep %ld/%ld  t %.4g  wall %s  ETA %s  broken %lld  E %.4g   ", s, total,
+              h.time, w, eta, (long long)h.broken, h.kinetic + h.strain);
+      last_print = now;
+    }
+  }
+  if (tty) fputc('\n', stderr);
+  if (err) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    pdk_output_close(&out, 0);
+    rc = 1;
+    goto done;
+  }
+  if (interrupted) {
+    if (pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene))) {
+      fprintf(stderr, "pdk: interrupted, and the checkpoint failed: %s\n", pdk_ctx_error_message(ctx));
+      pdk_output_close(&out, 0);
+      rc = 1;
+      goto done;
+    }
+    /* The output holds every step written so far; a checkpoint continues it. */
+    pdk_output_close(&out, 1);
+    fprintf(stderr, "pdk: interrupted at step %ld of %ld; continue with\n  pdk run %s --restart %s\n",
+            pdk_explicit_step(e), total, a.scene, ckpt);
+    rc = 130;
+    goto done;
+  }
+  if (pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene)) || pdk_output_close(&out, 1)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    pdk_output_close(&out, 0);
+    rc = 1;
+    goto done;
+  }
+  {
+    double wall = pdk_wtime() - wall0, run = pdk_wtime() - run0;
+    long steps = pdk_explicit_step(e) - start;
+    double bonds = (double)pdk_families_num_bonds(pdk_sim_families(sim)) * (double)steps;
+    fprintf(stderr,
+            "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f MiB, "
+            "%lld bonds broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
+            steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
+            (long long)pdk_model_num_broken(pdk_sim_model(sim)), dir, pdk_scene_name(scene),
+            pdk_scene_name(scene));
+  }
+done:
+  pdk_output_close(&out, 0);
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&scene);
+  pdk_ctx_destroy(&ctx);
+  return rc;
+}

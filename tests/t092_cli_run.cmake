@@ -1,0 +1,97 @@
+# The pdk command end to end: `pdk run` writes the HDF5, XDMF, CSV and checkpoint (no .part file
+# left), `pdk check` validates without writing, a restarted run ends bitwise where an uninterrupted
+# one ends, Ctrl-C stops cleanly with a checkpoint and exit 130, bad scenes and overrides exit 2
+# with file:line:key messages.
+# labels: unit
+cmake_minimum_required(VERSION 3.25)
+set(scene ${PDK_SOURCE_DIR}/tests/scenes/t092_bar.yaml)
+file(REMOVE_RECURSE ${PDK_TEST_DIR})
+file(MAKE_DIRECTORY ${PDK_TEST_DIR})
+
+function(run expect_rc)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  WORKING_DIRECTORY ${PDK_TEST_DIR})
+  if(NOT rc STREQUAL "${expect_rc}")
+    message(FATAL_ERROR "${ARGN}: exit ${rc}, expected ${expect_rc}\n${out}${err}")
+  endif()
+  set(run_out "${out}${err}" PARENT_SCOPE)
+endfunction()
+
+function(last_row csv var)
+  file(STRINGS ${csv} rows)
+  list(GET rows -1 row)
+  set(${var} "${row}" PARENT_SCOPE)
+endfunction()
+
+# check: valid scene, nothing written
+run(0 ${PDK_CLI} check ${scene})
+if(NOT run_out MATCHES "ok: .*t092_bar.yaml is valid" OR NOT run_out MATCHES "particles")
+  message(FATAL_ERROR "check output: ${run_out}")
+endif()
+file(GLOB written ${PDK_TEST_DIR}/*)
+if(written)
+  message(FATAL_ERROR "pdk check wrote files: ${written}")
+endif()
+
+# run: all files, no .part left
+run(0 ${PDK_CLI} run ${scene} -o full -q)
+foreach(f bar.h5 bar.xmf bar_history.csv bar_checkpoint.h5)
+  if(NOT EXISTS ${PDK_TEST_DIR}/full/${f})
+    message(FATAL_ERROR "pdk run did not write ${f}")
+  endif()
+endforeach()
+file(GLOB parts ${PDK_TEST_DIR}/full/*.part)
+if(parts)
+  message(FATAL_ERROR "temporary files left: ${parts}")
+endif()
+last_row(${PDK_TEST_DIR}/full/bar_history.csv full_row)
+if(NOT full_row MATCHES "^400,")
+  message(FATAL_ERROR "last history row is not step 400: ${full_row}")
+endif()
+
+# restart: half the steps, then continue from its checkpoint to the end: the same last row, bit
+# for bit (rows print doubles with 17 significant digits).
+run(0 ${PDK_CLI} run ${scene} -o half -q --set solver.steps=200)
+run(0 ${PDK_CLI} run ${scene} -o rest -q --restart ${PDK_TEST_DIR}/half/bar_checkpoint.h5)
+last_row(${PDK_TEST_DIR}/rest/bar_history.csv rest_row)
+if(NOT rest_row STREQUAL full_row)
+  message(FATAL_ERROR "restarted run differs:\n  full: ${full_row}\n  rest: ${rest_row}")
+endif()
+# the same with 2 threads on the continuation
+run(0 ${PDK_CLI} run ${scene} -o rest2 -q --threads 2 --restart ${PDK_TEST_DIR}/half/bar_checkpoint.h5)
+last_row(${PDK_TEST_DIR}/rest2/bar_history.csv rest2_row)
+if(NOT rest2_row STREQUAL full_row)
+  message(FATAL_ERROR "restarted run on 2 threads differs:\n  full: ${full_row}\n  rest: ${rest2_row}")
+endif()
+
+# Ctrl-C: a long run interrupted by SIGINT ends with 130, a checkpoint and finished files.
+find_program(TIMEOUT timeout)
+if(TIMEOUT)
+  run(130 ${TIMEOUT} --preserve-status -s INT 2 ${PDK_CLI} run ${scene} -o intr -q --set solver.steps=100000000)
+  if(NOT run_out MATCHES "interrupted at step [0-9]+ .*--restart")
+    message(FATAL_ERROR "no interruption message: ${run_out}")
+  endif()
+  foreach(f bar.h5 bar.xmf bar_history.csv bar_checkpoint.h5)
+    if(NOT EXISTS ${PDK_TEST_DIR}/intr/${f})
+      message(FATAL_ERROR "interrupted run did not leave ${f}")
+    endif()
+  endforeach()
+endif()
+
+# bad input: exit 2, file:line: key messages, nothing written
+run(2 ${PDK_CLI} run ${scene} -o bad --set geometry.spacing=-1)
+if(NOT run_out MATCHES "--set geometry.spacing=-1.*geometry.spacing: must be > 0")
+  message(FATAL_ERROR "bad override message: ${run_out}")
+endif()
+file(WRITE ${PDK_TEST_DIR}/typo.yaml "dimension: 2\ngeometry:\n  spacig: 1e-3\n")
+run(2 ${PDK_CLI} check ${PDK_TEST_DIR}/typo.yaml)
+if(NOT run_out MATCHES "typo.yaml:3: geometry.spacig: ")
+  message(FATAL_ERROR "unknown key message: ${run_out}")
+endif()
+if(EXISTS ${PDK_TEST_DIR}/bad)
+  message(FATAL_ERROR "a rejected run created its output folder")
+endif()
+run(2 ${PDK_CLI} run)
+run(2 ${PDK_CLI} run ${scene} --frobnicate)
+run(0 ${PDK_CLI} run --help)
+run(0 ${PDK_CLI} check --help)
