@@ -32,7 +32,8 @@
 #define SC_NAME_MAX (PDK_FIELD_NAME_MAX - 8)
 #define KEY_MAX 256
 
-/* ---- data loaded by libcyaml ------------------------------------------------------------------- */
+/* ---- data loaded by libcyaml -------------------------------------------------------------------
+ */
 
 typedef struct sc_box {
   double lo[3], hi[3];
@@ -118,7 +119,8 @@ typedef struct sc_scene {
   sc_output output;
 } sc_scene;
 
-/* ---- the schema -------------------------------------------------------------------------------- */
+/* ---- the schema --------------------------------------------------------------------------------
+ */
 
 static const cyaml_strval_t lattice_names[] = {
     {"square", PDK_LATTICE_SQUARE}, {"hex", PDK_LATTICE_HEX}, {"cubic", PDK_LATTICE_CUBIC}};
@@ -138,9 +140,11 @@ static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
                                                {"velocity", PDK_BC_VELOCITY},
                                                {"body_force", PDK_BC_BODY_FORCE}};
-static const cyaml_strval_t function_names[] = {
-    {"constant", PDK_TFUN_CONSTANT}, {"linear", PDK_TFUN_LINEAR}, {"ramp", PDK_TFUN_RAMP},
-    {"smooth", PDK_TFUN_SMOOTH},     {"sine", PDK_TFUN_SINE}};
+static const cyaml_strval_t function_names[] = {{"constant", PDK_TFUN_CONSTANT},
+                                                {"linear", PDK_TFUN_LINEAR},
+                                                {"ramp", PDK_TFUN_RAMP},
+                                                {"smooth", PDK_TFUN_SMOOTH},
+                                                {"sine", PDK_TFUN_SINE}};
 static const cyaml_strval_t solver_names[] = {{"explicit", 0}};
 
 #define N_OF(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
@@ -161,7 +165,8 @@ typedef struct scene_schema {
 
 static void field_add(cyaml_schema_field_t *fields, cyaml_schema_field_t f) {
   int i = 0;
-  while (fields[i].key) ++i;
+  while (fields[i].key)
+    ++i;
   /* SC_MAX_FIELDS - 1 entries at most, leaving the zeroed terminator (CYAML_FIELD_END) */
   if (i < SC_MAX_FIELDS - 1) fields[i] = f;
 }
@@ -170,11 +175,14 @@ static void field_add(cyaml_schema_field_t *fields, cyaml_schema_field_t f) {
 
 /* The fields of a region kind, shared by holes, notches and sets. */
 static void schema_region_kinds(scene_schema *sc, cyaml_schema_field_t *f) {
-  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("box", OPT_PTR, sc_region, box, sc->box));
-  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("disk", OPT_PTR, sc_region, disk, sc->ball));
-  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("ball", OPT_PTR, sc_region, ball, sc->ball));
-  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("halfspace", OPT_PTR, sc_region, halfspace,
-                                                             sc->halfspace));
+  field_add(f,
+            (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("box", OPT_PTR, sc_region, box, sc->box));
+  field_add(
+      f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("disk", OPT_PTR, sc_region, disk, sc->ball));
+  field_add(
+      f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("ball", OPT_PTR, sc_region, ball, sc->ball));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("halfspace", OPT_PTR, sc_region,
+                                                             halfspace, sc->halfspace));
   field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("polygon", OPT_PTR, sc_region, polygon,
                                                              sc->polygon));
 }
@@ -187,7 +195,8 @@ static void schema_build(scene_schema *sc, int dim) {
   /* A point inside a list: libcyaml steps through a sequence by the sequence value's data_size
    * (the CYAML_FIELD_* macros set it to the entry size), so a point's data_size is one double,
    * and a list of points, declared double (*)[3], steps by sizeof(double[3]). */
-  sc->point = (cyaml_schema_value_t){CYAML_VALUE_SEQUENCE_FIXED(CYAML_FLAG_DEFAULT, double, &sc->num, d)};
+  sc->point =
+      (cyaml_schema_value_t){CYAML_VALUE_SEQUENCE_FIXED(CYAML_FLAG_DEFAULT, double, &sc->num, d)};
 
   ADD(box, CYAML_FIELD_SEQUENCE_FIXED("lo", 0, sc_box, lo, &sc->num, d));
   ADD(box, CYAML_FIELD_SEQUENCE_FIXED("hi", 0, sc_box, hi, &sc->num, d));
@@ -195,7 +204,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(ball, CYAML_FIELD_FLOAT("radius", 0, sc_ball, radius));
   ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("point", 0, sc_halfspace, point, &sc->num, d));
   ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("normal", 0, sc_halfspace, normal, &sc->num, d));
-  ADD(polygon, CYAML_FIELD_SEQUENCE("vertices", CYAML_FLAG_POINTER, sc_polygon, vertices, &sc->point, 3, 4096));
+  ADD(polygon, CYAML_FIELD_SEQUENCE("vertices", CYAML_FLAG_POINTER, sc_polygon, vertices,
+                                    &sc->point, 3, 4096));
 
   schema_region_kinds(sc, sc->hole);
   schema_region_kinds(sc, sc->notch);
@@ -204,24 +214,33 @@ static void schema_build(scene_schema *sc, int dim) {
   schema_region_kinds(sc, sc->set);
   ADD(set, CYAML_FIELD_BOOL("invert", OPT, sc_region, invert));
   /* Holes, notches and sets load into the same struct; each accepts its own keys. */
-  sc->region_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->hole)};
-  sc->notch_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->notch)};
-  sc->set_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->set)};
+  sc->region_entry =
+      (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->hole)};
+  sc->notch_entry =
+      (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->notch)};
+  sc->set_entry =
+      (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->set)};
 
   ADD(precrack, CYAML_FIELD_SEQUENCE("segment", OPT_PTR, sc_precrack, segment, &sc->point, 2, 2));
-  ADD(precrack, CYAML_FIELD_SEQUENCE("polygon", OPT_PTR, sc_precrack, polygon, &sc->point, 3, 4096));
-  sc->precrack_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_precrack, sc->precrack)};
+  ADD(precrack,
+      CYAML_FIELD_SEQUENCE("polygon", OPT_PTR, sc_precrack, polygon, &sc->point, 3, 4096));
+  sc->precrack_entry =
+      (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_precrack, sc->precrack)};
 
-  ADD(geometry, CYAML_FIELD_ENUM("lattice", ENUM_FLAGS, sc_geometry, lattice, lattice_names, N_OF(lattice_names)));
+  ADD(geometry, CYAML_FIELD_ENUM("lattice", ENUM_FLAGS, sc_geometry, lattice, lattice_names,
+                                 N_OF(lattice_names)));
   ADD(geometry, CYAML_FIELD_FLOAT("spacing", 0, sc_geometry, spacing));
   ADD(geometry, CYAML_FIELD_FLOAT("horizon_factor", OPT, sc_geometry, horizon_factor));
   ADD(geometry, CYAML_FIELD_FLOAT("jitter", OPT, sc_geometry, jitter));
   ADD(geometry, CYAML_FIELD_FLOAT("seed", OPT, sc_geometry, seed));
   ADD(geometry, CYAML_FIELD_FLOAT("thickness", OPT, sc_geometry, thickness));
   ADD(geometry, CYAML_FIELD_MAPPING("box", 0, sc_geometry, box, sc->box));
-  ADD(geometry, CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
-  ADD(geometry, CYAML_FIELD_SEQUENCE("notches", OPT_PTR, sc_geometry, notches, &sc->notch_entry, 0, 10000));
-  ADD(geometry, CYAML_FIELD_SEQUENCE("precracks", OPT_PTR, sc_geometry, precracks, &sc->precrack_entry, 0, 10000));
+  ADD(geometry,
+      CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
+  ADD(geometry,
+      CYAML_FIELD_SEQUENCE("notches", OPT_PTR, sc_geometry, notches, &sc->notch_entry, 0, 10000));
+  ADD(geometry, CYAML_FIELD_SEQUENCE("precracks", OPT_PTR, sc_geometry, precracks,
+                                     &sc->precrack_entry, 0, 10000));
 
   ADD(material, CYAML_FIELD_FLOAT("density", 0, sc_material, density));
   ADD(material, CYAML_FIELD_FLOAT("youngs_modulus", OPT, sc_material, youngs_modulus));
@@ -230,30 +249,38 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(material, CYAML_FIELD_FLOAT("shear_modulus", OPT, sc_material, shear_modulus));
 
   ADD(model, CYAML_FIELD_ENUM("kind", ENUM_FLAGS, sc_model, kind, kind_names, N_OF(kind_names)));
-  ADD(model, CYAML_FIELD_ENUM("influence", ENUM_FLAGS, sc_model, influence, influence_names, N_OF(influence_names)));
+  ADD(model, CYAML_FIELD_ENUM("influence", ENUM_FLAGS, sc_model, influence, influence_names,
+                              N_OF(influence_names)));
   ADD(model, CYAML_FIELD_FLOAT("gaussian_width", OPT, sc_model, gaussian_width));
-  ADD(model, CYAML_FIELD_ENUM("stabilization", ENUM_FLAGS, sc_model, stabilization, stab_names, N_OF(stab_names)));
-  ADD(model, CYAML_FIELD_FLOAT("stabilization_coefficient", OPT, sc_model, stabilization_coefficient));
+  ADD(model, CYAML_FIELD_ENUM("stabilization", ENUM_FLAGS, sc_model, stabilization, stab_names,
+                              N_OF(stab_names)));
+  ADD(model,
+      CYAML_FIELD_FLOAT("stabilization_coefficient", OPT, sc_model, stabilization_coefficient));
   ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, law_names, N_OF(law_names)));
-  ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names, N_OF(precision_names)));
+  ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names,
+                              N_OF(precision_names)));
   ADD(model, CYAML_FIELD_FLOAT("critical_stretch", OPT, sc_model, critical_stretch));
   ADD(model, CYAML_FIELD_FLOAT("alpha", OPT, sc_model, alpha));
   ADD(model, CYAML_FIELD_BOOL("partial_volume", OPT, sc_model, partial_volume));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
-  ADD(bc, CYAML_FIELD_ENUM("type", CYAML_FLAG_STRICT, sc_bc, type, bc_type_names, N_OF(bc_type_names)));
+  ADD(bc,
+      CYAML_FIELD_ENUM("type", CYAML_FLAG_STRICT, sc_bc, type, bc_type_names, N_OF(bc_type_names)));
   ADD(bc, CYAML_FIELD_FLOAT("x", OPT, sc_bc, x));
   ADD(bc, CYAML_FIELD_FLOAT("y", OPT, sc_bc, y));
   ADD(bc, CYAML_FIELD_FLOAT("z", OPT, sc_bc, z));
-  ADD(bc, CYAML_FIELD_ENUM("function", ENUM_FLAGS, sc_bc, function, function_names, N_OF(function_names)));
+  ADD(bc, CYAML_FIELD_ENUM("function", ENUM_FLAGS, sc_bc, function, function_names,
+                           N_OF(function_names)));
   ADD(bc, CYAML_FIELD_FLOAT("duration", OPT, sc_bc, duration));
   ADD(bc, CYAML_FIELD_FLOAT("period", OPT, sc_bc, period));
   sc->bc_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_bc, sc->bc)};
 
   ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_initial, velocity, &sc->num, d));
-  ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity_gradient", OPT, sc_initial, velocity_gradient, &sc->point, d));
+  ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity_gradient", OPT, sc_initial, velocity_gradient,
+                                          &sc->point, d));
 
-  ADD(solver, CYAML_FIELD_ENUM("type", ENUM_FLAGS, sc_solver, type, solver_names, N_OF(solver_names)));
+  ADD(solver,
+      CYAML_FIELD_ENUM("type", ENUM_FLAGS, sc_solver, type, solver_names, N_OF(solver_names)));
   ADD(solver, CYAML_FIELD_FLOAT("end_time", OPT, sc_solver, end_time));
   ADD(solver, CYAML_FIELD_FLOAT("steps", OPT, sc_solver, steps));
   ADD(solver, CYAML_FIELD_FLOAT("dt", OPT, sc_solver, dt));
@@ -274,14 +301,17 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(scene, CYAML_FIELD_MAPPING("material", 0, sc_scene, material, sc->material));
   ADD(scene, CYAML_FIELD_MAPPING("model", OPT, sc_scene, model, sc->model));
   ADD(scene, CYAML_FIELD_SEQUENCE("sets", OPT_PTR, sc_scene, sets, &sc->set_entry, 0, 10000));
-  ADD(scene, CYAML_FIELD_SEQUENCE("boundary_conditions", OPT_PTR, sc_scene, boundary_conditions, &sc->bc_entry, 0, 64));
-  ADD(scene, CYAML_FIELD_MAPPING("initial_conditions", OPT, sc_scene, initial_conditions, sc->initial));
+  ADD(scene, CYAML_FIELD_SEQUENCE("boundary_conditions", OPT_PTR, sc_scene, boundary_conditions,
+                                  &sc->bc_entry, 0, 64));
+  ADD(scene,
+      CYAML_FIELD_MAPPING("initial_conditions", OPT, sc_scene, initial_conditions, sc->initial));
   ADD(scene, CYAML_FIELD_MAPPING("solver", 0, sc_scene, solver, sc->solver));
   ADD(scene, CYAML_FIELD_MAPPING("output", OPT, sc_scene, output, sc->output));
   sc->top = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, sc_scene, sc->scene)};
 }
 
-/* ---- schema lookup by key path (for messages) -------------------------------------------------- */
+/* ---- schema lookup by key path (for messages) --------------------------------------------------
+ */
 
 /* The schema value at key path `path` (segments "a.b[2].c"), or NULL. */
 static const cyaml_schema_value_t *schema_at(const cyaml_schema_value_t *v, const char *path) {
@@ -371,7 +401,8 @@ static void type_hint(const cyaml_schema_value_t *v, char *buf, size_t len) {
   }
 }
 
-/* ---- libcyaml log capture and translation ------------------------------------------------------ */
+/* ---- libcyaml log capture and translation ------------------------------------------------------
+ */
 
 typedef struct cy_log {
   char text[4096];
@@ -391,7 +422,8 @@ static void cy_log_fn(cyaml_log_t level, void *ctx, const char *fmt, va_list arg
  * innermost first: "  in mapping field 'k' (line ...)", "  in sequence entry 'n' (...)", "  in
  * mapping (...)". While an entry is being loaded, n counts it (1-based); for "Insufficient" and
  * "Excessive entries" n is the count reached, and the error is about the sequence itself. */
-static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc, const cy_log *log) {
+static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc,
+                        const cy_log *log) {
   char msg[512] = "";
   char frames[32][KEY_MAX];
   int is_entry[32];
@@ -418,7 +450,8 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
     }
   }
   if (!msg[0]) return 0;
-  int about_sequence = !strncmp(msg, "Insufficient entries", 20) || !strncmp(msg, "Excessive entries", 17);
+  int about_sequence =
+      !strncmp(msg, "Insufficient entries", 20) || !strncmp(msg, "Excessive entries", 17);
   /* For a missing key, the innermost frame is the last field libcyaml saw in that mapping (or the
    * first field of an empty one): not part of the mapping's path. */
   const int missing = !strncmp(msg, "Missing required mapping field", 30);
@@ -465,8 +498,10 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
   }
   if (!strncmp(msg, "Invalid FLOAT value", 19) || !strncmp(msg, "Invalid INT value", 17) ||
       !strncmp(msg, "Invalid UINT value", 18))
-    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be a number, got '%s'; write for "
-                           "example 0.5, 2e-3 or 200e9", got ? got : arg);
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path,
+                           "must be a number, got '%s'; write for "
+                           "example 0.5, 2e-3 or 200e9",
+                           got ? got : arg);
   if (!strncmp(msg, "Invalid BOOL value", 18))
     return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be true or false, got '%s'",
                            got ? got : arg);
@@ -509,7 +544,8 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
     if (is_point)
       return pdk_scene_error(s, ctx, PDK_ERR_ARG, path,
                              "must have %u numbers, got %u; a point has one number per axis "
-                             "(dimension is %d)", want, count, s->dim);
+                             "(dimension is %d)",
+                             want, count, s->dim);
     if (v && v->type == CYAML_SEQUENCE_FIXED)
       return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must have %u entries, got %u", want,
                              count);
@@ -527,8 +563,8 @@ static int scene_schema_load(pdk_ctx *ctx, const pdk_scene *s, const scene_schem
                              const cyaml_config_t *cfg, const char *yaml, size_t len,
                              sc_scene **out) {
   int err = PDK_SUCCESS;
-  PDK_CYAML_CALL_GOTO(ctx, cyaml_load_data((const uint8_t *)yaml, len, cfg, &sc->top,
-                                           (cyaml_data_t **)out, NULL));
+  PDK_CYAML_CALL_GOTO(
+      ctx, cyaml_load_data((const uint8_t *)yaml, len, cfg, &sc->top, (cyaml_data_t **)out, NULL));
 cleanup:
   if (err) {
     const cy_log *log = cfg->log_ctx;
@@ -546,7 +582,8 @@ cleanup:
   return err;
 }
 
-/* ---- checks ------------------------------------------------------------------------------------ */
+/* ---- checks ------------------------------------------------------------------------------------
+ */
 
 typedef struct loader {
   pdk_ctx *ctx;
@@ -568,12 +605,15 @@ static const char *K(loader *ld, const char *fmt, ...) {
   return ld->key;
 }
 
-static int has(const loader *ld, const char *path) { return pdk_scene_key_get(ld->s, path) != NULL; }
+static int has(const loader *ld, const char *path) {
+  return pdk_scene_key_get(ld->s, path) != NULL;
+}
 
-#define FAIL(ld, key, ...) return pdk_scene_error((ld)->s, (ld)->ctx, PDK_ERR_ARG, (key), __VA_ARGS__)
-#define REQUIRE(ld, cond, key, ...)                                                              \
-  do {                                                                                           \
-    if (!(cond)) FAIL(ld, key, __VA_ARGS__);                                                     \
+#define FAIL(ld, key, ...)                                                                         \
+  return pdk_scene_error((ld)->s, (ld)->ctx, PDK_ERR_ARG, (key), __VA_ARGS__)
+#define REQUIRE(ld, cond, key, ...)                                                                \
+  do {                                                                                             \
+    if (!(cond)) FAIL(ld, key, __VA_ARGS__);                                                       \
   } while (0)
 
 static int check_whole(loader *ld, const char *key, double v, double lo, double hi, long *out) {
@@ -617,12 +657,15 @@ static int region_resolve(loader *ld, const sc_region *r, const char *base, int 
   for (int k = 0; k < 5; ++k)
     if (given[k]) {
       if (which >= 0 && count == 1)
-        FAIL(ld, base, "gives both %s and %s; give exactly one region: box, disk (ball), "
-             "halfspace or polygon", kinds[which], kinds[k]);
+        FAIL(ld, base,
+             "gives both %s and %s; give exactly one region: box, disk (ball), "
+             "halfspace or polygon",
+             kinds[which], kinds[k]);
       which = k;
       ++count;
     }
-  REQUIRE(ld, which >= 0, base, "gives no region; give one of box, disk (2-D) or ball, halfspace, "
+  REQUIRE(ld, which >= 0, base,
+          "gives no region; give one of box, disk (2-D) or ball, halfspace, "
           "polygon (2-D)");
   snprintf(out->key, sizeof out->key, "%s.%s", base, kinds[which]);
   char sub[KEY_MAX];
@@ -658,7 +701,8 @@ static int region_resolve(loader *ld, const sc_region *r, const char *base, int 
     PDK_CALL(check_point(ld, sub, r->halfspace->normal));
     {
       double n2 = 0;
-      for (int a = 0; a < dim; ++a) n2 += r->halfspace->normal[a] * r->halfspace->normal[a];
+      for (int a = 0; a < dim; ++a)
+        n2 += r->halfspace->normal[a] * r->halfspace->normal[a];
       REQUIRE(ld, n2 > 0, sub, "must not be zero; it points out of the half-space");
     }
     out->region = pdk_region_halfspace(r->halfspace->point, r->halfspace->normal);
@@ -695,18 +739,26 @@ static int hole_check(loader *ld, const pdk_scene_region *h) {
   int corners_in = 1;
   for (int m = 0; m < (1 << dim); ++m) {
     double x[3];
-    for (int a = 0; a < dim; ++a) x[a] = (m >> a) & 1 ? bhi[a] : blo[a];
+    for (int a = 0; a < dim; ++a)
+      x[a] = (m >> a) & 1 ? bhi[a] : blo[a];
     corners_in &= pdk_region_contains(&h->region, dim, x);
   }
   REQUIRE(ld, !corners_in, h->key,
           "covers the whole body (geometry.box %s..%s), so nothing would remain; a hole must "
-          "leave material", lo_s, hi_s);
+          "leave material",
+          lo_s, hi_s);
   double rlo[3] = {0, 0, 0}, rhi[3] = {0, 0, 0};
   const pdk_region *r = &h->region;
   for (int a = 0; a < dim; ++a) {
     switch (r->kind) {
-    case PDK_REGION_BOX: rlo[a] = r->lo[a]; rhi[a] = r->hi[a]; break;
-    case PDK_REGION_BALL: rlo[a] = r->center[a] - r->radius; rhi[a] = r->center[a] + r->radius; break;
+    case PDK_REGION_BOX:
+      rlo[a] = r->lo[a];
+      rhi[a] = r->hi[a];
+      break;
+    case PDK_REGION_BALL:
+      rlo[a] = r->center[a] - r->radius;
+      rhi[a] = r->center[a] + r->radius;
+      break;
     case PDK_REGION_POLYGON:
       rlo[a] = rhi[a] = r->vertices[a];
       for (int v = 1; v < r->num_vertices; ++v) {
@@ -750,7 +802,8 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   REQUIRE(ld, isfinite(g->jitter) && g->jitter >= 0 && g->jitter < 0.5, "geometry.jitter",
           "must be in [0, 0.5) (a fraction of the spacing), got %g", g->jitter);
   long seed = 1;
-  if (has(ld, "geometry.seed")) PDK_CALL(check_whole(ld, "geometry.seed", g->seed, 0, 9007199254740992.0, &seed));
+  if (has(ld, "geometry.seed"))
+    PDK_CALL(check_whole(ld, "geometry.seed", g->seed, 0, 9007199254740992.0, &seed));
   lo->seed = (uint64_t)seed;
   if (has(ld, "geometry.thickness")) {
     REQUIRE(ld, dim == 2, "geometry.thickness",
@@ -763,7 +816,7 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   PDK_CALL(check_point(ld, "geometry.box.hi", g->box.hi));
   for (int a = 0; a < dim; ++a)
     REQUIRE(ld, g->box.hi[a] > g->box.lo[a], "geometry.box.hi",
-            "must exceed lo on every axis; axis %c has lo %g, hi %g", "xyz"[a], g->box.lo[a],
+            "must exceed lo on every axis; axis %c has lo %g, hi %g", "xyz"[a], g -> box.lo[a],
             g->box.hi[a]);
   memcpy(lo->lo, g->box.lo, sizeof lo->lo);
   memcpy(lo->hi, g->box.hi, sizeof lo->hi);
@@ -772,7 +825,8 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   if (err) {
     /* Too many points: the spacing is the usual culprit; too few: the box. */
     double cells = 1;
-    for (int a = 0; a < dim; ++a) cells *= (g->box.hi[a] - g->box.lo[a]) / g->spacing;
+    for (int a = 0; a < dim; ++a)
+      cells *= (g->box.hi[a] - g->box.lo[a]) / g->spacing;
     return pdk_scene_blame(s, ld->ctx, err, cells > 1e9 ? "geometry.spacing" : "geometry.box");
   }
 
@@ -787,7 +841,8 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
     PDK_CALL(hole_check(ld, &s->holes[k]));
   }
   for (int k = 0; k < s->num_notches; ++k)
-    PDK_CALL(region_resolve(ld, &g->notches[k], K(ld, "geometry.notches[%d]", k), 1, &s->notches[k]));
+    PDK_CALL(
+        region_resolve(ld, &g->notches[k], K(ld, "geometry.notches[%d]", k), 1, &s->notches[k]));
 
   /* Pre-cracks: segments in 2-D, planar polygons in 3-D. */
   size_t nvert = 0;
@@ -802,7 +857,8 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   for (int k = 0; k < s->num_precracks; ++k) {
     const sc_precrack *c = &g->precracks[k];
     const char *base = K(ld, "geometry.precracks[%d]", k);
-    REQUIRE(ld, !(c->segment && c->polygon), base, "gives both segment and polygon; a 2-D "
+    REQUIRE(ld, !(c->segment && c->polygon), base,
+            "gives both segment and polygon; a 2-D "
             "pre-crack is a segment, a 3-D one a polygon");
     REQUIRE(ld, c->segment || c->polygon, base, "gives no crack; give %s",
             dim == 2 ? "segment: [[x0, y0], [x1, y1]]" : "polygon: [[x, y, z], ...] (>= 3 points)");
@@ -812,7 +868,7 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
     else
       REQUIRE(ld, c->polygon, K(ld, "geometry.precracks[%d].segment", k),
               "a 3-D pre-crack is a planar polygon: [[x, y, z], ...] with >= 3 points");
-    const double (*pts)[3] = (const double (*)[3])(c->segment ? c->segment : c->polygon);
+    const double(*pts)[3] = (const double(*)[3])(c->segment ? c->segment : c->polygon);
     int np = (int)(c->segment ? c->segment_count : c->polygon_count);
     char sub[KEY_MAX];
     snprintf(sub, sizeof sub, "geometry.precracks[%d].%s", k, c->segment ? "segment" : "polygon");
@@ -820,7 +876,8 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
       char pk[KEY_MAX + 16];
       snprintf(pk, sizeof pk, "%s[%d]", sub, p);
       PDK_CALL(check_point(ld, pk, pts[p]));
-      for (int a = 0; a < dim; ++a) v[p * dim + a] = pts[p][a];
+      for (int a = 0; a < dim; ++a)
+        v[p * dim + a] = pts[p][a];
     }
     if (dim == 2) {
       double dx = v[2] - v[0], dy = v[3] - v[1];
@@ -847,7 +904,8 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if ((hE || hnu) && (hK || hG))
     FAIL(ld, hK ? "material.bulk_modulus" : "material.shear_modulus",
          "mixes with %s; give either youngs_modulus and poisson_ratio, or bulk_modulus and "
-         "shear_modulus", hE ? "youngs_modulus" : "poisson_ratio");
+         "shear_modulus",
+         hE ? "youngs_modulus" : "poisson_ratio");
   if (hE || hnu) {
     REQUIRE(ld, hE, "material.youngs_modulus",
             "is missing; poisson_ratio is given, so youngs_modulus is needed too");
@@ -857,15 +915,19 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
     REQUIRE(ld, isfinite(E) && E > 0, "material.youngs_modulus", "must be > 0, got %g", E);
     REQUIRE(ld, isfinite(nu) && nu > -1 && nu < 0.5, "material.poisson_ratio",
             "must be in (-1, 0.5), got %g (0.5 is incompressible, which has no finite bulk "
-            "modulus)", nu);
+            "modulus)",
+            nu);
     m->bulk_modulus = E / (3 * (1 - 2 * nu));
     m->shear_modulus = E / (2 * (1 + nu));
   } else if (hK || hG) {
-    REQUIRE(ld, hK, "material.bulk_modulus", "is missing; shear_modulus is given, so bulk_modulus "
+    REQUIRE(ld, hK, "material.bulk_modulus",
+            "is missing; shear_modulus is given, so bulk_modulus "
             "is needed too");
-    REQUIRE(ld, hG || m->kind == PDK_MODEL_PMB, "material.shear_modulus",
-            "is missing; the %s model needs bulk_modulus and shear_modulus (only pmb needs the bulk "
-            "modulus alone)", kname);
+    REQUIRE(
+        ld, hG || m->kind == PDK_MODEL_PMB, "material.shear_modulus",
+        "is missing; the %s model needs bulk_modulus and shear_modulus (only pmb needs the bulk "
+        "modulus alone)",
+        kname);
     REQUIRE(ld, isfinite(mat->bulk_modulus) && mat->bulk_modulus > 0, "material.bulk_modulus",
             "must be > 0, got %g", mat->bulk_modulus);
     if (hG)
@@ -874,7 +936,8 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
     m->bulk_modulus = mat->bulk_modulus;
     m->shear_modulus = hG ? mat->shear_modulus : 0;
   } else {
-    FAIL(ld, "material", "gives no elastic constants; give youngs_modulus and poisson_ratio, or "
+    FAIL(ld, "material",
+         "gives no elastic constants; give youngs_modulus and poisson_ratio, or "
          "bulk_modulus and shear_modulus");
   }
 
@@ -884,7 +947,8 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   for (int k = 0; k < 5; ++k)
     REQUIRE(ld, corr || !has(ld, corr_only[k]), corr_only[k],
             "only the correspondence model uses it (model.kind is %s); remove it or set "
-            "model.kind: correspondence", kname);
+            "model.kind: correspondence",
+            kname);
   if (has(ld, "model.influence")) m->influence = (pdk_influence)mo->influence;
   if (has(ld, "model.gaussian_width")) {
     REQUIRE(ld, m->influence == PDK_INFLUENCE_GAUSSIAN, "model.gaussian_width",
@@ -937,15 +1001,17 @@ static void list_sets(const pdk_scene *s, char *buf, size_t len) {
 static int resolve_sets(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   s->sets = calloc(d->sets_count + 1, sizeof *s->sets);
-  if (!s->sets) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
+  if (!s->sets)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
   for (int k = 0; k < (int)d->sets_count; ++k) {
     const sc_region *r = &d->sets[k];
     const char *nk = K(ld, "sets[%d].name", k);
     REQUIRE(ld, valid_name(r->name), nk,
             "'%s' is not a valid set name; use 1 to %d letters, digits, '_', '-' or '.'", r->name,
             SC_NAME_MAX);
-    REQUIRE(ld, strcmp(r->name, "all"), nk,
-            "'all' is reserved (it means every particle in boundary conditions); pick another name");
+    REQUIRE(
+        ld, strcmp(r->name, "all"), nk,
+        "'all' is reserved (it means every particle in boundary conditions); pick another name");
     int prev = find_set(s, r->name);
     REQUIRE(ld, prev < 0, nk, "the set '%s' is already defined by sets[%d]; set names are unique",
             r->name, prev);
@@ -970,7 +1036,8 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
   s->bcs = calloc((size_t)nb + 1, sizeof *s->bcs);
   s->bc_fields = calloc((size_t)nb + 1, sizeof *s->bc_fields);
   if (!s->bcs || !s->bc_fields)
-    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for boundary conditions");
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__,
+                             "out of memory for boundary conditions");
   s->num_bcs = nb;
   for (int k = 0; k < nb; ++k) {
     const sc_bc *b = &d->boundary_conditions[k];
@@ -982,17 +1049,20 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
       int set = find_set(s, b->set);
       char names[512];
       list_sets(s, names, sizeof names);
-      REQUIRE(ld, set >= 0, sub, "names the set '%s', which is not defined; defined sets: %s (or "
-              "'all' for every particle)", b->set, names);
+      REQUIRE(ld, set >= 0, sub,
+              "names the set '%s', which is not defined; defined sets: %s (or "
+              "'all' for every particle)",
+              b->set, names);
       s->bc_fields[k] = strdup(s->sets[set].field);
       if (!s->bc_fields[k])
-        return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for boundary conditions");
+        return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__,
+                                 "out of memory for boundary conditions");
     }
     bc->set = s->bc_fields[k];
     bc->kind = (pdk_bc_kind)b->type;
     const double comp[3] = {b->x, b->y, b->z};
-    const pdk_tfun_kind fk = has(ld, K(ld, "%s.function", base)) ? (pdk_tfun_kind)b->function
-                                                                 : PDK_TFUN_CONSTANT;
+    const pdk_tfun_kind fk =
+        has(ld, K(ld, "%s.function", base)) ? (pdk_tfun_kind)b->function : PDK_TFUN_CONSTANT;
     const int hdur = has(ld, K(ld, "%s.duration", base)), hper = has(ld, K(ld, "%s.period", base));
     const int needs_dur = fk == PDK_TFUN_RAMP || fk == PDK_TFUN_SMOOTH;
     const char *fname = function_names[fk].str;
@@ -1003,8 +1073,10 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
       REQUIRE(ld, isfinite(b->duration) && b->duration > 0, sub, "must be > 0, got %g",
               b->duration);
     } else {
-      REQUIRE(ld, !hdur, sub, "only the ramp and smooth functions use a duration (function is "
-              "%s); remove it", fname);
+      REQUIRE(ld, !hdur, sub,
+              "only the ramp and smooth functions use a duration (function is "
+              "%s); remove it",
+              fname);
     }
     snprintf(sub, sizeof sub, "%s.period", base);
     if (fk == PDK_TFUN_SINE) {
@@ -1024,14 +1096,25 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
       tf->kind = fk;
       switch (fk) {
       case PDK_TFUN_CONSTANT: tf->a = comp[c]; break;
-      case PDK_TFUN_LINEAR: tf->a = 0; tf->b = comp[c]; break;
+      case PDK_TFUN_LINEAR:
+        tf->a = 0;
+        tf->b = comp[c];
+        break;
       case PDK_TFUN_RAMP:
-      case PDK_TFUN_SMOOTH: tf->a = comp[c]; tf->b = b->duration; break;
-      case PDK_TFUN_SINE: tf->a = comp[c]; tf->b = b->period; break;
+      case PDK_TFUN_SMOOTH:
+        tf->a = comp[c];
+        tf->b = b->duration;
+        break;
+      case PDK_TFUN_SINE:
+        tf->a = comp[c];
+        tf->b = b->period;
+        break;
       }
     }
-    REQUIRE(ld, bc->components, base, "gives no component; give x, y%s with the value of each "
-            "constrained component", s->dim == 3 ? " or z" : "");
+    REQUIRE(ld, bc->components, base,
+            "gives no component; give x, y%s with the value of each "
+            "constrained component",
+            s->dim == 3 ? " or z" : "");
   }
   s->solver.bcs = s->bcs;
   s->solver.num_bcs = nb;
@@ -1055,7 +1138,8 @@ static int resolve_solver(loader *ld, const sc_scene *d) {
     }
   }
   const int hend = has(ld, "solver.end_time"), hsteps = has(ld, "solver.steps");
-  REQUIRE(ld, !(hend && hsteps), "solver.steps", "given together with solver.end_time; give one "
+  REQUIRE(ld, !(hend && hsteps), "solver.steps",
+          "given together with solver.end_time; give one "
           "of them (end_time: the run lasts that long; steps: that many steps)");
   REQUIRE(ld, hend || hsteps, "solver", "gives neither end_time nor steps; give one of them");
   if (hend) {
@@ -1082,11 +1166,14 @@ static int resolve_output(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   const sc_output *o = &d->output;
   pdk_scene_output *out = &s->output;
-  PDK_CALL(check_whole(ld, "output.field_interval", o->field_interval, 0, 1e15, &out->field_interval));
+  PDK_CALL(
+      check_whole(ld, "output.field_interval", o->field_interval, 0, 1e15, &out->field_interval));
   out->history_interval = 10;
   if (has(ld, "output.history_interval"))
-    PDK_CALL(check_whole(ld, "output.history_interval", o->history_interval, 1, 1e15, &out->history_interval));
-  PDK_CALL(check_whole(ld, "output.checkpoint_interval", o->checkpoint_interval, 0, 1e15, &out->checkpoint_interval));
+    PDK_CALL(check_whole(ld, "output.history_interval", o->history_interval, 1, 1e15,
+                         &out->history_interval));
+  PDK_CALL(check_whole(ld, "output.checkpoint_interval", o->checkpoint_interval, 0, 1e15,
+                       &out->checkpoint_interval));
 
   const char *default_fields[] = {"u", "v"};
   const int hf = has(ld, "output.fields");
@@ -1119,8 +1206,8 @@ static int resolve_output(loader *ld, const sc_scene *d) {
       for (int j = 0; j < nr; ++j)
         REQUIRE(ld, strcmp(names[j], o->reactions[k]), key, "'%s' is listed twice",
                 o->reactions[k]);
-      REQUIRE(ld, nr < MAX_REACTION_SETS, key,
-              "at most %d reaction sets are recorded; list fewer", MAX_REACTION_SETS);
+      REQUIRE(ld, nr < MAX_REACTION_SETS, key, "at most %d reaction sets are recorded; list fewer",
+              MAX_REACTION_SETS);
       names[nr++] = o->reactions[k];
     }
   } else {
@@ -1128,7 +1215,8 @@ static int resolve_output(loader *ld, const sc_scene *d) {
       const char *set = d->boundary_conditions[k].set;
       if (s->bcs[k].kind == PDK_BC_BODY_FORCE || !strcmp(set, "all")) continue;
       int dup = 0;
-      for (int j = 0; j < nr; ++j) dup |= !strcmp(names[j], set);
+      for (int j = 0; j < nr; ++j)
+        dup |= !strcmp(names[j], set);
       if (!dup) names[nr++] = set;
     }
   }
@@ -1157,8 +1245,10 @@ static int scene_resolve(loader *ld, const sc_scene *d) {
   REQUIRE(ld, d->dimension == 2 || d->dimension == 3, "dimension", "must be 2 or 3, got %g",
           d->dimension);
   if (has(ld, "name")) {
-    REQUIRE(ld, valid_name(d->name), "name", "'%s' is not a valid name (it names the output "
-            "files); use 1 to %d letters, digits, '_', '-' or '.'", d->name, SC_NAME_MAX);
+    REQUIRE(ld, valid_name(d->name), "name",
+            "'%s' is not a valid name (it names the output "
+            "files); use 1 to %d letters, digits, '_', '-' or '.'",
+            d->name, SC_NAME_MAX);
     free(s->name);
     s->name = strdup(d->name);
     if (!s->name) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
@@ -1173,7 +1263,8 @@ static int scene_resolve(loader *ld, const sc_scene *d) {
   return PDK_SUCCESS;
 }
 
-/* ---- public API -------------------------------------------------------------------------------- */
+/* ---- public API --------------------------------------------------------------------------------
+ */
 
 static char *file_stem(const char *path) {
   const char *base = strrchr(path, '/');
@@ -1240,7 +1331,8 @@ int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
   if (!data) {
     err = pdk_ctx_error_set(ctx, PDK_ERR_ARG, NULL,
                             "%s:1: (scene): the scene is empty; it needs at least dimension, "
-                            "geometry, material and solver (see docs/scenes.md)", path);
+                            "geometry, material and solver (see docs/scenes.md)",
+                            path);
     goto cleanup;
   }
 
@@ -1255,12 +1347,15 @@ int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
     file_text = NULL;
   } else {
     size_t hlen = strlen(path) + 64;
-    for (int k = 0; k < num_overrides; ++k) hlen += strlen(overrides[k]) + 8;
+    for (int k = 0; k < num_overrides; ++k)
+      hlen += strlen(overrides[k]) + 8;
     s->text = malloc(hlen + yaml_len + 1);
     PDK_CHECK_GOTO(s->text, ctx, PDK_ERR_MEMORY, "out of memory loading a scene");
     size_t pos = (size_t)snprintf(s->text, hlen, "# %s with overrides:", path);
     for (int k = 0; k < num_overrides; ++k)
       pos += (size_t)snprintf(s->text + pos, hlen - pos, " --set %s", overrides[k]);
+    for (size_t i = 0; i < pos; ++i) /* keep the header one comment line */
+      if (s->text[i] == '\n' || s->text[i] == '\r') s->text[i] = ' ';
     s->text[pos++] = '\n';
     memcpy(s->text + pos, yaml, yaml_len + 1);
   }
@@ -1291,7 +1386,8 @@ static void regions_free(pdk_scene_region *r, int n) {
 
 static void strings_free(char **v, int n) {
   if (!v) return;
-  for (int k = 0; k < n; ++k) free(v[k]);
+  for (int k = 0; k < n; ++k)
+    free(v[k]);
   free(v);
 }
 

@@ -35,22 +35,22 @@ typedef struct pdk_scene_region {
 } pdk_scene_region;
 
 struct pdk_scene {
-  char *path;  /* as given to pdk_scene_load */
+  char *path; /* as given to pdk_scene_load */
   char *name;
-  char *text;  /* final YAML */
+  char *text; /* final YAML */
   int dim;
 
   pdk_scene_key *keys; /* [num_keys] */
   int num_keys;
-  char **overrides;    /* [num_overrides] copies of the "key.path=value" strings */
+  char **overrides; /* [num_overrides] copies of the "key.path=value" strings */
   int num_overrides;
 
   pdk_lattice_opts lattice;
   double horizon_factor;
-  double horizon;      /* horizon_factor * spacing */
+  double horizon; /* horizon_factor * spacing */
   pdk_scene_region *holes, *notches, *sets;
   int num_holes, num_notches, num_sets;
-  pdk_precrack *precracks;  /* [num_precracks]; vertices point into crack_vertices */
+  pdk_precrack *precracks; /* [num_precracks]; vertices point into crack_vertices */
   double *crack_vertices;
   int num_precracks;
 
@@ -60,14 +60,14 @@ struct pdk_scene {
   pdk_bc *bcs;              /* [num_bcs] */
   char **bc_fields;         /* [num_bcs] "set:<name>", NULL for the whole body ("all") */
   int num_bcs;
-  char **reaction_fields;   /* [output.num_reaction_sets] "set:<name>" */
+  char **reaction_fields; /* [output.num_reaction_sets] "set:<name>" */
   double end_time;
   long steps;
   int threads;
 
   pdk_scene_output output;
-  char **fields;            /* [output.num_fields] */
-  char **reaction_names;    /* [output.num_reaction_sets] */
+  char **fields;         /* [output.num_fields] */
+  char **reaction_names; /* [output.num_reaction_sets] */
 };
 
 /* src/scene_yaml.c: reads a file into a NUL-terminated malloc'ed buffer. */

@@ -24,23 +24,24 @@
 
 /* User-facing checks: the message already says where (file, line, override), so no function name
  * is appended (PDK_CHECK would add " (in function)"). */
-#define SCENE_CHECK(cond, ctx, code, ...)                                                       \
-  do {                                                                                          \
-    if (!(cond)) return pdk_ctx_error_set((ctx), (code), NULL, __VA_ARGS__);                    \
+#define SCENE_CHECK(cond, ctx, code, ...)                                                          \
+  do {                                                                                             \
+    if (!(cond)) return pdk_ctx_error_set((ctx), (code), NULL, __VA_ARGS__);                       \
   } while (0)
-#define SCENE_CHECK_GOTO(cond, ctx, code, ...)                                                  \
-  do {                                                                                          \
-    if (!(cond)) {                                                                              \
-      err = pdk_ctx_error_set((ctx), (code), NULL, __VA_ARGS__);                                \
-      goto cleanup;                                                                             \
-    }                                                                                           \
+#define SCENE_CHECK_GOTO(cond, ctx, code, ...)                                                     \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      err = pdk_ctx_error_set((ctx), (code), NULL, __VA_ARGS__);                                   \
+      goto cleanup;                                                                                \
+    }                                                                                              \
   } while (0)
 
 #define MAX_DEPTH 64
 #define MAX_SEGMENTS 32
 #define KEY_MAX 256
 
-/* ---- messages ---------------------------------------------------------------------------------- */
+/* ---- messages ----------------------------------------------------------------------------------
+ */
 
 /* The last record of a path: a key given twice is reported where it is repeated. */
 static const pdk_scene_key *key_find(const pdk_scene *s, const char *path) {
@@ -56,7 +57,8 @@ const pdk_scene_key *pdk_scene_key_get(const pdk_scene *s, const char *path) {
 /* Strips the last segment of a key path in place ("a.b[2]" -> "a.b" -> "a" -> ""). */
 static void key_parent(char *path) {
   size_t n = strlen(path);
-  while (n > 0 && path[n - 1] != '.' && path[n - 1] != '[') --n;
+  while (n > 0 && path[n - 1] != '.' && path[n - 1] != '[')
+    --n;
   if (n > 0) --n;
   path[n] = '\0';
 }
@@ -108,7 +110,8 @@ int pdk_scene_blame(const pdk_scene *s, pdk_ctx *ctx, int err, const char *key) 
   return pdk_scene_error(s, ctx, err, key, "%s", old);
 }
 
-/* ---- reading ----------------------------------------------------------------------------------- */
+/* ---- reading -----------------------------------------------------------------------------------
+ */
 
 int pdk_scene_read_file(pdk_ctx *ctx, const char *path, char **text, size_t *len) {
   int err = PDK_SUCCESS;
@@ -117,7 +120,7 @@ int pdk_scene_read_file(pdk_ctx *ctx, const char *path, char **text, size_t *len
   *text = NULL;
   FILE *f = fopen(path, "rb");
   SCENE_CHECK(f, ctx, PDK_ERR_IO, "cannot open the scene file '%s': %s; check the path", path,
-            strerror(errno));
+              strerror(errno));
   for (;;) {
     if (cap - size < 4096) {
       cap = cap ? 2 * cap : 8192;
@@ -132,7 +135,7 @@ int pdk_scene_read_file(pdk_ctx *ctx, const char *path, char **text, size_t *len
   PDK_CHECK_GOTO(!ferror(f), ctx, PDK_ERR_IO, "cannot read the scene file '%s'", path);
   buf[size] = '\0';
   SCENE_CHECK_GOTO(strlen(buf) == size, ctx, PDK_ERR_ARG,
-                 "%s: the scene file contains a NUL byte; is it a YAML text file?", path);
+                   "%s: the scene file contains a NUL byte; is it a YAML text file?", path);
   *text = buf;
   *len = size;
   buf = NULL;
@@ -142,7 +145,8 @@ cleanup:
   return err;
 }
 
-/* ---- the document ------------------------------------------------------------------------------ */
+/* ---- the document ------------------------------------------------------------------------------
+ */
 
 typedef struct doc_state {
   yaml_document_t doc;
@@ -160,11 +164,13 @@ static int mark_origin(pdk_ctx *ctx, doc_state *ds, int before, int k) {
     int cap = 2 * (n + 1);
     int *o = realloc(ds->origin, (size_t)cap * sizeof *o);
     PDK_CHECK(o, ctx, PDK_ERR_MEMORY, "out of memory applying scene overrides");
-    for (int i = ds->cap; i < cap; ++i) o[i] = -1;
+    for (int i = ds->cap; i < cap; ++i)
+      o[i] = -1;
     ds->origin = o;
     ds->cap = cap;
   }
-  for (int i = before + 1; i <= n; ++i) ds->origin[i] = k;
+  for (int i = before + 1; i <= n; ++i)
+    ds->origin[i] = k;
   return PDK_SUCCESS;
 }
 
@@ -224,7 +230,7 @@ static int node_copy(yaml_document_t *dst, yaml_document_t *src, int id, int dep
 
 typedef struct segment {
   char key[KEY_MAX];
-  long index; /* >= 0: a sequence index ("[k]" or an all-digit segment) */
+  long index;  /* >= 0: a sequence index ("[k]" or an all-digit segment) */
   int bracket; /* 1: written as [k], so only a sequence index */
 } segment;
 
@@ -251,7 +257,8 @@ static int path_split(const char *path, segment *seg, int *num) {
       memcpy(s->key, c, len);
       s->key[len] = '\0';
       int digits = 1;
-      for (size_t i = 0; i < len; ++i) digits &= isdigit((unsigned char)c[i]) != 0;
+      for (size_t i = 0; i < len; ++i)
+        digits &= isdigit((unsigned char)c[i]) != 0;
       if (digits) s->index = strtol(s->key, NULL, 10);
       c += len;
     }
@@ -292,15 +299,15 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
   const char *eq = strchr(ov, '=');
   size_t plen = eq ? (size_t)(eq - ov) : 0;
   SCENE_CHECK_GOTO(eq && plen > 0 && plen < sizeof path, ctx, PDK_ERR_ARG,
-                 "%s: --set %s: not of the form key.path=value; for example --set "
-                 "geometry.spacing=1e-3 or --set boundary_conditions[0].y=2",
-                 file, ov);
+                   "%s: --set %s: not of the form key.path=value; for example --set "
+                   "geometry.spacing=1e-3 or --set boundary_conditions[0].y=2",
+                   file, ov);
   memcpy(path, ov, plen);
   path[plen] = '\0';
   SCENE_CHECK_GOTO(!path_split(path, seg, &num_seg), ctx, PDK_ERR_ARG,
-                 "%s: --set %s: '%s' is not a key path; write keys joined by '.', and list "
-                 "entries as [k], for example solver.threads or sets[1].name",
-                 file, ov, path);
+                   "%s: --set %s: '%s' is not a key path; write keys joined by '.', and list "
+                   "entries as [k], for example solver.threads or sets[1].name",
+                   file, ov, path);
 
   /* The value, parsed as YAML of its own. */
   const char *value = eq + 1;
@@ -310,9 +317,9 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
   yaml_parser_set_input_string(&vp, (const unsigned char *)value, strlen(value));
   if (!yaml_parser_load(&vp, &vdoc)) {
     SCENE_CHECK_GOTO(0, ctx, PDK_ERR_ARG,
-                   "%s: --set %s: the value is not valid YAML: %s; quote it or write a number, a "
-                   "word or a [list]",
-                   file, ov, vp.problem ? vp.problem : "unknown error");
+                     "%s: --set %s: the value is not valid YAML: %s; quote it or write a number, a "
+                     "word or a [list]",
+                     file, ov, vp.problem ? vp.problem : "unknown error");
   }
   have_vdoc = 1;
   int vnode;
@@ -337,9 +344,9 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
     if (n->type == YAML_SEQUENCE_NODE && sg->index >= 0) {
       long count = (long)(n->data.sequence.items.top - n->data.sequence.items.start);
       SCENE_CHECK_GOTO(sg->index < count, ctx, PDK_ERR_ARG,
-                     "%s: --set %s: index %ld is out of range; that list has %ld entries "
-                     "(0..%ld)",
-                     file, ov, sg->index, count, count - 1);
+                       "%s: --set %s: index %ld is out of range; that list has %ld entries "
+                       "(0..%ld)",
+                       file, ov, sg->index, count, count - 1);
       if (last)
         n->data.sequence.items.start[sg->index] = vnode;
       else
@@ -347,9 +354,9 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
       continue;
     }
     SCENE_CHECK_GOTO(n->type == YAML_MAPPING_NODE && !sg->bracket, ctx, PDK_ERR_ARG,
-                   "%s: --set %s: segment %d ('%s') does not fit: the scene has %s there; give "
-                   "mapping keys by name and list entries by [index]",
-                   file, ov, i + 1, sg->bracket ? "[index]" : sg->key, node_kind_name(n));
+                     "%s: --set %s: segment %d ('%s') does not fit: the scene has %s there; give "
+                     "mapping keys by name and list entries by [index]",
+                     file, ov, i + 1, sg->bracket ? "[index]" : sg->key, node_kind_name(n));
     int found = -1;
     int count = (int)(n->data.mapping.pairs.top - n->data.mapping.pairs.start);
     for (int p = 0; p < count; ++p) {
@@ -382,7 +389,8 @@ cleanup:
   return err;
 }
 
-/* ---- key lines --------------------------------------------------------------------------------- */
+/* ---- key lines ---------------------------------------------------------------------------------
+ */
 
 typedef struct key_list {
   pdk_scene_key *keys;
@@ -405,8 +413,8 @@ static int key_add(pdk_ctx *ctx, key_list *kl, const char *path, int line, int o
   k->line = line;
   k->origin = origin;
   ++kl->num;
-  PDK_CHECK(k->path && (!value || value->type != YAML_SCALAR_NODE || k->value), ctx,
-            PDK_ERR_MEMORY, "out of memory recording scene keys");
+  PDK_CHECK(k->path && (!value || value->type != YAML_SCALAR_NODE || k->value), ctx, PDK_ERR_MEMORY,
+            "out of memory recording scene keys");
   return PDK_SUCCESS;
 }
 
@@ -416,9 +424,9 @@ static int keys_walk(pdk_ctx *ctx, const char *file, doc_state *ds, int id, cons
   yaml_node_t *n = yaml_document_get_node(d, id);
   if (!n) return PDK_SUCCESS;
   SCENE_CHECK(depth < MAX_DEPTH, ctx, PDK_ERR_ARG,
-            "%s:%zu: %s: nested deeper than %d levels (a recursive alias?); scenes are at most a "
-            "few levels deep",
-            file, n->start_mark.line + 1, path, MAX_DEPTH);
+              "%s:%zu: %s: nested deeper than %d levels (a recursive alias?); scenes are at most a "
+              "few levels deep",
+              file, n->start_mark.line + 1, path, MAX_DEPTH);
   char child[KEY_MAX];
   if (n->type == YAML_SEQUENCE_NODE) {
     int count = (int)(n->data.sequence.items.top - n->data.sequence.items.start);
@@ -439,7 +447,8 @@ static int keys_walk(pdk_ctx *ctx, const char *file, doc_state *ds, int id, cons
       yaml_node_t *value = yaml_document_get_node(d, pair.value);
       const char *name = key->type == YAML_SCALAR_NODE ? (const char *)key->data.scalar.value : "?";
       snprintf(child, sizeof child, "%s%s%s", path, path[0] ? "." : "", name);
-      int origin = origin_of(ds, pair.value) >= 0 ? origin_of(ds, pair.value) : origin_of(ds, pair.key);
+      int origin =
+          origin_of(ds, pair.value) >= 0 ? origin_of(ds, pair.value) : origin_of(ds, pair.key);
       PDK_CALL(key_add(ctx, kl, child, (int)key->start_mark.line + 1, origin, value));
       PDK_CALL(keys_walk(ctx, file, ds, pair.value, child, depth + 1, kl));
     }
@@ -447,7 +456,8 @@ static int keys_walk(pdk_ctx *ctx, const char *file, doc_state *ds, int id, cons
   return PDK_SUCCESS;
 }
 
-/* ---- emitting ---------------------------------------------------------------------------------- */
+/* ---- emitting ----------------------------------------------------------------------------------
+ */
 
 typedef struct text_buf {
   char *data;
@@ -459,7 +469,8 @@ static int text_write(void *data, unsigned char *buffer, size_t size) {
   text_buf *t = data;
   if (t->len + size + 1 > t->cap) {
     size_t cap = t->cap ? t->cap : 4096;
-    while (cap < t->len + size + 1) cap *= 2;
+    while (cap < t->len + size + 1)
+      cap *= 2;
     char *nd = realloc(t->data, cap);
     if (!nd) {
       t->failed = 1;
@@ -474,7 +485,8 @@ static int text_write(void *data, unsigned char *buffer, size_t size) {
   return 1;
 }
 
-/* ---- the whole preparation --------------------------------------------------------------------- */
+/* ---- the whole preparation ---------------------------------------------------------------------
+ */
 
 int pdk_scene_yaml_prepare(pdk_ctx *ctx, pdk_scene *s, const char *file_text, size_t file_len,
                            char **yaml_out, size_t *yaml_len, int *dim_out) {
@@ -508,9 +520,9 @@ int pdk_scene_yaml_prepare(pdk_ctx *ctx, pdk_scene *s, const char *file_text, si
     size_t line = extra.start_mark.line + 1;
     yaml_document_delete(&extra);
     SCENE_CHECK_GOTO(!more, ctx, PDK_ERR_ARG,
-                   "%s:%zu: (scene): a second YAML document starts here; a scene file holds one "
-                   "document (remove the '---' line and what follows, or merge the two)",
-                   s->path, line);
+                     "%s:%zu: (scene): a second YAML document starts here; a scene file holds one "
+                     "document (remove the '---' line and what follows, or merge the two)",
+                     s->path, line);
   }
   PDK_CALL_GOTO(mark_origin(ctx, &ds, node_count(&ds.doc), -1));
   for (int k = 0; k < s->num_overrides; ++k)
@@ -519,9 +531,9 @@ int pdk_scene_yaml_prepare(pdk_ctx *ctx, pdk_scene *s, const char *file_text, si
   yaml_node_t *root = yaml_document_get_root_node(&ds.doc);
   if (root) {
     SCENE_CHECK_GOTO(root->type == YAML_MAPPING_NODE, ctx, PDK_ERR_ARG,
-                   "%s:%zu: (scene): the scene is %s; it must be a mapping of keys such as "
-                   "dimension, geometry, material, solver (see docs/scenes.md)",
-                   s->path, root->start_mark.line + 1, node_kind_name(root));
+                     "%s:%zu: (scene): the scene is %s; it must be a mapping of keys such as "
+                     "dimension, geometry, material, solver (see docs/scenes.md)",
+                     s->path, root->start_mark.line + 1, node_kind_name(root));
     PDK_CALL_GOTO(keys_walk(ctx, s->path, &ds, 1, "", 0, &kl));
   }
   for (int k = 0; k < kl.num; ++k)

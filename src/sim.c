@@ -27,8 +27,8 @@ struct pdk_sim {
   pdk_explicit *e;
   long num_steps;
   int has_u;
-  pdk_bc *bcs;          /* [num_bcs], set names point into bc_fields */
-  char **bc_fields;     /* [num_bcs] "set:<name>" or NULL */
+  pdk_bc *bcs;      /* [num_bcs], set names point into bc_fields */
+  char **bc_fields; /* [num_bcs] "set:<name>" or NULL */
   int num_bcs;
   char **reaction_fields; /* [num_reactions] */
   int num_reactions;
@@ -93,7 +93,8 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
       if (!count) continue;
       char key[64];
       int c = 0;
-      while (!(both & (1u << c))) ++c;
+      while (!(both & (1u << c)))
+        ++c;
       snprintf(key, sizeof key, "boundary_conditions[%d]", k);
       return pdk_scene_error(
           s, sim->ctx, PDK_ERR_ARG, key,
@@ -101,7 +102,7 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
           "at X = [%g, %g%s]); give each component of a particle one condition: make the sets "
           "disjoint or drop the component from one of them",
           "xyz"[c], (int)count, j, pdk_particles_X(sim->p, 0)[first],
-          pdk_particles_X(sim->p, 1)[first], s->dim == 3 ? ", ..." : "");
+          pdk_particles_X(sim->p, 1)[first], s -> dim == 3 ? ", ..." : "");
     }
   return PDK_SUCCESS;
 }
@@ -215,8 +216,8 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
     /* ceil(end_time / dt), not counting a last step that round-off alone would add */
     double q = s->end_time / dt;
     PDK_CHECK_GOTO(q < 1e15, ctx, PDK_ERR_ARG,
-                   "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt",
-                   s->path, s->end_time, q, dt);
+                   "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt", s->path,
+                   s->end_time, q, dt);
     sim->num_steps = (long)ceil(q * (1 - 1e-12));
     if (sim->num_steps < 1) sim->num_steps = 1;
   }
@@ -253,9 +254,11 @@ void pdk_sim_destroy(pdk_sim **simp) {
   pdk_families_destroy(&sim->fam);
   pdk_particles_destroy(&sim->p);
   if (sim->bc_fields)
-    for (int k = 0; k < sim->num_bcs; ++k) free(sim->bc_fields[k]);
+    for (int k = 0; k < sim->num_bcs; ++k)
+      free(sim->bc_fields[k]);
   if (sim->reaction_fields)
-    for (int k = 0; k < sim->num_reactions; ++k) free(sim->reaction_fields[k]);
+    for (int k = 0; k < sim->num_reactions; ++k)
+      free(sim->reaction_fields[k]);
   free(sim->bc_fields);
   free(sim->reaction_fields);
   free(sim->bcs);
@@ -278,7 +281,8 @@ int pdk_sim_update_output_fields(pdk_sim *sim) {
     const double *x = pdk_particles_field_data(sim->p, "x", c);
     const double *X = pdk_particles_X(sim->p, c);
     PDK_CHECK(u && x, sim->ctx, PDK_ERR_NOT_FOUND, "the fields u and x must exist to update u");
-    for (pdk_index i = 0; i < n; ++i) u[i] = x[i] - X[i];
+    for (pdk_index i = 0; i < n; ++i)
+      u[i] = x[i] - X[i];
   }
   return PDK_SUCCESS;
 }

@@ -144,7 +144,8 @@ static void check_full_sim(pdk_ctx *ctx, const pdk_scene *s) {
   /* Morton order: particles are no longer in lattice order (ids are a permutation). */
   const int64_t *id = pdk_particles_id(p);
   int in_order = 1;
-  for (pdk_index i = 1; i < pdk_particles_count(p); ++i) in_order &= id[i] > id[i - 1];
+  for (pdk_index i = 1; i < pdk_particles_count(p); ++i)
+    in_order &= id[i] > id[i - 1];
   T_ASSERT(!in_order, "particles were not reordered");
   check_precrack_bonds(sim);
   T_ASSERT(pdk_model_opts_get(pdk_sim_model(sim))->kind == PDK_MODEL_CORRESPONDENCE, "model kind");
@@ -152,7 +153,8 @@ static void check_full_sim(pdk_ctx *ctx, const pdk_scene *s) {
   double dt = pdk_explicit_dt(e);
   T_NEAR(dt, 0.7 * pdk_explicit_stable_dt(e), 1e-15, 0, "dt = safety x stable");
   long n = pdk_sim_num_steps(sim);
-  T_ASSERT(n == (long)ceil(2e-6 / dt * (1 - 1e-12)) && (n - 1) * dt < 2e-6 && n * dt >= 2e-6 * (1 - 1e-12),
+  T_ASSERT(n == (long)ceil(2e-6 / dt * (1 - 1e-12)) && (n - 1) * dt < 2e-6 &&
+               n * dt >= 2e-6 * (1 - 1e-12),
            "num_steps %ld for end_time 2e-6, dt %g", n, dt);
   /* Run two steps; the bottom stays fixed, the top moves up at the ramped velocity, u = x - X. */
   pdk_history h;
@@ -251,15 +253,15 @@ static void check_overrides(pdk_ctx *ctx) {
 
   /* The final text names the overrides and loads to the same scene. */
   const char *text = pdk_scene_text(s);
-  T_ASSERT(strstr(text, "--set geometry.spacing=2e-3") && strstr(text, "renamed"),
-           "text: %s", text);
+  T_ASSERT(strstr(text, "--set geometry.spacing=2e-3") && strstr(text, "renamed"), "text: %s",
+           text);
   FILE *f = fopen("t060_roundtrip.yaml", "wb");
   T_ASSERT(f && fputs(text, f) >= 0 && !fclose(f), "writing t060_roundtrip.yaml");
   pdk_scene *r = NULL;
   T_OK(ctx, pdk_scene_load(ctx, "t060_roundtrip.yaml", NULL, 0, &r));
   T_ASSERT(r->lattice.spacing == s->lattice.spacing && r->threads == 2 &&
-               r->model.kind == PDK_MODEL_LPS && r->num_bcs == 1 &&
-               r->bcs[0].value[0].a == 1e-6 && !strcmp(pdk_scene_name(r), "renamed"),
+               r->model.kind == PDK_MODEL_LPS && r->num_bcs == 1 && r->bcs[0].value[0].a == 1e-6 &&
+               !strcmp(pdk_scene_name(r), "renamed"),
            "reloaded text gives the same scene");
   pdk_scene_destroy(&r);
   remove("t060_roundtrip.yaml");
@@ -267,8 +269,10 @@ static void check_overrides(pdk_ctx *ctx) {
   pdk_sim *sim = NULL;
   T_OK(ctx, pdk_sim_create(ctx, s, &sim));
   T_ASSERT(pdk_ctx_num_threads(ctx) == 2, "threads from the override");
-  T_ASSERT(pdk_particles_count(pdk_sim_particles(sim)) == 4 * 2 * 2, "count after spacing "
-           "override: %d", (int)pdk_particles_count(pdk_sim_particles(sim)));
+  T_ASSERT(pdk_particles_count(pdk_sim_particles(sim)) == 4 * 2 * 2,
+           "count after spacing "
+           "override: %d",
+           (int)pdk_particles_count(pdk_sim_particles(sim)));
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&s);
 

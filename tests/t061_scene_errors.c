@@ -8,25 +8,24 @@
 #include "pdk/scene.h"
 #include "test_util.h"
 
-static const char *base_scene =
-    "dimension: 2\n"
-    "geometry:\n"
-    "  spacing: 1.0e-3\n"
-    "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
-    "material:\n"
-    "  density: 7850\n"
-    "  youngs_modulus: 200e9\n"
-    "  poisson_ratio: 0.3\n"
-    "sets:\n"
-    "  - name: bottom\n"
-    "    box: {lo: [-1, -1], hi: [1, 0.0012]}\n"
-    "  - name: top\n"
-    "    box: {lo: [-1, 0.0188], hi: [1, 1]}\n"
-    "boundary_conditions:\n"
-    "  - {set: bottom, type: displacement, x: 0, y: 0}\n"
-    "  - {set: top, type: velocity, y: 1.0}\n"
-    "solver:\n"
-    "  steps: 10\n";
+static const char *base_scene = "dimension: 2\n"
+                                "geometry:\n"
+                                "  spacing: 1.0e-3\n"
+                                "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
+                                "material:\n"
+                                "  density: 7850\n"
+                                "  youngs_modulus: 200e9\n"
+                                "  poisson_ratio: 0.3\n"
+                                "sets:\n"
+                                "  - name: bottom\n"
+                                "    box: {lo: [-1, -1], hi: [1, 0.0012]}\n"
+                                "  - name: top\n"
+                                "    box: {lo: [-1, 0.0188], hi: [1, 1]}\n"
+                                "boundary_conditions:\n"
+                                "  - {set: bottom, type: displacement, x: 0, y: 0}\n"
+                                "  - {set: top, type: velocity, y: 1.0}\n"
+                                "solver:\n"
+                                "  steps: 10\n";
 
 enum { AT_LOAD = 0, AT_BUILD = 1 };
 
@@ -36,14 +35,14 @@ typedef struct error_case {
   const char *override;       /* NULL or one "key=value" */
   int stage;                  /* AT_LOAD or AT_BUILD */
   int code;
-  const char *key;            /* key path the message must name */
-  const char *needle;         /* another part the message must contain (may be NULL) */
+  const char *key;    /* key path the message must name */
+  const char *needle; /* another part the message must contain (may be NULL) */
 } error_case;
 
 static const error_case cases[] = {
     /* unknown keys */
-    {"unknown top-level key", "solver:\n", "geometri: 1 #<\nsolver:\n", NULL, AT_LOAD,
-     PDK_ERR_ARG, "geometri", "allows: name, description, dimension, geometry"},
+    {"unknown top-level key", "solver:\n", "geometri: 1 #<\nsolver:\n", NULL, AT_LOAD, PDK_ERR_ARG,
+     "geometri", "allows: name, description, dimension, geometry"},
     {"unknown nested key", "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  spaceing: 2 #<\n", NULL,
      AT_LOAD, PDK_ERR_ARG, "geometry.spaceing", "geometry allows: lattice, spacing"},
     {"unknown key in a list entry", "{set: top, type: velocity, y: 1.0}",
@@ -54,11 +53,12 @@ static const error_case cases[] = {
      "geometry.spacing", "must be a number, got a list"},
     {"word for a number", "  density: 7850", "  density: heavy #<", NULL, AT_LOAD, PDK_ERR_ARG,
      "material.density", "got 'heavy'"},
-    {"number for a mapping", "material:\n  density: 7850\n  youngs_modulus: 200e9\n  poisson_ratio: 0.3\n",
+    {"number for a mapping",
+     "material:\n  density: 7850\n  youngs_modulus: 200e9\n  poisson_ratio: 0.3\n",
      "material: 5 #<\n", NULL, AT_LOAD, PDK_ERR_ARG, "material", "must be a mapping"},
-    {"unknown enum word", "{set: top, type: velocity, y: 1.0}", "{set: top, type: speed, y: 1.0} #<",
-     NULL, AT_LOAD, PDK_ERR_ARG, "boundary_conditions[1].type",
-     "allowed: displacement, velocity, body_force"},
+    {"unknown enum word", "{set: top, type: velocity, y: 1.0}",
+     "{set: top, type: speed, y: 1.0} #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "boundary_conditions[1].type", "allowed: displacement, velocity, body_force"},
     {"3 numbers in a 2-D point", "hi: [0.01, 0.02]}", "hi: [0.01, 0.02, 0.03]} #<", NULL, AT_LOAD,
      PDK_ERR_ARG, "geometry.box.hi", "must have 2 numbers"},
     {"whole number expected", "  steps: 10", "  steps: 10.5 #<", NULL, AT_LOAD, PDK_ERR_ARG,
@@ -70,7 +70,8 @@ static const error_case cases[] = {
      PDK_ERR_ARG, "geometry.spacing", "required key is missing"},
     {"missing top-level key", "solver:\n  steps: 10\n", "", NULL, AT_LOAD, PDK_ERR_ARG, "solver",
      "required key is missing"},
-    {"missing modulus", "material:\n  density: 7850\n  youngs_modulus: 200e9\n  poisson_ratio: 0.3\n",
+    {"missing modulus",
+     "material:\n  density: 7850\n  youngs_modulus: 200e9\n  poisson_ratio: 0.3\n",
      "material: #<\n  density: 7850\n  youngs_modulus: 200e9\n", NULL, AT_LOAD, PDK_ERR_ARG,
      "material.poisson_ratio", "youngs_modulus is given"},
     {"ramp without duration", "{set: top, type: velocity, y: 1.0}",
@@ -165,7 +166,8 @@ static int marked_line(const char *text) {
   const char *mark = strstr(text, "#<");
   if (!mark) return 1;
   int line = 1;
-  for (const char *c = text; c < mark; ++c) line += *c == '\n';
+  for (const char *c = text; c < mark; ++c)
+    line += *c == '\n';
   return line;
 }
 
@@ -216,7 +218,8 @@ static void run_case(pdk_ctx *ctx, int k, const error_case *c) {
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
   const int n = (int)(sizeof cases / sizeof cases[0]);
-  for (int k = 0; k < n; ++k) run_case(ctx, k, &cases[k]);
+  for (int k = 0; k < n; ++k)
+    run_case(ctx, k, &cases[k]);
 
   /* The base scene itself is valid, and force_dt accepts a dt above the estimate. */
   FILE *f = fopen("t061_base.yaml", "wb");
