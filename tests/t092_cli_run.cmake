@@ -57,6 +57,11 @@ last_row(${PDK_TEST_DIR}/rest/bar_history.csv rest_row)
 if(NOT rest_row STREQUAL full_row)
   message(FATAL_ERROR "restarted run differs:\n  full: ${full_row}\n  rest: ${rest_row}")
 endif()
+# --threads wins over the scene's solver.threads
+run(0 ${PDK_CLI} run ${scene} -o thr --threads 1 --set solver.threads=2 --set solver.steps=10)
+if(NOT run_out MATCHES ", 1 thread\\(s\\)")
+  message(FATAL_ERROR "--threads 1 not honoured: ${run_out}")
+endif()
 # the same with 2 threads on the continuation
 run(0 ${PDK_CLI} run ${scene} -o rest2 -q --threads 2 --restart ${PDK_TEST_DIR}/half/bar_checkpoint.h5)
 last_row(${PDK_TEST_DIR}/rest2/bar_history.csv rest2_row)

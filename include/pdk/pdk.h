@@ -9,6 +9,8 @@
 #include "pdk/families.h"
 #include "pdk/model.h"
 #include "pdk/explicit.h"
+#include "pdk/scene.h"
+#include "pdk/output.h"
 #include "pdk/plasticity.h"
 
 #endif

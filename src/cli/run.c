@@ -53,8 +53,9 @@ typedef struct run_args {
   const char *scene;
   const char *outdir;
   const char *restart;
-  const char *overrides[64];
+  const char *overrides[65];
   int num_overrides;
+  char threads_override[64];
   int threads;
   int quiet;
 } run_args;
@@ -101,6 +102,10 @@ static int parse_args(int argc, char **argv, run_args *a, const char *usage, int
     fprintf(stderr, "pdk: no scene file given\n\n%s", usage);
     return 2;
   }
+  if (a->threads) { /* --threads wins over the scene: pass it as the override solver.threads */
+    snprintf(a->threads_override, sizeof a->threads_override, "solver.threads=%d", a->threads);
+    a->overrides[a->num_overrides++] = a->threads_override;
+  }
   return 0;
 }
 
@@ -129,11 +134,6 @@ static void fmt_duration(char *buf, size_t len, double s) {
 /* Loads the scene and builds the simulation; prints the error and returns the exit status. */
 static int load_and_build(pdk_ctx *ctx, const run_args *a, pdk_scene **scene, pdk_sim **sim) {
   if (pdk_scene_load(ctx, a->scene, a->overrides, a->num_overrides, scene)) {
-    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-    return 2;
-  }
-  if (!a->threads && pdk_scene_threads(*scene) > 0 &&
-      pdk_ctx_set_num_threads(ctx, pdk_scene_threads(*scene))) {
     fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
     return 2;
   }
