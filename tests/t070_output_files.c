@@ -1,8 +1,11 @@
 /* Run output: HDF5 + XDMF + CSV (+ PNG with gnuplot) from a small 2-D PMB run.
  *   - every DataItem of the .xmf names a dataset that exists in the .h5 with the declared
- *     dimensions, number type and precision; the .xmf is well-formed XML (xmllint, when present);
- *   - field values and history columns round-trip bitwise; vectors are [n][3] with z = 0;
- *   - the geometry is the step's "x" when written, else /static/X;
+ *     dimensions, number type and precision; the .xmf is well-formed XML (xmllint, when present)
+ *     and ParaView's XDMF readers load every step (pvpython, when present);
+ *   - field values and history columns round-trip bitwise, deflated or not; vectors are [n][3]
+ *     with z = 0;
+ *   - the geometry is the step's "x" when written, else /static/X; a 2-D tensor is [n][9] with
+ *     zeros in the z row and column, an int32 field of 5 components [n][5] (Matrix);
  *   - the CSV has the header with units and one row per history record;
  *   - the PNG exists iff gnuplot is on the PATH (and pdk_output_will_plot says so);
  *   - close(.., 0) leaves no file; a killed process leaves only .part files;
@@ -118,7 +121,7 @@ static int tag_attr(const char *tag, const char *key, char *out, size_t cap) {
 }
 
 /* Checks one HDF DataItem of the XDMF against the HDF5 file; returns its dataset path in path. */
-static void check_data_item(hid_t file, const char *item, char *path, size_t cap) {
+static void check_data_item(hid_t file, const char *h5name, const char *item, char *path, size_t cap) {
   char dims_text[64], number_type[32] = "Float", precision[8] = "4", format[16];
   T_ASSERT(tag_attr(item, "Dimensions", dims_text, sizeof dims_text), "DataItem without Dimensions");
   T_ASSERT(tag_attr(item, "Format", format, sizeof format) && !strcmp(format, "HDF"), "DataItem not HDF");
@@ -130,7 +133,7 @@ static void check_data_item(hid_t file, const char *item, char *path, size_t cap
   char *colon = strchr(ref, ':');
   T_ASSERT(colon, "DataItem body '%s' has no file:path", ref);
   *colon = '\0';
-  T_ASSERT(!strcmp(ref, "run.h5"), "DataItem refers to '%s', expected the relative 'run.h5'", ref);
+  T_ASSERT(!strcmp(ref, h5name), "DataItem refers to '%s', expected the relative '%s'", ref, h5name);
   snprintf(path, cap, "%s", colon + 1);
   hsize_t want[2] = {0, 0};
   int rank = sscanf(dims_text, "%llu %llu", (unsigned long long *)&want[0], (unsigned long long *)&want[1]);
@@ -219,8 +222,15 @@ int main(void) {
   T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
   T_ASSERT(pdk_output_will_plot(o) == on_path("gnuplot"), "will_plot %d, gnuplot on PATH %d",
            pdk_output_will_plot(o), on_path("gnuplot"));
-  const char *fields[NUM_OUT][4] = {{"x", "v", "f"}, {"x", "v", "f", "set:left"}, {"v", "f"}};
-  const int num_fields[NUM_OUT] = {3, 4, 2};
+  /* Other shapes: a 2-D tensor "T" (4 components, [a][c] at 2a + c) and an int32 "odd" of 5. */
+  T_OK(ctx, pdk_particles_field_add(p, "T", PDK_F64, 4));
+  T_OK(ctx, pdk_particles_field_add(p, "odd", PDK_I32, 5));
+  for (pdk_index i = 0; i < n; ++i) {
+    for (int t = 0; t < 4; ++t) ((double *)pdk_particles_field_data(p, "T", t))[i] = 10.0 * i + t + 0.5;
+    for (int t = 0; t < 5; ++t) ((int32_t *)pdk_particles_field_data(p, "odd", t))[i] = (int32_t)(7 * i - t);
+  }
+  const char *fields[NUM_OUT][6] = {{"x", "v", "f"}, {"x", "v", "f", "set:left", "T", "odd"}, {"v", "f"}};
+  const int num_fields[NUM_OUT] = {3, 6, 2};
   double *saved[NUM_OUT][3]; /* x, v, f of each output, [2][n] */
   pdk_history hist[NUM_HIST];
   long steps[NUM_OUT];
@@ -270,7 +280,7 @@ int main(void) {
   char *xmf = read_text("run.xmf");
   int num_items = 0, num_grids = 0;
   char path[512];
-  for (const char *q = xmf; (q = strstr(q, "<DataItem")); ++q, ++num_items) check_data_item(file, q, path, sizeof path);
+  for (const char *q = xmf; (q = strstr(q, "<DataItem")); ++q, ++num_items) check_data_item(file, "run.h5", q, path, sizeof path);
   for (const char *q = xmf; (q = strstr(q, "<Grid Name=\"step_")); ++q, ++num_grids) {
     char want[64], value[64];
     const char *t = strstr(q, "<Time ");
@@ -278,14 +288,24 @@ int main(void) {
              "grid %d: time %s, written %.17g", num_grids, value, times[num_grids]);
     const char *g = strstr(q, "<Geometry");
     T_ASSERT(g && strstr(g, "GeometryType=\"XYZ\""), "grid %d geometry is XYZ", num_grids);
-    check_data_item(file, strstr(g, "<DataItem"), path, sizeof path);
+    check_data_item(file, "run.h5", strstr(g, "<DataItem"), path, sizeof path);
     if (num_grids < 2) snprintf(want, sizeof want, "/steps/%d/x", num_grids);
     else snprintf(want, sizeof want, "/static/X");
     T_ASSERT(!strcmp(path, want), "grid %d geometry %s, expected %s", num_grids, path, want);
   }
   T_ASSERT(num_grids == NUM_OUT, "%d grids in the .xmf, expected %d", num_grids, NUM_OUT);
-  /* per grid: geometry, id, volume, 2 sets, and the fields */
-  T_ASSERT(num_items == 3 * 5 + 3 + 4 + 2, "%d DataItems in the .xmf", num_items);
+  /* per grid: connectivity, geometry, id, volume, 2 sets (less set:left where the output writes
+   * it as a field), and the fields */
+  T_ASSERT(num_items == 3 * 6 - 1 + 3 + 6 + 2, "%d DataItems in the .xmf", num_items);
+  T_ASSERT(strstr(xmf, "<Attribute Name=\"T\" AttributeType=\"Tensor\"") &&
+               strstr(xmf, "<Attribute Name=\"odd\" AttributeType=\"Matrix\""),
+           "a 2-D tensor is a Tensor, 5 components a Matrix");
+  for (const char *q = xmf; (q = strstr(q, "<Grid Name=\"step_")); ++q) {
+    const char *end = strstr(q, "</Grid>");
+    int count = 0;
+    for (const char *a = q; (a = strstr(a, "Name=\"set:left\"")) && a < end; ++a) count++;
+    T_ASSERT(count == 1, "a grid has %d attributes named set:left", count);
+  }
   T_ASSERT(strstr(xmf, "CollectionType=\"Temporal\"") && strstr(xmf, "TopologyType=\"Polyvertex\"") &&
                strstr(xmf, "AttributeType=\"Vector\"") && strstr(xmf, "Center=\"Node\""),
            "temporal collection of polyvertex grids with node vectors");
@@ -294,6 +314,46 @@ int main(void) {
     T_ASSERT(system("xmllint --noout " DIR_OUT "/run.xmf") == 0, "xmllint rejects run.xmf");
   } else {
     printf("t070: xmllint not on the PATH; XML well-formedness not checked\n");
+  }
+
+  /* 2b. ParaView itself, when pvpython is on the PATH: its XDMF 2 reader and its Xdmf3 reader load
+   * every step with n points, n cells, the fields, and the geometry of the first step is "x". */
+  if (on_path("pvpython")) {
+    FILE *py = fopen(DIR_OUT "/pv_check.py", "w");
+    T_ASSERT(py, "cannot write pv_check.py");
+    fprintf(py,
+            "import sys\n"
+            "from paraview.simple import *\n"
+            "from vtk.numpy_interface import dataset_adapter as dsa\n"
+            "import numpy as np\n"
+            "fn, n, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])\n"
+            "for make in (lambda: XDMFReader(FileNames=[fn]), lambda: Xdmf3ReaderS(FileName=[fn])):\n"
+            "    r = make()\n"
+            "    r.UpdatePipelineInformation()\n"
+            "    times = list(r.TimestepValues)\n"
+            "    assert len(times) == steps, ('times', times)\n"
+            "    for k, t in enumerate(times):\n"
+            "        r.UpdatePipeline(t)\n"
+            "        d = servermanager.Fetch(r)\n"
+            "        if d.IsA('vtkMultiBlockDataSet'): d = d.GetBlock(0)\n"
+            "        assert d.GetNumberOfPoints() == n and d.GetNumberOfCells() == n, (k, d.GetNumberOfPoints(), d.GetNumberOfCells())\n"
+            "        w = dsa.WrapDataObject(d)\n"
+            "        for name in ('id', 'volume', 'set:right', 'v', 'f'):\n"
+            "            assert name in w.PointData.keys(), (k, name, w.PointData.keys())\n"
+            "        if k == 0:\n"
+            "            assert np.abs(np.array(w.Points) - np.array(w.PointData['x'])).max() == 0\n"
+            "print('ok')\n");
+    fclose(py);
+    char abs_dir[4096], cmd[4 * 4096 + 256];
+    T_ASSERT(realpath(DIR_OUT, abs_dir), "realpath");
+    snprintf(cmd, sizeof cmd, "pvpython %s/pv_check.py %s/run.xmf %d %d > %s/pv_check.log 2>&1", abs_dir,
+             abs_dir, (int)n, NUM_OUT, abs_dir);
+    if (system(cmd) != 0) {
+      char *log = read_text("pv_check.log");
+      T_FAIL("ParaView could not read run.xmf:\n%s", log);
+    }
+  } else {
+    printf("t070: pvpython not on the PATH; reading the .xmf with ParaView not checked\n");
   }
 
   /* 3. Values round-trip bitwise. */
@@ -314,6 +374,20 @@ int main(void) {
     T_ASSERT(s == steps[k], "output %d: step %lld, written %ld", k, s, steps[k]);
   }
   T_ASSERT(H5Lexists(file, "/steps/2/x", H5P_DEFAULT) == 0, "only the fields asked for are written");
+  {
+    double *T = read_f64(file, "/steps/1/T", (size_t)n * 9);
+    for (pdk_index i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) {
+          double want = a < 2 && c < 2 ? 10.0 * i + 2 * a + c + 0.5 : 0.0;
+          T_ASSERT(T[9 * i + 3 * a + c] == want, "T[%d][%d][%d] = %g, want %g", (int)i, a, c, T[9 * i + 3 * a + c], want);
+        }
+    free(T);
+    double *odd = read_f64(file, "/steps/1/odd", (size_t)n * 5); /* converted by HDF5 */
+    for (pdk_index i = 0; i < n; ++i)
+      for (int t = 0; t < 5; ++t) T_ASSERT(odd[5 * i + t] == 7.0 * i - t, "odd[%d][%d]", (int)i, t);
+    free(odd);
+  }
   {
     double *X = read_f64(file, "/static/X", (size_t)n * 3), *vol = read_f64(file, "/static/volume", (size_t)n);
     for (pdk_index i = 0; i < n; ++i) {
@@ -373,15 +447,42 @@ int main(void) {
     char *old_path = strdup(getenv("PATH") ? getenv("PATH") : "");
     setenv("PATH", "/nonexistent-pdk-t070", 1);
     oo.name = "nogp";
+    oo.compression = 3; /* and the deflated field datasets round-trip too */
     T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
     T_ASSERT(pdk_output_will_plot(o) == 0, "no gnuplot: will_plot is 0");
     T_OK(ctx, pdk_output_write_history(o, &hist[0]));
+    T_OK(ctx, pdk_output_write_fields(o, p, steps[2], times[2], fields[2], num_fields[2]));
     T_OK(ctx, pdk_output_close(&o, 1));
+    oo.compression = 0;
     setenv("PATH", old_path, 1);
     free(old_path);
     T_ASSERT(exists("nogp.h5") && exists("nogp.xmf") && !exists("nogp_history.png") &&
                  !exists("nogp_history.png.part") && count_files("nogp") == 3,
              "without gnuplot: .h5, .xmf, .csv only");
+    file = H5Fopen(DIR_OUT "/nogp.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    check_vector(file, "/steps/0/v", saved[2][1], n);
+    hid_t d = H5Dopen2(file, "/steps/0/v", H5P_DEFAULT), dcpl = H5Dget_create_plist(d);
+    T_ASSERT(H5Pget_nfilters(dcpl) == 2, "compression 3: shuffle and deflate on the fields");
+    H5Pclose(dcpl);
+    H5Dclose(d);
+    H5Fclose(file);
+  }
+
+  /* 5b. Histories only: the .xmf still holds one grid, the reference configuration. */
+  {
+    oo.name = "histonly";
+    T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
+    T_OK(ctx, pdk_output_write_history(o, &hist[0]));
+    T_OK(ctx, pdk_output_close(&o, 1));
+    file = H5Fopen(DIR_OUT "/histonly.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    char *text = read_text("histonly.xmf");
+    int items = 0, grids = 0;
+    for (const char *q = text; (q = strstr(q, "<DataItem")); ++q, ++items)
+      check_data_item(file, "histonly.h5", q, path, sizeof path);
+    for (const char *q = text; (q = strstr(q, "<Grid Name=\"step_")); ++q) grids++;
+    T_ASSERT(grids == 1 && items == 6, "histories only: %d grids, %d items", grids, items);
+    free(text);
+    H5Fclose(file);
   }
 
   /* 6. close(.., 0) removes everything. */
