@@ -38,18 +38,21 @@ static int write_field(pdk_ctx *ctx, hid_t g, pdk_particles *p, const char *name
   PDK_CALL(pdk_particles_field_info(p, name, &type, &num_comp));
   PDK_CHECK(!strchr(name, '/') && strcmp(name, "."), ctx, PDK_ERR_ARG,
             "field name '%s' cannot be stored in a checkpoint (it contains '/' or is '.')", name);
-  hsize_t dims[2] = {(hsize_t)num_comp, (hsize_t)n}, count[2] = {1, (hsize_t)n}, mdims[1] = {(hsize_t)n};
+  hsize_t dims[2] = {(hsize_t)num_comp, (hsize_t)n}, count[2] = {1, (hsize_t)n},
+          mdims[1] = {(hsize_t)n};
   PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(2, dims, NULL));
   PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(1, mdims, NULL));
-  PDK_H5_CALL_GOTO(ctx, d, H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(
+      ctx, d,
+      H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, d, "type", (int64_t)type));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, d, "components", num_comp));
   for (int c = 0; c < num_comp; ++c) {
     hsize_t start[2] = {(hsize_t)c, 0};
     PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
-    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, pdk_h5_mem_type(type), mspace, space, H5P_DEFAULT,
-                                       pdk_particles_field_data(p, name, c)));
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Dwrite(d, pdk_h5_mem_type(type), mspace, space, H5P_DEFAULT,
+                              pdk_particles_field_data(p, name, c)));
   }
 cleanup:
   if (d >= 0) H5Dclose(d);
@@ -65,9 +68,12 @@ static int write_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, h
   hid_t space = -1, d = -1;
   herr_t st;
   PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, &count, NULL));
-  PDK_H5_CALL_GOTO(ctx, d, H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT,
-                                      H5P_DEFAULT));
-  if (count) PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
+  PDK_H5_CALL_GOTO(
+      ctx, d,
+      H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (count)
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Dwrite(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
 cleanup:
   if (d >= 0) H5Dclose(d);
   if (space >= 0) H5Sclose(space);
@@ -92,7 +98,8 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "dimension", pdk_particles_dim(p)));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_particles", n));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_bonds", nb));
-  PDK_CALL_GOTO(pdk_h5_attr_write_string(ctx, file, "model_kind", pdk_model_kind_name(m->opts.kind)));
+  PDK_CALL_GOTO(
+      pdk_h5_attr_write_string(ctx, file, "model_kind", pdk_model_kind_name(m->opts.kind)));
   if (scene_text) PDK_CALL_GOTO(pdk_h5_text_write(ctx, file, "scene", scene_text));
 
   PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
@@ -108,7 +115,8 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_broken", m->num_broken));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_flagged", m->num_flagged));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "has_bond_state", m->bond_alive != NULL));
-  if (m->bond_alive) PDK_CALL_GOTO(write_array(ctx, g, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
+  if (m->bond_alive)
+    PDK_CALL_GOTO(write_array(ctx, g, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
   if (m->s0) PDK_CALL_GOTO(write_array(ctx, g, "s0", PDK_F64, (hsize_t)n, m->s0));
   H5Gclose(g);
   g = -1;
@@ -133,7 +141,8 @@ cleanup:
   return err;
 }
 
-/* ---- read ------------------------------------------------------------------------------------- */
+/* ---- read -------------------------------------------------------------------------------------
+ */
 
 /* Opens a checkpoint and checks that it is one. */
 static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
@@ -152,8 +161,8 @@ static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
                  "'%s' is a '%s' file, not a pdk checkpoint", path, kind);
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "format", &format));
   PDK_CHECK_GOTO(format == CKPT_FORMAT, ctx, PDK_ERR_UNSUPPORTED,
-                 "checkpoint '%s' has format %lld; this pdk reads format %d", path, (long long)format,
-                 CKPT_FORMAT);
+                 "checkpoint '%s' has format %lld; this pdk reads format %d", path,
+                 (long long)format, CKPT_FORMAT);
   *out = file;
   file = -1;
 cleanup:
@@ -162,7 +171,8 @@ cleanup:
   return err;
 }
 
-int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time, char **scene_text) {
+int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
+                        char **scene_text) {
   int err = PDK_SUCCESS;
   hid_t file = -1, g = -1;
   if (scene_text) *scene_text = NULL;
@@ -182,15 +192,16 @@ cleanup:
 }
 
 /* The error for a checkpoint that does not fit the simulation. */
-#define CKPT_MISMATCH(ctx, path, ...)                                                           \
-  do {                                                                                          \
-    char what_[512];                                                                            \
-    snprintf(what_, sizeof what_, __VA_ARGS__);                                                 \
-    err = pdk_ctx_error_set((ctx), PDK_ERR_ARG, __func__,                                       \
-                            "checkpoint '%s' does not fit this simulation: %s; the scene changed "  \
-                            "since the checkpoint was written (restart with the scene stored in "   \
-                            "its 'scene' attribute, or start afresh)", (path), what_);          \
-    goto cleanup;                                                                               \
+#define CKPT_MISMATCH(ctx, path, ...)                                                              \
+  do {                                                                                             \
+    char what_[512];                                                                               \
+    snprintf(what_, sizeof what_, __VA_ARGS__);                                                    \
+    err = pdk_ctx_error_set((ctx), PDK_ERR_ARG, __func__,                                          \
+                            "checkpoint '%s' does not fit this simulation: %s; the scene changed " \
+                            "since the checkpoint was written (restart with the scene stored in "  \
+                            "its 'scene' attribute, or start afresh)",                             \
+                            (path), what_);                                                        \
+    goto cleanup;                                                                                  \
   } while (0)
 
 /* Shape of /fields/<name>: type, components and the dataset's dims; *found = 0 when absent. */
@@ -211,8 +222,9 @@ static int field_shape(pdk_ctx *ctx, hid_t g, const char *name, int *found, pdk_
   H5Sget_simple_extent_dims(space, dims, NULL);
   PDK_CHECK_GOTO(pdk_type_size((pdk_type)t) > 0 && t >= 0 && t <= PDK_U8 && nc >= 1 && nc <= 9 &&
                      dims[0] == (hsize_t)nc,
-                 ctx, PDK_ERR_IO, "checkpoint field '%s' has a bad type %lld or component count %lld",
-                 name, (long long)t, (long long)nc);
+                 ctx, PDK_ERR_IO,
+                 "checkpoint field '%s' has a bad type %lld or component count %lld", name,
+                 (long long)t, (long long)nc);
   *type = (pdk_type)t;
   *num_comp = (int)nc;
 cleanup:
@@ -240,7 +252,8 @@ cleanup:
   return err;
 }
 
-static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count, void *dst) {
+static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count,
+                      void *dst) {
   int err = PDK_SUCCESS;
   hid_t d = -1, space = -1;
   herr_t st;
@@ -251,7 +264,9 @@ static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hs
   H5Sget_simple_extent_dims(space, dims, NULL);
   PDK_CHECK_GOTO(dims[0] == count, ctx, PDK_ERR_IO, "'%s' has %llu entries, expected %llu", name,
                  (unsigned long long)dims[0], (unsigned long long)count);
-  if (count) PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, dst));
+  if (count)
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Dread(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, dst));
 cleanup:
   if (space >= 0) H5Sclose(space);
   if (d >= 0) H5Dclose(d);
@@ -275,11 +290,13 @@ static int check_geometry(pdk_ctx *ctx, const char *path, hid_t g, pdk_particles
       PDK_CALL_GOTO(read_component(ctx, g, names[k], type, c, (hsize_t)n, buf));
       if (!memcmp(buf, mine, (size_t)n * elem)) continue;
       pdk_index i = 0;
-      while (i < n && !memcmp(buf + (size_t)i * elem, mine + (size_t)i * elem, elem)) ++i;
+      while (i < n && !memcmp(buf + (size_t)i * elem, mine + (size_t)i * elem, elem))
+        ++i;
       if (type == PDK_I64)
         CKPT_MISMATCH(ctx, path, "particle %d has id %lld in the checkpoint and %lld here", (int)i,
                       (long long)((int64_t *)buf)[i], (long long)((const int64_t *)mine)[i]);
-      CKPT_MISMATCH(ctx, path, "particle %d (id %lld) has %s[%d] = %.17g in the checkpoint and %.17g here",
+      CKPT_MISMATCH(ctx, path,
+                    "particle %d (id %lld) has %s[%d] = %.17g in the checkpoint and %.17g here",
                     (int)i, (long long)pdk_particles_id(p)[i], names[k], c, ((double *)buf)[i],
                     ((const double *)mine)[i]);
     }
@@ -293,7 +310,7 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
   int err = PDK_SUCCESS;
   hid_t file = -1, gs = -1, gm = -1, gf = -1;
   char *model_kind = NULL;
-  char (*extra)[PDK_FIELD_NAME_MAX] = NULL; /* checkpoint fields the simulation lacks */
+  char(*extra)[PDK_FIELD_NAME_MAX] = NULL; /* checkpoint fields the simulation lacks */
   int num_extra = 0;
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to restore into");
   pdk_model *m = e->m;
@@ -306,14 +323,17 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
   /* 1. Check everything; change nothing. */
   int64_t v;
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "dimension", &v));
-  if (v != dim) CKPT_MISMATCH(ctx, path, "it is %lld-D, this simulation is %d-D", (long long)v, dim);
+  if (v != dim)
+    CKPT_MISMATCH(ctx, path, "it is %lld-D, this simulation is %d-D", (long long)v, dim);
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "num_particles", &v));
   if (v != n)
     CKPT_MISMATCH(ctx, path, "it has %lld particles, this simulation has %d", (long long)v, (int)n);
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, file, "num_bonds", &v));
   if (v != nb)
-    CKPT_MISMATCH(ctx, path, "it has %lld bonds, this simulation has %lld (a different horizon, "
-                  "lattice or pre-crack)", (long long)v, (long long)nb);
+    CKPT_MISMATCH(ctx, path,
+                  "it has %lld bonds, this simulation has %lld (a different horizon, "
+                  "lattice or pre-crack)",
+                  (long long)v, (long long)nb);
   PDK_CALL_GOTO(pdk_h5_attr_read_string(ctx, file, "model_kind", &model_kind));
   if (strcmp(model_kind, pdk_model_kind_name(m->opts.kind)))
     CKPT_MISMATCH(ctx, path, "its model is '%s', this simulation's is '%s'", model_kind,
@@ -336,9 +356,10 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
     PDK_CALL_GOTO(field_shape(ctx, gf, name, &found, &ctype, &cnum_comp, dims));
     if (!found) CKPT_MISMATCH(ctx, path, "it has no particle field '%s'", name);
     if (ctype != type || cnum_comp != num_comp || dims[1] != (hsize_t)n)
-      CKPT_MISMATCH(ctx, path, "field '%s' is type %d x %d components of %llu particles there, "
-                    "type %d x %d here", name, (int)ctype, cnum_comp, (unsigned long long)dims[1],
-                    (int)type, num_comp);
+      CKPT_MISMATCH(ctx, path,
+                    "field '%s' is type %d x %d components of %llu particles there, "
+                    "type %d x %d here",
+                    name, (int)ctype, cnum_comp, (unsigned long long)dims[1], (int)type, num_comp);
   }
   {
     H5G_info_t info;
@@ -348,7 +369,8 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
     PDK_CHECK_GOTO(extra, ctx, PDK_ERR_MEMORY, "out of memory");
     for (hsize_t k = 0; k < info.nlinks; ++k) {
       char name[PDK_FIELD_NAME_MAX];
-      ssize_t len = H5Lget_name_by_idx(gf, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT);
+      ssize_t len = H5Lget_name_by_idx(gf, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name,
+                                       H5P_DEFAULT);
       PDK_CHECK_GOTO(len > 0 && len < PDK_FIELD_NAME_MAX, ctx, PDK_ERR_IO,
                      "checkpoint '%s': bad field name at index %llu", path, (unsigned long long)k);
       if (pdk_particles_field_exists(p, name)) continue;
@@ -356,8 +378,10 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
       int num_comp, found;
       hsize_t dims[2];
       PDK_CALL_GOTO(field_shape(ctx, gf, name, &found, &type, &num_comp, dims));
-      PDK_CHECK_GOTO(dims[1] == (hsize_t)n, ctx, PDK_ERR_IO, "checkpoint field '%s' has %llu entries, "
-                     "expected %d", name, (unsigned long long)dims[1], (int)n);
+      PDK_CHECK_GOTO(dims[1] == (hsize_t)n, ctx, PDK_ERR_IO,
+                     "checkpoint field '%s' has %llu entries, "
+                     "expected %d",
+                     name, (unsigned long long)dims[1], (int)n);
       strcpy(extra[num_extra++], name);
     }
   }
@@ -377,9 +401,11 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
     int num_comp;
     PDK_CALL_GOTO(pdk_particles_field_info(p, name, &type, &num_comp));
     for (int c = 0; c < num_comp; ++c)
-      PDK_CALL_GOTO(read_component(ctx, gf, name, type, c, (hsize_t)n, pdk_particles_field_data(p, name, c)));
+      PDK_CALL_GOTO(
+          read_component(ctx, gf, name, type, c, (hsize_t)n, pdk_particles_field_data(p, name, c)));
   }
-  if (m->bond_alive) PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
+  if (m->bond_alive)
+    PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
   if (m->s0) PDK_CALL_GOTO(read_array(ctx, gm, "s0", PDK_F64, (hsize_t)n, m->s0));
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_broken", &v));
   m->num_broken = (pdk_bond_index)v;

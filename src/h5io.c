@@ -87,7 +87,8 @@ int pdk_h5_attr_write_f64(pdk_ctx *ctx, hid_t obj, const char *name, double valu
 
 int pdk_h5_attr_exists(hid_t obj, const char *name) { return H5Aexists(obj, name) > 0; }
 
-static int attr_read_scalar(pdk_ctx *ctx, hid_t obj, const char *name, hid_t mem_type, void *value) {
+static int attr_read_scalar(pdk_ctx *ctx, hid_t obj, const char *name, hid_t mem_type,
+                            void *value) {
   int err = PDK_SUCCESS;
   hid_t a = -1;
   herr_t st;
@@ -113,8 +114,10 @@ static int read_string(pdk_ctx *ctx, hid_t obj, const char *name, int is_dataset
   char *buf = NULL;
   herr_t st;
   *text = NULL;
-  if (is_dataset) PDK_H5_CALL_GOTO(ctx, h, H5Dopen2(obj, name, H5P_DEFAULT));
-  else PDK_H5_CALL_GOTO(ctx, h, H5Aopen(obj, name, H5P_DEFAULT));
+  if (is_dataset)
+    PDK_H5_CALL_GOTO(ctx, h, H5Dopen2(obj, name, H5P_DEFAULT));
+  else
+    PDK_H5_CALL_GOTO(ctx, h, H5Aopen(obj, name, H5P_DEFAULT));
   PDK_H5_CALL_GOTO(ctx, ft, is_dataset ? H5Dget_type(h) : H5Aget_type(h));
   PDK_CHECK_GOTO(H5Tget_class(ft) == H5T_STRING && H5Tis_variable_str(ft) == 0, ctx, PDK_ERR_IO,
                  "'%s' is not a fixed-length string; this file was not written by pdk", name);
@@ -123,16 +126,20 @@ static int read_string(pdk_ctx *ctx, hid_t obj, const char *name, int is_dataset
   buf = calloc(len + 1, 1);
   PDK_CHECK_GOTO(buf, ctx, PDK_ERR_MEMORY, "out of memory reading '%s' (%zu bytes)", name, len);
   PDK_H5_CALL_GOTO(ctx, mt, string_type(len));
-  if (is_dataset) PDK_H5_CALL_GOTO(ctx, st, H5Dread(h, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf));
-  else PDK_H5_CALL_GOTO(ctx, st, H5Aread(h, mt, buf));
+  if (is_dataset)
+    PDK_H5_CALL_GOTO(ctx, st, H5Dread(h, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf));
+  else
+    PDK_H5_CALL_GOTO(ctx, st, H5Aread(h, mt, buf));
   *text = buf;
   buf = NULL;
 cleanup:
   free(buf);
   if (mt >= 0) H5Tclose(mt);
   if (ft >= 0) H5Tclose(ft);
-  if (h >= 0 && is_dataset) H5Dclose(h);
-  else if (h >= 0) H5Aclose(h);
+  if (h >= 0 && is_dataset)
+    H5Dclose(h);
+  else if (h >= 0)
+    H5Aclose(h);
   return err;
 }
 
@@ -192,7 +199,8 @@ int pdk_dir_create(pdk_ctx *ctx, const char *dir) {
   char *path = strdup(dir);
   PDK_CHECK(path, ctx, PDK_ERR_MEMORY, "out of memory");
   size_t len = strlen(path);
-  while (len > 1 && path[len - 1] == '/') path[--len] = '\0';
+  while (len > 1 && path[len - 1] == '/')
+    path[--len] = '\0';
   /* Create each prefix ending before a '/', then the whole path. */
   for (char *q = path + 1;; ++q) {
     if (*q != '/' && *q != '\0') continue;
@@ -230,9 +238,12 @@ static void sync_parent_dir(const char *path) {
   char *dir = strdup(path);
   if (!dir) return;
   char *slash = strrchr(dir, '/');
-  if (!slash) strcpy(dir, ".");
-  else if (slash == dir) dir[1] = '\0';
-  else *slash = '\0';
+  if (!slash)
+    strcpy(dir, ".");
+  else if (slash == dir)
+    dir[1] = '\0';
+  else
+    *slash = '\0';
   int fd = open(dir, O_RDONLY);
   if (fd >= 0) {
     (void)fsync(fd);

@@ -32,14 +32,15 @@
 
 enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_NUM_FILES };
 
-#define OUT_CHUNK_ROWS 32768 /* rows per field chunk: 256 kB for f64 scalars, 768 kB for vectors */
+#define OUT_CHUNK_ROWS 32768 /* rows per field chunk: 256 kB for f64 scalars, 768 kB for vectors   \
+                              */
 #define OUT_HIST_CHUNK 1024  /* rows per history chunk */
 /* Deflate level of the static datasets, written once: ids and sets shrink many times over.
  * Field outputs use opts.compression, off by default: measured on this machine (1e6 particles,
  * x, v, f in 3-D, HDF5 1.10), shuffle + deflate 1 takes 1.08 s per output against 0.05 s
  * uncompressed, for files 44% smaller; that is not cheap next to a force pass. */
 #define OUT_STATIC_DEFLATE 1
-#define OUT_MAX_REACTION 8   /* = the size of pdk_history.reaction */
+#define OUT_MAX_REACTION 8 /* = the size of pdk_history.reaction */
 #define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3)
 #define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
 #define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
@@ -51,18 +52,18 @@ struct pdk_output {
   pdk_particles *p; /* borrowed */
   int dim;
   pdk_index n;
-  int compression;  /* deflate level, 0 = off */
-  int will_plot;    /* plot asked for and gnuplot found at open */
-  int failed;       /* a write failed: the files are incomplete and close(.., 1) refuses */
+  int compression; /* deflate level, 0 = off */
+  int will_plot;   /* plot asked for and gnuplot found at open */
+  int failed;      /* a write failed: the files are incomplete and close(.., 1) refuses */
   char *dir;
   char *name;
-  char *h5_ref;     /* "<name>.h5", XML-escaped: how the .xmf names the data file */
+  char *h5_ref; /* "<name>.h5", XML-escaped: how the .xmf names the data file */
   char *final[OUT_NUM_FILES], *part[OUT_NUM_FILES];
   hid_t file;
-  hid_t history;    /* /history group */
+  hid_t history; /* /history group */
   FILE *xmf, *csv;
-  int num_steps;    /* field outputs written */
-  long rows;        /* history records written */
+  int num_steps; /* field outputs written */
+  long rows;     /* history records written */
   int num_cols;
   char col_name[OUT_MAX_COLS][OUT_COL_MAX];
   const char *col_unit[OUT_MAX_COLS];
@@ -89,15 +90,16 @@ pdk_output_opts pdk_output_opts_default(void) {
   return o;
 }
 
-/* ---- names ------------------------------------------------------------------------------------ */
+/* ---- names ------------------------------------------------------------------------------------
+ */
 
 /* Dataset name of a field: every character outside [A-Za-z0-9_-] becomes '_'. */
 static void sanitize(const char *in, char *out, size_t cap) {
   size_t k = 0;
   for (; in[k] && k + 1 < cap; ++k) {
     char c = in[k];
-    int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-             c == '-';
+    int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+             c == '_' || c == '-';
     out[k] = ok ? c : '_';
   }
   out[k] = '\0';
@@ -106,16 +108,32 @@ static void sanitize(const char *in, char *out, size_t cap) {
 /* malloc'd copy of s with the five XML special characters escaped. */
 static char *xml_escape(const char *s) {
   size_t len = 0;
-  for (const char *q = s; *q; ++q) len += *q == '&' ? 5 : (*q == '<' || *q == '>') ? 4 : (*q == '"' || *q == '\'') ? 6 : 1;
+  for (const char *q = s; *q; ++q)
+    len += *q == '&' ? 5 : (*q == '<' || *q == '>') ? 4 : (*q == '"' || *q == '\'') ? 6 : 1;
   char *out = malloc(len + 1), *w = out;
   if (!out) return NULL;
   for (const char *q = s; *q; ++q) {
     switch (*q) {
-    case '&': memcpy(w, "&amp;", 5); w += 5; break;
-    case '<': memcpy(w, "&lt;", 4); w += 4; break;
-    case '>': memcpy(w, "&gt;", 4); w += 4; break;
-    case '"': memcpy(w, "&quot;", 6); w += 6; break;
-    case '\'': memcpy(w, "&apos;", 6); w += 6; break;
+    case '&':
+      memcpy(w, "&amp;", 5);
+      w += 5;
+      break;
+    case '<':
+      memcpy(w, "&lt;", 4);
+      w += 4;
+      break;
+    case '>':
+      memcpy(w, "&gt;", 4);
+      w += 4;
+      break;
+    case '"':
+      memcpy(w, "&quot;", 6);
+      w += 6;
+      break;
+    case '\'':
+      memcpy(w, "&apos;", 6);
+      w += 6;
+      break;
     default: *w++ = *q;
     }
   }
@@ -126,7 +144,8 @@ static char *xml_escape(const char *s) {
 /* malloc'd copy of s for a single-quoted gnuplot string ('' stands for '). */
 static char *gnuplot_quote(const char *s) {
   size_t len = strlen(s);
-  for (const char *q = s; *q; ++q) len += *q == '\'';
+  for (const char *q = s; *q; ++q)
+    len += *q == '\'';
   char *out = malloc(len + 1), *w = out;
   if (!out) return NULL;
   for (const char *q = s; *q; ++q) {
@@ -148,11 +167,13 @@ static void field_list(const pdk_particles *p, char *buf, size_t cap) {
   }
 }
 
-/* ---- field layout ----------------------------------------------------------------------------- */
+/* ---- field layout -----------------------------------------------------------------------------
+ */
 
 typedef enum out_layout { OUT_SCALAR, OUT_VECTOR, OUT_TENSOR, OUT_MATRIX } out_layout;
 
-/* How a field of num_comp components is stored: the dataset's columns and where component c goes. */
+/* How a field of num_comp components is stored: the dataset's columns and where component c goes.
+ */
 static out_layout field_layout(int dim, int num_comp, int *cols, int col_of[9]) {
   if (num_comp == 1) {
     *cols = 1;
@@ -161,17 +182,20 @@ static out_layout field_layout(int dim, int num_comp, int *cols, int col_of[9]) 
   }
   if (num_comp == dim) {
     *cols = 3;
-    for (int c = 0; c < dim; ++c) col_of[c] = c;
+    for (int c = 0; c < dim; ++c)
+      col_of[c] = c;
     return OUT_VECTOR;
   }
   if (num_comp == dim * dim) { /* component [a][c] at a*dim + c goes to 3a + c */
     *cols = 9;
     for (int a = 0; a < dim; ++a)
-      for (int c = 0; c < dim; ++c) col_of[a * dim + c] = 3 * a + c;
+      for (int c = 0; c < dim; ++c)
+        col_of[a * dim + c] = 3 * a + c;
     return OUT_TENSOR;
   }
   *cols = num_comp;
-  for (int c = 0; c < num_comp; ++c) col_of[c] = c;
+  for (int c = 0; c < num_comp; ++c)
+    col_of[c] = c;
   return OUT_MATRIX;
 }
 
@@ -193,7 +217,8 @@ static const char *xdmf_number_type(pdk_type t, int *precision) {
   return "Float";
 }
 
-/* ---- HDF5 datasets ---------------------------------------------------------------------------- */
+/* ---- HDF5 datasets ----------------------------------------------------------------------------
+ */
 
 /* Creates the dataset `name` in loc, [n] (cols = 1) or [n][cols], chunked by OUT_CHUNK_ROWS rows,
  * shuffled and deflated at `level` when level > 0 and this HDF5 has deflate. */
@@ -215,8 +240,9 @@ static int create_field_dataset(pdk_output *o, hid_t loc, const char *name, pdk_
     PDK_H5_CALL_GOTO(ctx, st, H5Pset_shuffle(dcpl));
     PDK_H5_CALL_GOTO(ctx, st, H5Pset_deflate(dcpl, (unsigned)level));
   }
-  PDK_H5_CALL_GOTO(ctx, *out, H5Dcreate2(loc, name, pdk_h5_file_type(type), space, H5P_DEFAULT, dcpl,
-                                         H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(
+      ctx, *out,
+      H5Dcreate2(loc, name, pdk_h5_file_type(type), space, H5P_DEFAULT, dcpl, H5P_DEFAULT));
 cleanup:
   if (dcpl >= 0) H5Pclose(dcpl);
   if (space >= 0) H5Sclose(space);
@@ -231,19 +257,22 @@ static void scatter_column(void *restrict dst, int cols, int col, const void *re
   case 8: {
     uint64_t *d = dst;
     const uint64_t *s = src;
-    for (pdk_index i = 0; i < rows; ++i) d[(size_t)i * cols + col] = s[i];
+    for (pdk_index i = 0; i < rows; ++i)
+      d[(size_t)i * cols + col] = s[i];
     break;
   }
   case 4: {
     uint32_t *d = dst;
     const uint32_t *s = src;
-    for (pdk_index i = 0; i < rows; ++i) d[(size_t)i * cols + col] = s[i];
+    for (pdk_index i = 0; i < rows; ++i)
+      d[(size_t)i * cols + col] = s[i];
     break;
   }
   default: {
     unsigned char *d = dst;
     const unsigned char *s = src;
-    for (pdk_index i = 0; i < rows; ++i) memcpy(d + ((size_t)i * cols + col) * elem, s + (size_t)i * elem, elem);
+    for (pdk_index i = 0; i < rows; ++i)
+      memcpy(d + ((size_t)i * cols + col) * elem, s + (size_t)i * elem, elem);
   }
   }
 }
@@ -265,15 +294,18 @@ static int write_field_data(pdk_output *o, hid_t d, pdk_type type, int num_comp,
   }
   const pdk_index block = o->n < OUT_CHUNK_ROWS ? o->n : OUT_CHUNK_ROWS;
   buf = malloc((size_t)block * (size_t)cols * elem);
-  PDK_CHECK_GOTO(buf, ctx, PDK_ERR_MEMORY, "out of memory for an output buffer of %d rows", (int)block);
+  PDK_CHECK_GOTO(buf, ctx, PDK_ERR_MEMORY, "out of memory for an output buffer of %d rows",
+                 (int)block);
   PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(d));
   for (pdk_index r0 = 0; r0 < o->n; r0 += block) {
     pdk_index rows = o->n - r0 < block ? o->n - r0 : block;
     memset(buf, 0, (size_t)rows * (size_t)cols * elem);
     for (int c = 0; c < num_comp; ++c)
-      scatter_column(buf, cols, col_of[c], (const unsigned char *)comp[c] + (size_t)r0 * elem, rows, elem);
+      scatter_column(buf, cols, col_of[c], (const unsigned char *)comp[c] + (size_t)r0 * elem, rows,
+                     elem);
     hsize_t start[2] = {(hsize_t)r0, 0}, count[2] = {(hsize_t)rows, (hsize_t)cols};
-    PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
     PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(2, count, NULL));
     PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, mtype, mspace, fspace, H5P_DEFAULT, buf));
     H5Sclose(mspace);
@@ -287,8 +319,9 @@ cleanup:
 }
 
 /* Creates and writes the dataset `name` in loc from field `field` of p, deflated at `level`. */
-static int write_field(pdk_output *o, pdk_particles *p, hid_t loc, const char *name, const char *field,
-                       int level, out_layout *layout_out, int *cols_out, pdk_type *type_out) {
+static int write_field(pdk_output *o, pdk_particles *p, hid_t loc, const char *name,
+                       const char *field, int level, out_layout *layout_out, int *cols_out,
+                       pdk_type *type_out) {
   int err = PDK_SUCCESS;
   hid_t d = -1;
   pdk_type type;
@@ -296,7 +329,8 @@ static int write_field(pdk_output *o, pdk_particles *p, hid_t loc, const char *n
   void *comp[9];
   PDK_CALL(pdk_particles_field_info(p, field, &type, &num_comp));
   out_layout layout = field_layout(o->dim, num_comp, &cols, col_of);
-  for (int c = 0; c < num_comp; ++c) comp[c] = pdk_particles_field_data(p, field, c);
+  for (int c = 0; c < num_comp; ++c)
+    comp[c] = pdk_particles_field_data(p, field, c);
   PDK_CALL_GOTO(create_field_dataset(o, loc, name, type, cols, level, &d));
   PDK_CALL_GOTO(write_field_data(o, d, type, num_comp, cols, col_of, comp));
   if (layout_out) *layout_out = layout;
@@ -307,25 +341,32 @@ cleanup:
   return err;
 }
 
-/* ---- XDMF ------------------------------------------------------------------------------------- */
+/* ---- XDMF -------------------------------------------------------------------------------------
+ */
 
-static void xmf_data_item(pdk_output *o, const char *indent, int cols, pdk_type type, const char *path) {
+static void xmf_data_item(pdk_output *o, const char *indent, int cols, pdk_type type,
+                          const char *path) {
   int precision;
   const char *number_type = xdmf_number_type(type, &precision);
   if (cols == 1)
-    fprintf(o->xmf, "%s<DataItem Dimensions=\"%d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n",
+    fprintf(o->xmf,
+            "%s<DataItem Dimensions=\"%d\" NumberType=\"%s\" Precision=\"%d\" "
+            "Format=\"HDF\">%s:%s</DataItem>\n",
             indent, (int)o->n, number_type, precision, o->h5_ref, path);
   else
-    fprintf(o->xmf, "%s<DataItem Dimensions=\"%d %d\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>\n",
+    fprintf(o->xmf,
+            "%s<DataItem Dimensions=\"%d %d\" NumberType=\"%s\" Precision=\"%d\" "
+            "Format=\"HDF\">%s:%s</DataItem>\n",
             indent, (int)o->n, cols, number_type, precision, o->h5_ref, path);
 }
 
 /* A node attribute named after the field (XML-escaped). */
-static int xmf_attribute(pdk_output *o, const char *name, out_layout layout, int cols, pdk_type type,
-                         const char *path) {
+static int xmf_attribute(pdk_output *o, const char *name, out_layout layout, int cols,
+                         pdk_type type, const char *path) {
   char *escaped = xml_escape(name);
   PDK_CHECK(escaped, o->ctx, PDK_ERR_MEMORY, "out of memory");
-  fprintf(o->xmf, "      <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", escaped, layout_name(layout));
+  fprintf(o->xmf, "      <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", escaped,
+          layout_name(layout));
   free(escaped);
   xmf_data_item(o, "        ", cols, type, path);
   fprintf(o->xmf, "      </Attribute>\n");
@@ -350,7 +391,9 @@ static int xmf_grid_open(pdk_output *o, long step, double time, const char *geom
   char path[2 * OUT_NAME_MAX + 32];
   fprintf(o->xmf, "    <Grid Name=\"step_%ld\" GridType=\"Uniform\">\n", step);
   fprintf(o->xmf, "      <Time Value=\"%.17g\"/>\n", time);
-  fprintf(o->xmf, "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" NodesPerElement=\"1\">\n",
+  fprintf(o->xmf,
+          "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%d\" "
+          "NodesPerElement=\"1\">\n",
           (int)o->n);
   xmf_data_item(o, "        ", 1, PDK_I32, "/static/connectivity");
   fprintf(o->xmf, "      </Topology>\n");
@@ -380,7 +423,8 @@ static int flush_files(pdk_output *o) {
   return PDK_SUCCESS;
 }
 
-/* ---- open ------------------------------------------------------------------------------------- */
+/* ---- open -------------------------------------------------------------------------------------
+ */
 
 static int gnuplot_on_path(void) {
   const char *path = getenv("PATH");
@@ -391,7 +435,8 @@ static int gnuplot_on_path(void) {
     size_t len = end ? (size_t)(end - q) : strlen(q);
     char buf[4096];
     if (len + 10 < sizeof buf) {
-      if (len == 0) strcpy(buf, "./gnuplot");
+      if (len == 0)
+        strcpy(buf, "./gnuplot");
       else {
         memcpy(buf, q, len);
         strcpy(buf + len, "/gnuplot");
@@ -421,7 +466,8 @@ static int set_units(pdk_output *o, const char *units) {
     o->unit_length = "mm";
   } else {
     return pdk_ctx_error_set(o->ctx, PDK_ERR_ARG, __func__,
-                             "unknown output units '%s'; use \"SI\", \"mm-N-s-tonne\" or none", units);
+                             "unknown output units '%s'; use \"SI\", \"mm-N-s-tonne\" or none",
+                             units);
   }
   return PDK_SUCCESS;
 }
@@ -447,12 +493,14 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
     const char *s = opts->reaction_sets[k];
     PDK_CHECK(s && s[0], ctx, PDK_ERR_ARG, "reaction set %d has no name", k);
     const char *bare = strncmp(s, "set:", 4) ? s : s + 4;
-    PDK_CHECK(strlen(bare) + 5 < OUT_NAME_MAX, ctx, PDK_ERR_ARG, "reaction set name '%s' is too long", s);
+    PDK_CHECK(strlen(bare) + 5 < OUT_NAME_MAX, ctx, PDK_ERR_ARG,
+              "reaction set name '%s' is too long", s);
     sanitize(bare, o->reaction_name[k], sizeof o->reaction_name[k]);
     snprintf(o->reaction_field[k], OUT_NAME_MAX, "set:%s", bare);
     for (int j = 0; j < k; ++j)
       PDK_CHECK(strcmp(o->reaction_name[j], o->reaction_name[k]), ctx, PDK_ERR_ARG,
-                "reaction sets %d and %d both give the history column name '%s'", j, k, o->reaction_name[k]);
+                "reaction sets %d and %d both give the history column name '%s'", j, k,
+                o->reaction_name[k]);
   }
   for (int k = 0; k < o->num_reaction; ++k) {
     o->reaction_col[k] = o->num_cols;
@@ -466,7 +514,8 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
     const uint8_t *member = pdk_particles_field_data(o->p, o->reaction_field[k], 0);
     if (!member || !pdk_particles_field_exists(o->p, "x")) continue;
     pdk_index count = 0;
-    for (pdk_index i = 0; i < o->n; ++i) count += member[i] != 0;
+    for (pdk_index i = 0; i < o->n; ++i)
+      count += member[i] != 0;
     if (!count) continue;
     o->disp_col[k] = o->num_cols;
     for (int c = 0; c < o->dim; ++c) {
@@ -487,7 +536,8 @@ static int write_connectivity(pdk_output *o, hid_t g) {
   herr_t st;
   int32_t *cells = malloc((size_t)o->n * sizeof *cells);
   PDK_CHECK(cells, ctx, PDK_ERR_MEMORY, "out of memory for %d cells", (int)o->n);
-  for (pdk_index i = 0; i < o->n; ++i) cells[i] = i;
+  for (pdk_index i = 0; i < o->n; ++i)
+    cells[i] = i;
   PDK_CALL_GOTO(create_field_dataset(o, g, "connectivity", PDK_I32, 1, OUT_STATIC_DEFLATE, &d));
   PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(d, H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, cells));
 cleanup:
@@ -528,7 +578,8 @@ static int write_static(pdk_output *o, const char *scene_text) {
     for (int j = 0; j < o->num_sets; ++j)
       PDK_CHECK_GOTO(strcmp(o->set_name[j], name), ctx, PDK_ERR_ARG,
                      "two sets give the dataset name '%s' (characters outside [A-Za-z0-9_-] become "
-                     "'_'); rename one", name);
+                     "'_'); rename one",
+                     name);
     snprintf(o->set_field[o->num_sets], OUT_NAME_MAX, "%s", f);
     PDK_CALL_GOTO(write_field(o, p, gs, name, f, OUT_STATIC_DEFLATE, NULL, NULL, NULL));
     o->num_sets++;
@@ -545,13 +596,15 @@ static int create_history(pdk_output *o) {
   hid_t space = -1, dcpl = -1;
   herr_t st;
   hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {OUT_HIST_CHUNK};
-  PDK_H5_CALL_GOTO(ctx, o->history, H5Gcreate2(o->file, "history", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, o->history,
+                   H5Gcreate2(o->file, "history", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
   PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, dims, maxdims));
   PDK_H5_CALL_GOTO(ctx, dcpl, H5Pcreate(H5P_DATASET_CREATE));
   PDK_H5_CALL_GOTO(ctx, st, H5Pset_chunk(dcpl, 1, chunk));
   for (int k = 0; k < o->num_cols; ++k) {
-    PDK_H5_CALL_GOTO(ctx, o->col_dset[k], H5Dcreate2(o->history, o->col_name[k], H5T_IEEE_F64LE, space,
-                                                     H5P_DEFAULT, dcpl, H5P_DEFAULT));
+    PDK_H5_CALL_GOTO(ctx, o->col_dset[k],
+                     H5Dcreate2(o->history, o->col_name[k], H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                dcpl, H5P_DEFAULT));
     PDK_CALL_GOTO(pdk_h5_attr_write_string(ctx, o->col_dset[k], "unit", o->col_unit[k]));
   }
 cleanup:
@@ -562,7 +615,8 @@ cleanup:
 
 static void output_free(pdk_output *o);
 
-int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles *p, pdk_output **out) {
+int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles *p,
+                    pdk_output **out) {
   int err = PDK_SUCCESS;
   pdk_output *o = NULL;
   pdk_output_opts opts = opts_in ? *opts_in : pdk_output_opts_default();
@@ -570,8 +624,10 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   *out = NULL;
   PDK_CHECK(p, ctx, PDK_ERR_ARG, "no particle store given");
   PDK_CHECK(opts.name && opts.name[0] && !strchr(opts.name, '/') && !strchr(opts.name, ':'), ctx,
-            PDK_ERR_ARG, "output name '%s' must be a non-empty file stem without '/' or ':' (put "
-            "directories in opts.dir)", opts.name ? opts.name : "(null)");
+            PDK_ERR_ARG,
+            "output name '%s' must be a non-empty file stem without '/' or ':' (put "
+            "directories in opts.dir)",
+            opts.name ? opts.name : "(null)");
   PDK_CHECK(opts.compression >= 0 && opts.compression <= 9, ctx, PDK_ERR_ARG,
             "output compression must be a deflate level 0..9, got %d", opts.compression);
   PDK_CHECK(opts.num_reaction_sets >= 0 && opts.num_reaction_sets <= OUT_MAX_REACTION &&
@@ -586,7 +642,8 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   o->n = pdk_particles_count(p);
   o->compression = opts.compression;
   o->file = o->history = -1;
-  for (int k = 0; k < OUT_MAX_COLS; ++k) o->col_dset[k] = -1;
+  for (int k = 0; k < OUT_MAX_COLS; ++k)
+    o->col_dset[k] = -1;
   PDK_CALL_GOTO(set_units(o, opts.units));
   o->dir = strdup(dir);
   o->name = strdup(opts.name);
@@ -609,7 +666,8 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   o->will_plot = opts.plot && gnuplot_on_path();
   PDK_CALL_GOTO(pdk_dir_create(ctx, dir));
 
-  PDK_H5_CALL_GOTO(ctx, o->file, H5Fcreate(o->part[OUT_H5], H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, o->file,
+                   H5Fcreate(o->part[OUT_H5], H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
   PDK_CALL_GOTO(write_static(o, opts.scene_text));
   PDK_CALL_GOTO(create_history(o));
   {
@@ -619,13 +677,16 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   }
 
   o->xmf = fopen(o->part[OUT_XMF], "w");
-  PDK_CHECK_GOTO(o->xmf, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_XMF], strerror(errno));
-  fprintf(o->xmf, "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-                  "<Xdmf Version=\"2.0\">\n  <Domain>\n"
-                  "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  PDK_CHECK_GOTO(o->xmf, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_XMF],
+                 strerror(errno));
+  fprintf(o->xmf,
+          "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+          "<Xdmf Version=\"2.0\">\n  <Domain>\n"
+          "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
 
   o->csv = fopen(o->part[OUT_CSV], "w");
-  PDK_CHECK_GOTO(o->csv, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_CSV], strerror(errno));
+  PDK_CHECK_GOTO(o->csv, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_CSV],
+                 strerror(errno));
   for (int k = 0; k < o->num_cols; ++k)
     fprintf(o->csv, "%s%s [%s]", k ? "," : "", o->col_name[k], o->col_unit[k]);
   fprintf(o->csv, "\n");
@@ -637,15 +698,18 @@ cleanup:
   return err;
 }
 
-/* ---- writes ----------------------------------------------------------------------------------- */
+/* ---- writes -----------------------------------------------------------------------------------
+ */
 
 int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double time,
                             const char *const *fields, int num_fields) {
-  if (!o) return p ? pdk_ctx_error_set(pdk_particles_ctx(p), PDK_ERR_ARG, __func__, "no output given") : PDK_ERR_ARG;
+  if (!o)
+    return p ? pdk_ctx_error_set(pdk_particles_ctx(p), PDK_ERR_ARG, __func__, "no output given")
+             : PDK_ERR_ARG;
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
   hid_t g = -1;
-  char (*dname)[OUT_NAME_MAX] = NULL;
+  char(*dname)[OUT_NAME_MAX] = NULL;
   char list[1024], path[2 * OUT_NAME_MAX + 32];
   PDK_CHECK(!o->failed, ctx, PDK_ERR_ARG,
             "an earlier write to '%s' failed; close the output with success = 0", o->part[OUT_H5]);
@@ -683,8 +747,10 @@ int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double t
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "step", step));
   PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "time", time));
 
-  if (geometry >= 0) snprintf(path, sizeof path, "/steps/%d/%s", k_out, dname[geometry]);
-  else snprintf(path, sizeof path, "/static/X");
+  if (geometry >= 0)
+    snprintf(path, sizeof path, "/steps/%d/%s", k_out, dname[geometry]);
+  else
+    snprintf(path, sizeof path, "/static/X");
   PDK_CALL_GOTO(xmf_grid_open(o, step, time, path, fields, num_fields));
   for (int k = 0; k < num_fields; ++k) {
     out_layout layout;
@@ -709,7 +775,8 @@ static void set_displacement(pdk_output *o, int k, double out[3]) {
   const uint8_t *member = pdk_particles_field_data(o->p, o->reaction_field[k], 0);
   double sum[3] = {0, 0, 0};
   pdk_index count = 0;
-  for (int c = 0; c < 3; ++c) out[c] = 0.0;
+  for (int c = 0; c < 3; ++c)
+    out[c] = 0.0;
   if (!member) return;
   for (int c = 0; c < o->dim; ++c) {
     const double *x = pdk_particles_field_data(o->p, "x", c), *X = pdk_particles_X(o->p, c);
@@ -721,7 +788,8 @@ static void set_displacement(pdk_output *o, int k, double out[3]) {
         count++;
       }
   }
-  for (int c = 0; c < o->dim; ++c) out[c] = count ? sum[c] / (double)count : 0.0;
+  for (int c = 0; c < o->dim; ++c)
+    out[c] = count ? sum[c] / (double)count : 0.0;
 }
 
 int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
@@ -740,12 +808,14 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   row[4] = h->external_work;
   row[5] = (double)h->broken;
   for (int k = 0; k < o->num_reaction; ++k)
-    for (int c = 0; c < o->dim; ++c) row[o->reaction_col[k] + c] = h->reaction[k][c];
+    for (int c = 0; c < o->dim; ++c)
+      row[o->reaction_col[k] + c] = h->reaction[k][c];
   for (int k = 0; k < o->num_reaction; ++k) {
     if (o->disp_col[k] < 0) continue;
     double u[3];
     set_displacement(o, k, u);
-    for (int c = 0; c < o->dim; ++c) row[o->disp_col[k] + c] = u[c];
+    for (int c = 0; c < o->dim; ++c)
+      row[o->disp_col[k] + c] = u[c];
   }
 
   o->failed = 1; /* until the row is complete */
@@ -755,16 +825,19 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
     PDK_H5_CALL_GOTO(ctx, st, H5Dset_extent(o->col_dset[k], size));
     PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(o->col_dset[k]));
     PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, one, NULL));
-    PDK_H5_CALL_GOTO(ctx, st, H5Dwrite(o->col_dset[k], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &row[k]));
+    PDK_H5_CALL_GOTO(
+        ctx, st, H5Dwrite(o->col_dset[k], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &row[k]));
     H5Sclose(fspace);
     fspace = -1;
     if (fabs(row[k]) > o->col_absmax[k]) o->col_absmax[k] = fabs(row[k]);
   }
   fprintf(o->csv, "%ld,%.17g,%.17g,%.17g,%.17g,%lld", h->step, row[1], row[2], row[3], row[4],
           (long long)h->broken);
-  for (int k = 6; k < o->num_cols; ++k) fprintf(o->csv, ",%.17g", row[k]);
+  for (int k = 6; k < o->num_cols; ++k)
+    fprintf(o->csv, ",%.17g", row[k]);
   fprintf(o->csv, "\n");
-  PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV], strerror(errno));
+  PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV],
+                 strerror(errno));
   o->rows++;
   o->failed = 0;
 cleanup:
@@ -777,7 +850,8 @@ int pdk_output_will_plot(const pdk_output *o) { return o ? o->will_plot : 0; }
 int pdk_output_num_field_steps(const pdk_output *o) { return o ? o->num_steps : 0; }
 long pdk_output_num_history_rows(const pdk_output *o) { return o ? o->rows : 0; }
 
-/* ---- plot ------------------------------------------------------------------------------------- */
+/* ---- plot -------------------------------------------------------------------------------------
+ */
 
 /* Component of reaction set k with the largest |value| over the run. */
 static int main_component(const pdk_output *o, int k) {
@@ -801,20 +875,25 @@ static int write_plot_script(pdk_output *o) {
   PDK_CHECK_GOTO(stem, ctx, PDK_ERR_MEMORY, "out of memory");
   f = fopen(o->part[OUT_GP], "w");
   PDK_CHECK_GOTO(f, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_GP], strerror(errno));
-  int num_disp = 0; /* sets that moved: plotting a fixed set against its zero displacement says nothing */
-  for (int k = 0; k < o->num_reaction; ++k) num_disp += moved(o, k);
+  int num_disp =
+      0; /* sets that moved: plotting a fixed set against its zero displacement says nothing */
+  for (int k = 0; k < o->num_reaction; ++k)
+    num_disp += moved(o, k);
   int panels = 1 + (o->num_reaction > 0) + (num_disp > 0);
   fprintf(f, "# pdk history plot; rerun with: gnuplot %s_history.gp (in this directory)\n", stem);
   fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_history.png'\n", stem);
-  fprintf(f, "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-             "  set terminal pngcairo size %d,450 noenhanced\n} else {\n"
-             "  set terminal png size %d,450 noenhanced\n}\n", 500 * panels, 500 * panels);
+  fprintf(f,
+          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+          "  set terminal pngcairo size %d,450 noenhanced\n} else {\n"
+          "  set terminal png size %d,450 noenhanced\n}\n",
+          500 * panels, 500 * panels);
   fprintf(f, "set output outfile\nset datafile separator ','\nset grid\nset key top left\n"
              "set format x '%%g'\nset format y '%%g'\nset xtics rotate by 30 right\n");
   fprintf(f, "data = '%s_history.csv'\n", stem);
   fprintf(f, "set multiplot layout 1,%d title '%s'\n", panels, stem);
   if (o->num_reaction > 0) {
-    fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'reaction [%s]'\nplot ", o->unit_time, o->unit_force);
+    fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'reaction [%s]'\nplot ", o->unit_time,
+            o->unit_force);
     for (int k = 0; k < o->num_reaction; ++k) {
       int c = main_component(o, k);
       fprintf(f, "%sdata skip 1 using 2:%d with lines title '%s %s'", k ? ", \\\n     " : "",
@@ -830,7 +909,8 @@ static int write_plot_script(pdk_output *o) {
       if (!moved(o, k)) continue;
       int c = main_component(o, k);
       fprintf(f, "%sdata skip 1 using %d:%d with lines title '%s %s'", first ? "" : ", \\\n     ",
-              o->disp_col[k] + c + 1, o->reaction_col[k] + c + 1, o->reaction_name[k], axis_name[c]);
+              o->disp_col[k] + c + 1, o->reaction_col[k] + c + 1, o->reaction_name[k],
+              axis_name[c]);
       first = 0;
     }
     fprintf(f, "\n");
@@ -841,8 +921,8 @@ static int write_plot_script(pdk_output *o) {
              "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n"
              "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
   fprintf(f, "unset multiplot\nset output\n");
-  PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_GP],
-                 strerror(errno));
+  PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
+                 o->part[OUT_GP], strerror(errno));
 cleanup:
   if (f) fclose(f);
   free(stem);
@@ -862,7 +942,8 @@ static int run_gnuplot(pdk_output *o) {
   char *quoted = outfile ? gnuplot_quote(outfile) : NULL;
   char *expr = quoted ? pdk_str_printf("outfile='%s'", quoted) : NULL;
   PDK_CHECK_GOTO(script && expr, ctx, PDK_ERR_MEMORY, "out of memory");
-  PDK_CHECK_GOTO(pipe(pipefd) == 0, ctx, PDK_ERR_EXTERNAL, "pipe() for gnuplot failed: %s", strerror(errno));
+  PDK_CHECK_GOTO(pipe(pipefd) == 0, ctx, PDK_ERR_EXTERNAL, "pipe() for gnuplot failed: %s",
+                 strerror(errno));
   fflush(NULL);
   pid_t pid = fork();
   PDK_CHECK_GOTO(pid >= 0, ctx, PDK_ERR_EXTERNAL, "fork() for gnuplot failed: %s", strerror(errno));
@@ -900,8 +981,8 @@ static int run_gnuplot(pdk_output *o) {
                  "gnuplot failed on '%s' (%s %d)%s%s; the data files are complete, only the plot "
                  "is missing: rerun 'gnuplot %s_history.gp' in '%s'",
                  o->final[OUT_GP], WIFEXITED(status) ? "exit status" : "signal",
-                 WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "", msg,
-                 o->name, o->dir);
+                 WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "",
+                 msg, o->name, o->dir);
 cleanup:
   if (pipefd[0] >= 0) close(pipefd[0]);
   if (pipefd[1] >= 0) close(pipefd[1]);
@@ -912,7 +993,8 @@ cleanup:
   return err;
 }
 
-/* ---- close ------------------------------------------------------------------------------------ */
+/* ---- close ------------------------------------------------------------------------------------
+ */
 
 /* Closes every open handle (no error reporting: used on every path). */
 static void close_handles(pdk_output *o) {
@@ -966,7 +1048,8 @@ static int finish(pdk_output *o) {
   for (int k = 0; k < o->num_cols; ++k) {
     st = H5Dclose(o->col_dset[k]);
     o->col_dset[k] = -1;
-    PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Dclose of history column '%s' failed", o->col_name[k]);
+    PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Dclose of history column '%s' failed",
+              o->col_name[k]);
   }
   st = H5Gclose(o->history);
   o->history = -1;
@@ -997,7 +1080,8 @@ int pdk_output_close(pdk_output **op, int success) {
   if (success && o->failed)
     err = pdk_ctx_error_set(o->ctx, PDK_ERR_ARG, __func__,
                             "an earlier write to '%s' failed, so the output is incomplete; its "
-                            "files were removed", o->part[OUT_H5]);
+                            "files were removed",
+                            o->part[OUT_H5]);
   else if (success)
     err = finish(o);
   output_free(o); /* removes whatever .part files remain */

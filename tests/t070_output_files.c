@@ -121,10 +121,13 @@ static int tag_attr(const char *tag, const char *key, char *out, size_t cap) {
 }
 
 /* Checks one HDF DataItem of the XDMF against the HDF5 file; returns its dataset path in path. */
-static void check_data_item(hid_t file, const char *h5name, const char *item, char *path, size_t cap) {
+static void check_data_item(hid_t file, const char *h5name, const char *item, char *path,
+                            size_t cap) {
   char dims_text[64], number_type[32] = "Float", precision[8] = "4", format[16];
-  T_ASSERT(tag_attr(item, "Dimensions", dims_text, sizeof dims_text), "DataItem without Dimensions");
-  T_ASSERT(tag_attr(item, "Format", format, sizeof format) && !strcmp(format, "HDF"), "DataItem not HDF");
+  T_ASSERT(tag_attr(item, "Dimensions", dims_text, sizeof dims_text),
+           "DataItem without Dimensions");
+  T_ASSERT(tag_attr(item, "Format", format, sizeof format) && !strcmp(format, "HDF"),
+           "DataItem not HDF");
   tag_attr(item, "NumberType", number_type, sizeof number_type);
   tag_attr(item, "Precision", precision, sizeof precision);
   const char *body = strchr(item, '>') + 1, *end = strstr(body, "</DataItem>");
@@ -133,12 +136,15 @@ static void check_data_item(hid_t file, const char *h5name, const char *item, ch
   char *colon = strchr(ref, ':');
   T_ASSERT(colon, "DataItem body '%s' has no file:path", ref);
   *colon = '\0';
-  T_ASSERT(!strcmp(ref, h5name), "DataItem refers to '%s', expected the relative '%s'", ref, h5name);
+  T_ASSERT(!strcmp(ref, h5name), "DataItem refers to '%s', expected the relative '%s'", ref,
+           h5name);
   snprintf(path, cap, "%s", colon + 1);
   hsize_t want[2] = {0, 0};
-  int rank = sscanf(dims_text, "%llu %llu", (unsigned long long *)&want[0], (unsigned long long *)&want[1]);
+  int rank = sscanf(dims_text, "%llu %llu", (unsigned long long *)&want[0],
+                    (unsigned long long *)&want[1]);
   T_ASSERT(rank >= 1, "bad Dimensions '%s'", dims_text);
-  T_ASSERT(H5Lexists(file, path, H5P_DEFAULT) > 0, "the .xmf names %s, which is not in run.h5", path);
+  T_ASSERT(H5Lexists(file, path, H5P_DEFAULT) > 0, "the .xmf names %s, which is not in run.h5",
+           path);
   hid_t d = H5Dopen2(file, path, H5P_DEFAULT), s = H5Dget_space(d), t = H5Dget_type(d);
   hsize_t got[2] = {0, 0};
   T_ASSERT(H5Sget_simple_extent_ndims(s) == rank, "%s: rank %d, the .xmf says %d", path,
@@ -149,10 +155,14 @@ static void check_data_item(hid_t file, const char *h5name, const char *item, ch
   T_ASSERT((size_t)atoi(precision) == H5Tget_size(t), "%s: %zu-byte values, the .xmf says %s", path,
            H5Tget_size(t), precision);
   H5T_class_t cls = H5Tget_class(t);
-  if (!strcmp(number_type, "Float")) T_ASSERT(cls == H5T_FLOAT, "%s: not a float dataset", path);
-  else if (!strcmp(number_type, "Int")) T_ASSERT(cls == H5T_INTEGER && H5Tget_sign(t) == H5T_SGN_2, "%s: not signed", path);
-  else if (!strcmp(number_type, "UChar")) T_ASSERT(cls == H5T_INTEGER && H5Tget_sign(t) == H5T_SGN_NONE, "%s: not unsigned", path);
-  else T_FAIL("%s: unexpected NumberType %s", path, number_type);
+  if (!strcmp(number_type, "Float"))
+    T_ASSERT(cls == H5T_FLOAT, "%s: not a float dataset", path);
+  else if (!strcmp(number_type, "Int"))
+    T_ASSERT(cls == H5T_INTEGER && H5Tget_sign(t) == H5T_SGN_2, "%s: not signed", path);
+  else if (!strcmp(number_type, "UChar"))
+    T_ASSERT(cls == H5T_INTEGER && H5Tget_sign(t) == H5T_SGN_NONE, "%s: not unsigned", path);
+  else
+    T_FAIL("%s: unexpected NumberType %s", path, number_type);
   H5Tclose(t);
   H5Sclose(s);
   H5Dclose(d);
@@ -166,7 +176,8 @@ static double *read_f64(hid_t file, const char *path, size_t count) {
   hid_t s = H5Dget_space(d);
   T_ASSERT((size_t)H5Sget_simple_extent_npoints(s) == count, "%s: %lld values, expected %zu", path,
            (long long)H5Sget_simple_extent_npoints(s), count);
-  T_ASSERT(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0, "reading %s", path);
+  T_ASSERT(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0, "reading %s",
+           path);
   H5Sclose(s);
   H5Dclose(d);
   return buf;
@@ -177,8 +188,8 @@ static void check_vector(hid_t file, const char *path, const double *saved, pdk_
   for (pdk_index i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) {
       double want = c < 2 ? saved[c * n + i] : 0.0;
-      T_ASSERT(!memcmp(&v[3 * i + c], &want, sizeof want), "%s[%d][%d] = %.17g, written %.17g", path,
-               (int)i, c, v[3 * i + c], want);
+      T_ASSERT(!memcmp(&v[3 * i + c], &want, sizeof want), "%s[%d][%d] = %.17g, written %.17g",
+               path, (int)i, c, v[3 * i + c], want);
     }
   free(v);
 }
@@ -226,10 +237,13 @@ int main(void) {
   T_OK(ctx, pdk_particles_field_add(p, "T", PDK_F64, 4));
   T_OK(ctx, pdk_particles_field_add(p, "odd", PDK_I32, 5));
   for (pdk_index i = 0; i < n; ++i) {
-    for (int t = 0; t < 4; ++t) ((double *)pdk_particles_field_data(p, "T", t))[i] = 10.0 * i + t + 0.5;
-    for (int t = 0; t < 5; ++t) ((int32_t *)pdk_particles_field_data(p, "odd", t))[i] = (int32_t)(7 * i - t);
+    for (int t = 0; t < 4; ++t)
+      ((double *)pdk_particles_field_data(p, "T", t))[i] = 10.0 * i + t + 0.5;
+    for (int t = 0; t < 5; ++t)
+      ((int32_t *)pdk_particles_field_data(p, "odd", t))[i] = (int32_t)(7 * i - t);
   }
-  const char *fields[NUM_OUT][6] = {{"x", "v", "f"}, {"x", "v", "f", "set:left", "T", "odd"}, {"v", "f"}};
+  const char *fields[NUM_OUT][6] = {
+      {"x", "v", "f"}, {"x", "v", "f", "set:left", "T", "odd"}, {"v", "f"}};
   const int num_fields[NUM_OUT] = {3, 6, 2};
   double *saved[NUM_OUT][3]; /* x, v, f of each output, [2][n] */
   pdk_history hist[NUM_HIST];
@@ -247,7 +261,8 @@ int main(void) {
     for (int q = 0; q < 3; ++q) {
       saved[k][q] = malloc(2 * (size_t)n * sizeof(double));
       for (int c = 0; c < 2; ++c)
-        memcpy(saved[k][q] + c * n, pdk_particles_field_data(p, names[q], c), (size_t)n * sizeof(double));
+        memcpy(saved[k][q] + c * n, pdk_particles_field_data(p, names[q], c),
+               (size_t)n * sizeof(double));
     }
   }
   T_ASSERT(hist[NUM_HIST - 1].reaction[1][0] != 0.0, "the pulled end carries a load");
@@ -260,7 +275,8 @@ int main(void) {
   T_ASSERT(pdk_output_num_field_steps(o) == NUM_OUT && pdk_output_num_history_rows(o) == NUM_HIST,
            "counts %d %ld", pdk_output_num_field_steps(o), pdk_output_num_history_rows(o));
   int will_plot = pdk_output_will_plot(o);
-  T_ASSERT(exists("run.h5.part") && exists("run.xmf.part") && !exists("run.h5") && !exists("run.xmf"),
+  T_ASSERT(exists("run.h5.part") && exists("run.xmf.part") && !exists("run.h5") &&
+               !exists("run.xmf"),
            "before close only .part files exist");
   T_OK(ctx, pdk_output_close(&o, 1));
   T_ASSERT(!o, "close sets the handle to NULL");
@@ -280,17 +296,21 @@ int main(void) {
   char *xmf = read_text("run.xmf");
   int num_items = 0, num_grids = 0;
   char path[512];
-  for (const char *q = xmf; (q = strstr(q, "<DataItem")); ++q, ++num_items) check_data_item(file, "run.h5", q, path, sizeof path);
+  for (const char *q = xmf; (q = strstr(q, "<DataItem")); ++q, ++num_items)
+    check_data_item(file, "run.h5", q, path, sizeof path);
   for (const char *q = xmf; (q = strstr(q, "<Grid Name=\"step_")); ++q, ++num_grids) {
     char want[64], value[64];
     const char *t = strstr(q, "<Time ");
-    T_ASSERT(t && tag_attr(t, "Value", value, sizeof value) && strtod(value, NULL) == times[num_grids],
+    T_ASSERT(t && tag_attr(t, "Value", value, sizeof value) &&
+                 strtod(value, NULL) == times[num_grids],
              "grid %d: time %s, written %.17g", num_grids, value, times[num_grids]);
     const char *g = strstr(q, "<Geometry");
     T_ASSERT(g && strstr(g, "GeometryType=\"XYZ\""), "grid %d geometry is XYZ", num_grids);
     check_data_item(file, "run.h5", strstr(g, "<DataItem"), path, sizeof path);
-    if (num_grids < 2) snprintf(want, sizeof want, "/steps/%d/x", num_grids);
-    else snprintf(want, sizeof want, "/static/X");
+    if (num_grids < 2)
+      snprintf(want, sizeof want, "/steps/%d/x", num_grids);
+    else
+      snprintf(want, sizeof want, "/static/X");
     T_ASSERT(!strcmp(path, want), "grid %d geometry %s, expected %s", num_grids, path, want);
   }
   T_ASSERT(num_grids == NUM_OUT, "%d grids in the .xmf, expected %d", num_grids, NUM_OUT);
@@ -303,10 +323,12 @@ int main(void) {
   for (const char *q = xmf; (q = strstr(q, "<Grid Name=\"step_")); ++q) {
     const char *end = strstr(q, "</Grid>");
     int count = 0;
-    for (const char *a = q; (a = strstr(a, "Name=\"set:left\"")) && a < end; ++a) count++;
+    for (const char *a = q; (a = strstr(a, "Name=\"set:left\"")) && a < end; ++a)
+      count++;
     T_ASSERT(count == 1, "a grid has %d attributes named set:left", count);
   }
-  T_ASSERT(strstr(xmf, "CollectionType=\"Temporal\"") && strstr(xmf, "TopologyType=\"Polyvertex\"") &&
+  T_ASSERT(strstr(xmf, "CollectionType=\"Temporal\"") &&
+               strstr(xmf, "TopologyType=\"Polyvertex\"") &&
                strstr(xmf, "AttributeType=\"Vector\"") && strstr(xmf, "Center=\"Node\""),
            "temporal collection of polyvertex grids with node vectors");
   free(xmf);
@@ -321,33 +343,35 @@ int main(void) {
   if (on_path("pvpython")) {
     FILE *py = fopen(DIR_OUT "/pv_check.py", "w");
     T_ASSERT(py, "cannot write pv_check.py");
-    fprintf(py,
-            "import sys\n"
-            "from paraview.simple import *\n"
-            "from vtk.numpy_interface import dataset_adapter as dsa\n"
-            "import numpy as np\n"
-            "fn, n, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])\n"
-            "for make in (lambda: XDMFReader(FileNames=[fn]), lambda: Xdmf3ReaderS(FileName=[fn])):\n"
-            "    r = make()\n"
-            "    r.UpdatePipelineInformation()\n"
-            "    times = list(r.TimestepValues)\n"
-            "    assert len(times) == steps, ('times', times)\n"
-            "    for k, t in enumerate(times):\n"
-            "        r.UpdatePipeline(t)\n"
-            "        d = servermanager.Fetch(r)\n"
-            "        if d.IsA('vtkMultiBlockDataSet'): d = d.GetBlock(0)\n"
-            "        assert d.GetNumberOfPoints() == n and d.GetNumberOfCells() == n, (k, d.GetNumberOfPoints(), d.GetNumberOfCells())\n"
-            "        w = dsa.WrapDataObject(d)\n"
-            "        for name in ('id', 'volume', 'set:right', 'v', 'f'):\n"
-            "            assert name in w.PointData.keys(), (k, name, w.PointData.keys())\n"
-            "        if k == 0:\n"
-            "            assert np.abs(np.array(w.Points) - np.array(w.PointData['x'])).max() == 0\n"
-            "print('ok')\n");
+    fprintf(
+        py,
+        "import sys\n"
+        "from paraview.simple import *\n"
+        "from vtk.numpy_interface import dataset_adapter as dsa\n"
+        "import numpy as np\n"
+        "fn, n, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])\n"
+        "for make in (lambda: XDMFReader(FileNames=[fn]), lambda: Xdmf3ReaderS(FileName=[fn])):\n"
+        "    r = make()\n"
+        "    r.UpdatePipelineInformation()\n"
+        "    times = list(r.TimestepValues)\n"
+        "    assert len(times) == steps, ('times', times)\n"
+        "    for k, t in enumerate(times):\n"
+        "        r.UpdatePipeline(t)\n"
+        "        d = servermanager.Fetch(r)\n"
+        "        if d.IsA('vtkMultiBlockDataSet'): d = d.GetBlock(0)\n"
+        "        assert d.GetNumberOfPoints() == n and d.GetNumberOfCells() == n, (k, "
+        "d.GetNumberOfPoints(), d.GetNumberOfCells())\n"
+        "        w = dsa.WrapDataObject(d)\n"
+        "        for name in ('id', 'volume', 'set:right', 'v', 'f'):\n"
+        "            assert name in w.PointData.keys(), (k, name, w.PointData.keys())\n"
+        "        if k == 0:\n"
+        "            assert np.abs(np.array(w.Points) - np.array(w.PointData['x'])).max() == 0\n"
+        "print('ok')\n");
     fclose(py);
     char abs_dir[4096], cmd[4 * 4096 + 256];
     T_ASSERT(realpath(DIR_OUT, abs_dir), "realpath");
-    snprintf(cmd, sizeof cmd, "pvpython %s/pv_check.py %s/run.xmf %d %d > %s/pv_check.log 2>&1", abs_dir,
-             abs_dir, (int)n, NUM_OUT, abs_dir);
+    snprintf(cmd, sizeof cmd, "pvpython %s/pv_check.py %s/run.xmf %d %d > %s/pv_check.log 2>&1",
+             abs_dir, abs_dir, (int)n, NUM_OUT, abs_dir);
     if (system(cmd) != 0) {
       char *log = read_text("pv_check.log");
       T_FAIL("ParaView could not read run.xmf:\n%s", log);
@@ -373,47 +397,60 @@ int main(void) {
     H5Gclose(g);
     T_ASSERT(s == steps[k], "output %d: step %lld, written %ld", k, s, steps[k]);
   }
-  T_ASSERT(H5Lexists(file, "/steps/2/x", H5P_DEFAULT) == 0, "only the fields asked for are written");
+  T_ASSERT(H5Lexists(file, "/steps/2/x", H5P_DEFAULT) == 0,
+           "only the fields asked for are written");
   {
     double *T = read_f64(file, "/steps/1/T", (size_t)n * 9);
     for (pdk_index i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
           double want = a < 2 && c < 2 ? 10.0 * i + 2 * a + c + 0.5 : 0.0;
-          T_ASSERT(T[9 * i + 3 * a + c] == want, "T[%d][%d][%d] = %g, want %g", (int)i, a, c, T[9 * i + 3 * a + c], want);
+          T_ASSERT(T[9 * i + 3 * a + c] == want, "T[%d][%d][%d] = %g, want %g", (int)i, a, c,
+                   T[9 * i + 3 * a + c], want);
         }
     free(T);
     double *odd = read_f64(file, "/steps/1/odd", (size_t)n * 5); /* converted by HDF5 */
     for (pdk_index i = 0; i < n; ++i)
-      for (int t = 0; t < 5; ++t) T_ASSERT(odd[5 * i + t] == 7.0 * i - t, "odd[%d][%d]", (int)i, t);
+      for (int t = 0; t < 5; ++t)
+        T_ASSERT(odd[5 * i + t] == 7.0 * i - t, "odd[%d][%d]", (int)i, t);
     free(odd);
   }
   {
-    double *X = read_f64(file, "/static/X", (size_t)n * 3), *vol = read_f64(file, "/static/volume", (size_t)n);
+    double *X = read_f64(file, "/static/X", (size_t)n * 3),
+           *vol = read_f64(file, "/static/volume", (size_t)n);
     for (pdk_index i = 0; i < n; ++i) {
       T_ASSERT(X[3 * i] == pdk_particles_X(p, 0)[i] && X[3 * i + 1] == pdk_particles_X(p, 1)[i] &&
-                   X[3 * i + 2] == 0.0, "/static/X[%d]", (int)i);
+                   X[3 * i + 2] == 0.0,
+               "/static/X[%d]", (int)i);
       T_ASSERT(vol[i] == pdk_particles_volume(p)[i], "/static/volume[%d]", (int)i);
     }
     free(X);
     free(vol);
     uint8_t *left = malloc((size_t)n);
     hid_t d = H5Dopen2(file, "/static/sets/left", H5P_DEFAULT);
-    T_ASSERT(d >= 0 && H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, left) >= 0, "/static/sets/left");
+    T_ASSERT(d >= 0 && H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, left) >= 0,
+             "/static/sets/left");
     H5Dclose(d);
-    T_ASSERT(!memcmp(left, pdk_particles_field_data(p, "set:left", 0), (size_t)n), "set left round-trips");
+    T_ASSERT(!memcmp(left, pdk_particles_field_data(p, "set:left", 0), (size_t)n),
+             "set left round-trips");
     free(left);
   }
   {
-    const char *cols[6] = {"step", "time", "kinetic", "strain", "external_work", "reaction_right_x"};
+    const char *cols[6] = {"step",   "time",          "kinetic",
+                           "strain", "external_work", "reaction_right_x"};
     for (int c = 0; c < 6; ++c) {
       snprintf(path, sizeof path, "/history/%s", cols[c]);
       double *v = read_f64(file, path, NUM_HIST);
       for (int r = 0; r < NUM_HIST; ++r) {
         const pdk_history *h = &hist[r];
-        double want = c == 0 ? (double)h->step : c == 1 ? h->time : c == 2 ? h->kinetic : c == 3 ? h->strain
-                    : c == 4 ? h->external_work : h->reaction[1][0];
-        T_ASSERT(!memcmp(&v[r], &want, sizeof want), "%s[%d] = %.17g, written %.17g", path, r, v[r], want);
+        double want = c == 0   ? (double)h->step
+                      : c == 1 ? h->time
+                      : c == 2 ? h->kinetic
+                      : c == 3 ? h->strain
+                      : c == 4 ? h->external_work
+                               : h->reaction[1][0];
+        T_ASSERT(!memcmp(&v[r], &want, sizeof want), "%s[%d] = %.17g, written %.17g", path, r, v[r],
+                 want);
       }
       free(v);
     }
@@ -428,9 +465,10 @@ int main(void) {
   /* 4. CSV: header with units, one row per record. */
   {
     char *csv = read_text("run_history.csv");
-    const char *header = "step [-],time [s],kinetic [J],strain [J],external_work [J],broken [bonds],"
-                         "reaction_left_x [N],reaction_left_y [N],reaction_right_x [N],reaction_right_y [N],"
-                         "disp_left_x [m],disp_left_y [m],disp_right_x [m],disp_right_y [m]\n";
+    const char *header =
+        "step [-],time [s],kinetic [J],strain [J],external_work [J],broken [bonds],"
+        "reaction_left_x [N],reaction_left_y [N],reaction_right_x [N],reaction_right_y [N],"
+        "disp_left_x [m],disp_left_y [m],disp_right_x [m],disp_right_y [m]\n";
     T_ASSERT(!strncmp(csv, header, strlen(header)), "CSV header:\n%.300s", csv);
     int rows = 0;
     for (const char *q = strchr(csv, '\n') + 1; *q; q = strchr(q, '\n') + 1, ++rows) {
@@ -479,7 +517,8 @@ int main(void) {
     int items = 0, grids = 0;
     for (const char *q = text; (q = strstr(q, "<DataItem")); ++q, ++items)
       check_data_item(file, "histonly.h5", q, path, sizeof path);
-    for (const char *q = text; (q = strstr(q, "<Grid Name=\"step_")); ++q) grids++;
+    for (const char *q = text; (q = strstr(q, "<Grid Name=\"step_")); ++q)
+      grids++;
     T_ASSERT(grids == 1 && items == 6, "histories only: %d grids, %d items", grids, items);
     free(text);
     H5Fclose(file);
@@ -500,7 +539,8 @@ int main(void) {
   T_OK(ctx, pdk_output_write_fields(o, p, 1, 0.0, fields[0], 3));
   T_OK(ctx, pdk_output_write_history(o, &hist[0]));
   T_ASSERT(exists("open.h5.part") && exists("open.xmf.part") && exists("open_history.csv.part") &&
-               count_files("open") == 3, "an open output has only .part files");
+               count_files("open") == 3,
+           "an open output has only .part files");
   T_OK(ctx, pdk_output_close(&o, 0));
   T_ASSERT(count_files("open") == 0, "close(.., 0) left %d files", count_files("open"));
   fflush(NULL);
@@ -516,7 +556,8 @@ int main(void) {
   int status;
   waitpid(pid, &status, 0);
   T_ASSERT(WIFEXITED(status) && WEXITSTATUS(status) == 0, "child status %d", status);
-  T_ASSERT(exists("killed.h5.part") && exists("killed.xmf.part") && exists("killed_history.csv.part"),
+  T_ASSERT(exists("killed.h5.part") && exists("killed.xmf.part") &&
+               exists("killed_history.csv.part"),
            "the killed run left its .part files");
   T_ASSERT(!exists("killed.h5") && !exists("killed.xmf") && !exists("killed_history.csv") &&
                !exists("killed_history.png") && count_files("killed") == 3,
@@ -531,7 +572,8 @@ int main(void) {
   T_ASSERT(count_files("units") == 0, "a failed open leaves no file");
 
   for (int k = 0; k < NUM_OUT; ++k)
-    for (int q = 0; q < 3; ++q) free(saved[k][q]);
+    for (int q = 0; q < 3; ++q)
+      free(saved[k][q]);
   pdk_explicit_destroy(&e);
   pdk_model_destroy(&m);
   pdk_families_destroy(&fam);

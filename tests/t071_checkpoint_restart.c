@@ -34,7 +34,8 @@ static void build(pdk_ctx *ctx, pdk_model_kind kind, int len_cells, double s00, 
   lo.hi[1] = 6e-3;
   T_OK(ctx, pdk_lattice_create(ctx, &lo, &s->p));
   T_OK(ctx, pdk_particles_reorder_morton(s->p, 3.015e-3, NULL));
-  double a[3] = {-1, -1, -1}, b[3] = {2.5e-3, 1, 1}, c[3] = {(len_cells - 2.5) * 1e-3, -1, -1}, d[3] = {1, 1, 1};
+  double a[3] = {-1, -1, -1}, b[3] = {2.5e-3, 1, 1}, c[3] = {(len_cells - 2.5) * 1e-3, -1, -1},
+         d[3] = {1, 1, 1};
   pdk_region left = pdk_region_box(a, b), right = pdk_region_box(c, d);
   T_OK(ctx, pdk_particles_set_define(s->p, "left", &left, NULL));
   T_OK(ctx, pdk_particles_set_define(s->p, "right", &right, NULL));
@@ -85,8 +86,8 @@ static void run(pdk_ctx *ctx, sim *s, int records, pdk_history *hist) {
   for (int r = 0; r < records; ++r) {
     T_OK(ctx, pdk_explicit_run(s->e, CHUNK, &hist[r]));
     if (getenv("PDK_TEST_VERBOSE"))
-      printf("step %ld broken %lld kinetic %g strain %g R %g\n", hist[r].step, (long long)hist[r].broken,
-             hist[r].kinetic, hist[r].strain, hist[r].reaction[1][0]);
+      printf("step %ld broken %lld kinetic %g strain %g R %g\n", hist[r].step,
+             (long long)hist[r].broken, hist[r].kinetic, hist[r].strain, hist[r].reaction[1][0]);
   }
 }
 
@@ -104,7 +105,8 @@ static void capture(sim *s, state *st) {
   st->xvf = malloc(6 * (size_t)n * sizeof(double));
   for (int q = 0; q < 3; ++q)
     for (int c = 0; c < 2; ++c)
-      memcpy(st->xvf + (2 * q + c) * n, pdk_particles_field_data(s->p, names[q], c), (size_t)n * sizeof(double));
+      memcpy(st->xvf + (2 * q + c) * n, pdk_particles_field_data(s->p, names[q], c),
+             (size_t)n * sizeof(double));
   st->num_bonds = pdk_families_num_bonds(s->fam);
   st->alive = malloc((size_t)st->num_bonds);
   memcpy(st->alive, pdk_model_bond_alive(s->m), (size_t)st->num_bonds);
@@ -122,10 +124,12 @@ static void compare(const state *a, const state *b, pdk_index n, const char *wha
            (long long)a->num_broken, (long long)b->num_broken);
   T_ASSERT(!memcmp(a->alive, b->alive, (size_t)a->num_bonds), "%s: bond state differs", what);
   for (int r = 0; r < NUM_REC; ++r)
-    T_ASSERT(!memcmp(&a->hist[r], &b->hist[r], sizeof a->hist[r]),
-             "%s: history record %d (step %ld) differs: kinetic %.17g vs %.17g, strain %.17g vs %.17g, "
-             "work %.17g vs %.17g", what, r, a->hist[r].step, a->hist[r].kinetic, b->hist[r].kinetic,
-             a->hist[r].strain, b->hist[r].strain, a->hist[r].external_work, b->hist[r].external_work);
+    T_ASSERT(
+        !memcmp(&a->hist[r], &b->hist[r], sizeof a->hist[r]),
+        "%s: history record %d (step %ld) differs: kinetic %.17g vs %.17g, strain %.17g vs %.17g, "
+        "work %.17g vs %.17g",
+        what, r, a->hist[r].step, a->hist[r].kinetic, b->hist[r].kinetic, a->hist[r].strain,
+        b->hist[r].strain, a->hist[r].external_work, b->hist[r].external_work);
 }
 
 static void free_state(state *st) {
@@ -157,7 +161,8 @@ int main(void) {
       build(ctx, kinds[kk], 30, 2e-3, &s);
       run(ctx, &s, NUM_REC / 2, resumed.hist);
       T_ASSERT(pdk_model_num_broken(s.m) > 0, "%s: no bond broke in the first half", what);
-      T_ASSERT(pdk_model_num_broken(s.m) < cont.num_broken, "%s: bonds keep breaking in the second half", what);
+      T_ASSERT(pdk_model_num_broken(s.m) < cont.num_broken,
+               "%s: bonds keep breaking in the second half", what);
       pdk_index n = pdk_particles_count(s.p);
       n_particles = n;
       T_OK(ctx, pdk_particles_field_add(s.p, "u", PDK_F64, 2));
@@ -174,17 +179,20 @@ int main(void) {
       double info_time = -1;
       char *info_scene = NULL;
       T_OK(ctx, pdk_checkpoint_info(ctx, path, &info_step, &info_time, &info_scene));
-      T_ASSERT(info_step == half_step && info_time == half_time && info_scene && !strcmp(info_scene, scene),
+      T_ASSERT(info_step == half_step && info_time == half_time && info_scene &&
+                   !strcmp(info_scene, scene),
                "checkpoint info: step %ld time %g scene '%s'", info_step, info_time, info_scene);
       free(info_scene);
       build(ctx, kinds[kk], 30, 2e-3, &s);
       T_OK(ctx, pdk_checkpoint_read(ctx, path, s.e));
       T_ASSERT(pdk_explicit_step(s.e) == half_step && pdk_explicit_time(s.e) == half_time,
-               "%s: restored step %ld time %g", what, pdk_explicit_step(s.e), pdk_explicit_time(s.e));
+               "%s: restored step %ld time %g", what, pdk_explicit_step(s.e),
+               pdk_explicit_time(s.e));
       T_ASSERT(pdk_particles_field_exists(s.p, "u"), "%s: field u restored", what);
       for (int c = 0; c < 2; ++c)
         for (pdk_index i = 0; i < n; ++i)
-          T_ASSERT(((double *)pdk_particles_field_data(s.p, "u", c))[i] == (double)(i + c) / 7.0, "u[%d][%d]", c, (int)i);
+          T_ASSERT(((double *)pdk_particles_field_data(s.p, "u", c))[i] == (double)(i + c) / 7.0,
+                   "u[%d][%d]", c, (int)i);
       run(ctx, &s, NUM_REC - NUM_REC / 2, resumed.hist + NUM_REC / 2);
       capture(&s, &resumed);
       destroy(&s);
@@ -206,8 +214,8 @@ int main(void) {
   destroy(&s);
   build(ctx, PDK_MODEL_PMB, 31, 2e-3, &s); /* a longer bar */
   T_FAILS(ctx, pdk_checkpoint_read(ctx, path, s.e), PDK_ERR_ARG, "particles");
-  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "scene changed"), "the message suggests the scene changed: %s",
-           pdk_ctx_error_message(ctx));
+  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "scene changed"),
+           "the message suggests the scene changed: %s", pdk_ctx_error_message(ctx));
   T_ASSERT(pdk_explicit_step(s.e) == 0, "a failed restore changes nothing");
   destroy(&s);
   build(ctx, PDK_MODEL_PMB, 30, 0.0, &s); /* no bond breaking */
@@ -219,11 +227,14 @@ int main(void) {
   build(ctx, PDK_MODEL_PMB, 30, 2e-3, &s);
   T_OK(ctx, pdk_particles_field_add(s.p, "extra", PDK_F64, 1));
   T_FAILS(ctx, pdk_checkpoint_read(ctx, path, s.e), PDK_ERR_ARG, "extra");
-  T_ASSERT(pdk_explicit_step(s.e) == 0 && pdk_model_num_broken(s.m) == 0, "a failed restore changes nothing");
-  T_FAILS(ctx, pdk_checkpoint_read(ctx, "t071_no_such_checkpoint.h5", s.e), PDK_ERR_IO, "does not exist");
+  T_ASSERT(pdk_explicit_step(s.e) == 0 && pdk_model_num_broken(s.m) == 0,
+           "a failed restore changes nothing");
+  T_FAILS(ctx, pdk_checkpoint_read(ctx, "t071_no_such_checkpoint.h5", s.e), PDK_ERR_IO,
+          "does not exist");
   hid_t f = H5Fcreate("t071_not_a_checkpoint.h5", H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   H5Fclose(f);
-  T_FAILS(ctx, pdk_checkpoint_read(ctx, "t071_not_a_checkpoint.h5", s.e), PDK_ERR_IO, "not a pdk checkpoint");
+  T_FAILS(ctx, pdk_checkpoint_read(ctx, "t071_not_a_checkpoint.h5", s.e), PDK_ERR_IO,
+          "not a pdk checkpoint");
   destroy(&s);
   remove("t071_not_a_checkpoint.h5");
   pdk_ctx_destroy(&ctx);

@@ -55,14 +55,14 @@ extern "C" {
 typedef struct pdk_output pdk_output;
 
 typedef struct pdk_output_opts {
-  const char *dir;          /* created if missing (with its parents); NULL: "." */
-  const char *name;         /* file stem: not empty, no '/' or ':' */
-  const char *scene_text;   /* stored as an attribute (may be NULL) */
+  const char *dir;        /* created if missing (with its parents); NULL: "." */
+  const char *name;       /* file stem: not empty, no '/' or ':' */
+  const char *scene_text; /* stored as an attribute (may be NULL) */
   /* Reaction sets, in the order of pdk_explicit_opts.reaction_sets (history.reaction[k]): set
    * names, with or without the "set:" prefix; they name the history columns. At most 8. */
   const char *const *reaction_sets; /* [num_reaction_sets] */
   int num_reaction_sets;
-  int plot;                 /* 1: make the PNG when gnuplot is on the PATH */
+  int plot; /* 1: make the PNG when gnuplot is on the PATH */
   /* Deflate level 0 (off) .. 9 of the field outputs; default 0: deflate 1 costs about 20 times
    * the uncompressed write (1e6 particles, x v f: 1.1 s vs 0.05 s per output) for 44% less disk. */
   int compression;
@@ -115,7 +115,8 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
 /* What a checkpoint holds before anything is built from it: its step and time, and the scene
  * text it was written with (malloc'd, free() it; NULL when none was stored). Any output pointer
  * may be NULL. */
-int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time, char **scene_text);
+int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
+                        char **scene_text);
 
 #ifdef __cplusplus
 }
