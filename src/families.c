@@ -292,13 +292,19 @@ static int cracks_prepare(pdk_ctx *ctx, int dim, const pdk_families_opts *o, cra
   return PDK_SUCCESS;
 }
 
+/* Exact side (-1, 0, +1) of the point x with respect to the crack's line (2-D: through its two
+ * vertices) or plane (3-D: through three of its vertices, see cracks_prepare). */
+static int crack_side(const crack *c, int dim, const double x[3]) {
+  if (dim == 2) return orient2d_sign(c->v, c->v + 2, x);
+  return orient3d_sign(c->v + 3 * c->plane[0], c->v + 3 * c->plane[1], c->v + 3 * c->plane[2], x);
+}
+
 /* 1 if the closed bond segment p-q meets the closed crack segment; a bond on the crack's line is
- * not cut. */
-static int crack_cuts2(const crack *c, const double p[2], const double q[2]) {
+ * not cut. sp, sq: crack_side of p and q. */
+static int crack_cuts2(const crack *c, const double p[2], const double q[2], int sp, int sq) {
+  if (sp == 0 && sq == 0) return 0;
+  if (sp * sq > 0) return 0;
   const double *a = c->v, *b = c->v + 2;
-  int o1 = orient2d_sign(a, b, p), o2 = orient2d_sign(a, b, q);
-  if (o1 == 0 && o2 == 0) return 0;
-  if (o1 * o2 > 0) return 0;
   int o3 = orient2d_sign(p, q, a), o4 = orient2d_sign(p, q, b);
   return o3 * o4 <= 0;
 }
@@ -320,12 +326,9 @@ static int crack_contains3(const crack *c, const double x[3]) {
 }
 
 /* 1 if the closed bond segment p-q passes through the crack polygon; a bond lying in the crack's
- * plane is not cut. Sides are exact (orient3d against three polygon vertices); the crossing point
- * is computed in floating point. */
-static int crack_cuts3(const crack *c, const double p[3], const double q[3]) {
-  const double *a = c->v + 3 * c->plane[0], *b = c->v + 3 * c->plane[1],
-               *cc = c->v + 3 * c->plane[2];
-  int sp = orient3d_sign(a, b, cc, p), sq = orient3d_sign(a, b, cc, q);
+ * plane is not cut. sp, sq: crack_side of p and q (exact); the crossing point is computed in
+ * floating point. */
+static int crack_cuts3(const crack *c, const double p[3], const double q[3], int sp, int sq) {
   if (sp == 0 && sq == 0) return 0;
   if (sp * sq > 0) return 0;
   double x[3];
@@ -344,6 +347,19 @@ static int crack_cuts3(const crack *c, const double p[3], const double q[3]) {
       x[k] = p[k] + t * (q[k] - p[k]);
   }
   return crack_contains3(c, x);
+}
+
+/* 1 if the box [lo, hi] lies strictly on one side of the crack's line (2-D) or plane (3-D): its
+ * corners do (exact signs), and the sign of an affine function over a box is extreme at corners. */
+static int crack_box_one_side(const crack *c, int dim, const double lo[3], const double hi[3]) {
+  int first = 0;
+  for (int k = 0; k < (1 << dim); ++k) {
+    const double x[3] = {k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]};
+    const int sign = crack_side(c, dim, x);
+    if (sign == 0 || (k > 0 && sign != first)) return 0;
+    first = sign;
+  }
+  return 1;
 }
 
 /* ---- the scan ------------------------------------------------------------------------------- */
@@ -371,13 +387,14 @@ typedef struct scan_buf {
   pdk_index *perm, *perm_tmp; /* merge permutations */
   pdk_index *out;             /* [max_cand + PDK_SCAN_OUT_PAD] one family before it is stored */
   int *crack_list;            /* [num_cracks] cracks that may cut a bond of the current cell */
+  int *side_i;                /* [num_cracks] side of the current particle for each listed crack */
   int num_crack_list;
 } scan_buf;
 
 static void scan_buf_free(scan_buf *t) {
   if (!t) return;
-  void *ptrs[] = {t->cx, t->cy,  t->cz,   t->cid,      t->tx,  t->ty,
-                  t->tz, t->tid, t->perm, t->perm_tmp, t->out, t->crack_list};
+  void *ptrs[] = {t->cx,  t->cy,   t->cz,       t->cid, t->tx,         t->ty,    t->tz,
+                  t->tid, t->perm, t->perm_tmp, t->out, t->crack_list, t->side_i};
   for (size_t k = 0; k < sizeof ptrs / sizeof ptrs[0]; ++k)
     pdk_free_aligned(ptrs[k]);
   memset(t, 0, sizeof *t);
@@ -398,8 +415,9 @@ static int scan_buf_alloc(scan_buf *t, const scan_shared *sh) {
   t->perm_tmp = pdk_alloc_aligned(m, sizeof(pdk_index));
   t->out = pdk_alloc_aligned(m, sizeof(pdk_index));
   t->crack_list = pdk_alloc_aligned((size_t)sh->num_cracks + 1, sizeof(int));
+  t->side_i = pdk_alloc_aligned((size_t)sh->num_cracks + 1, sizeof(int));
   if (t->cx && t->cy && t->cz && t->tx && t->ty && t->tz && t->cid && t->tid && t->perm &&
-      t->perm_tmp && t->out && t->crack_list)
+      t->perm_tmp && t->out && t->crack_list && t->side_i)
     return 0;
   scan_buf_free(t);
   return 1;
@@ -564,37 +582,59 @@ static pdk_index gather_candidates(const scan_shared *sh, int64_t c, scan_buf *t
   }
   run_start[num_runs] = m;
   if (!sorted) merge_runs(t, m, run_start, num_runs);
-  /* Cracks whose box comes within reach of the cell's box. */
+  /* Cracks that may cut a bond of this cell: every such bond lies in the cell's box grown by the
+   * reach (plus a margin for the rounding of the growth), so a crack whose box misses it, or whose
+   * line/plane has that whole box strictly on one side, cuts none. */
   t->num_crack_list = 0;
-  for (int k = 0; k < sh->num_cracks; ++k) {
-    const crack *cr = &sh->cracks[k];
-    int near = 1;
-    for (int a = 0; a < dim; ++a)
-      near = near && cr->lo[a] <= bhi[a] + sh->reach && cr->hi[a] >= blo[a] - sh->reach;
-    if (near) t->crack_list[t->num_crack_list++] = k;
+  if (sh->num_cracks) {
+    double glo[3] = {0, 0, 0}, ghi[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a) {
+      const double grow = sh->reach * (1.0 + 1e-6) + 1e-12 * (fabs(blo[a]) + fabs(bhi[a]));
+      glo[a] = blo[a] - grow;
+      ghi[a] = bhi[a] + grow;
+    }
+    for (int k = 0; k < sh->num_cracks; ++k) {
+      const crack *cr = &sh->cracks[k];
+      int near = 1;
+      for (int a = 0; a < dim; ++a)
+        near = near && cr->lo[a] <= ghi[a] && cr->hi[a] >= glo[a];
+      if (near && !crack_box_one_side(cr, dim, glo, ghi)) t->crack_list[t->num_crack_list++] = k;
+    }
   }
   return m;
 }
 
 /* Removes from the family out[0..count-1] of particle i the bonds a listed crack cuts; returns the
  * new count. Each bond is tested with its lower-index end first, so i-j and j-i agree. */
-static pdk_index cut_bonds(const scan_shared *sh, const scan_buf *t, pdk_index i, pdk_index *out,
+static pdk_index cut_bonds(const scan_shared *sh, scan_buf *t, pdk_index i, pdk_index *out,
                            pdk_index count) {
   const int dim = sh->dim;
+  double xi[3] = {0, 0, 0};
+  for (int a = 0; a < dim; ++a)
+    xi[a] = sh->X[a][i];
+  /* the side of i, once per crack; exact, so the same from either end of a bond */
+  for (int k = 0; k < t->num_crack_list; ++k)
+    t->side_i[k] = crack_side(&sh->cracks[t->crack_list[k]], dim, xi);
   pdk_index kept = 0;
   for (pdk_index b = 0; b < count; ++b) {
     const pdk_index j = out[b];
-    const pdk_index lo_end = i < j ? i : j, hi_end = i < j ? j : i;
-    double p[3] = {0, 0, 0}, q[3] = {0, 0, 0};
+    double xj[3] = {0, 0, 0};
     for (int a = 0; a < dim; ++a)
-      p[a] = sh->X[a][lo_end], q[a] = sh->X[a][hi_end];
+      xj[a] = sh->X[a][j];
     int cut = 0;
     for (int k = 0; k < t->num_crack_list && !cut; ++k) {
       const crack *cr = &sh->cracks[t->crack_list[k]];
       int touch = 1;
       for (int a = 0; a < dim; ++a)
-        touch = touch && min_d(p[a], q[a]) <= cr->hi[a] && max_d(p[a], q[a]) >= cr->lo[a];
-      if (touch) cut = dim == 2 ? crack_cuts2(cr, p, q) : crack_cuts3(cr, p, q);
+        touch = touch && min_d(xi[a], xj[a]) <= cr->hi[a] && max_d(xi[a], xj[a]) >= cr->lo[a];
+      if (!touch) continue;
+      const int si = t->side_i[k], sj = crack_side(cr, dim, xj);
+      if (si * sj > 0) continue;
+      /* the rest of the test in floating point (3-D crossing point) from the lower index */
+      if (i < j)
+        cut = dim == 2 ? crack_cuts2(cr, xi, xj, si, sj) : crack_cuts3(cr, xi, xj, si, sj);
+      else
+        cut = dim == 2 ? crack_cuts2(cr, xj, xi, sj, si) : crack_cuts3(cr, xj, xi, sj, si);
     }
     if (!cut) out[kept++] = j;
   }
