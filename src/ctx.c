@@ -173,8 +173,10 @@ void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid) {
   hwloc_topology_t topo = ctx->topology;
   hwloc_obj_t core = hwloc_get_obj_by_type(topo, HWLOC_OBJ_CORE, (unsigned)(tid % ctx->num_cores));
   if (!core) return;
-  /* Binding is best effort: a container may forbid it. pdk_ctx_print_info shows the result. */
-  (void)hwloc_set_cpubind(topo, core->cpuset, HWLOC_CPUBIND_THREAD);
+  errno = 0;
+  if (hwloc_set_cpubind(topo, core->cpuset, HWLOC_CPUBIND_THREAD) < 0) {
+    __atomic_store_n(&ctx->bind_errno, errno ? errno : EINVAL, __ATOMIC_RELAXED);
+  }
 }
 
 int pdk_ctx_num_threads(const pdk_ctx *ctx) { return ctx->num_threads; }
@@ -293,5 +295,12 @@ int pdk_ctx_print_info(pdk_ctx *ctx, FILE *out) {
     }
   }
   for (int t = 0; t < shown; ++t) fprintf(out, "  thread %d: %s\n", t, where[t]);
+  if (ctx->bind_errno) {
+    /* reported through the hwloc wrapper's wording, but not an error: threads run unbound */
+    pdk_ext_hwloc_fail(ctx, "hwloc_set_cpubind(core)", __func__, ctx->bind_errno);
+    fprintf(out, "  note: %s; threads run where the OS puts them (PDK_BIND=none silences this)\n",
+            pdk_ctx_error_message(ctx));
+    pdk_ctx_error_clear(ctx);
+  }
   return PDK_SUCCESS;
 }

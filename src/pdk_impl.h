@@ -34,6 +34,7 @@ struct pdk_ctx {
   int num_threads;
   int max_threads;   /* hardware threads the process may use */
   pdk_bind bind;
+  int bind_errno;    /* errno of the last failed hwloc_set_cpubind (0: none failed) */
   unsigned isa;
   pdk_kernel_table kernels;
   void *topology;    /* hwloc_topology_t, owned */
@@ -45,8 +46,9 @@ struct pdk_ctx {
 /* Selects the kernel table by name ("ref", "simd") or, for NULL, the best for `isa`. */
 int pdk_kernels_select(const char *name, unsigned isa, pdk_kernel_table *out);
 
-/* Binds the calling OpenMP thread `tid` of `nthreads` to a core per the policy (no-op for NONE);
- * called at the start of each parallel region that should run bound. */
+/* Binds the calling OpenMP thread `tid` to a core per the policy (no-op for NONE). Binding is
+ * best effort (a container may forbid it): a failure is recorded in bind_errno through the hwloc
+ * wrapper convention and reported by pdk_ctx_print_info, never fatal. */
 void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid);
 
 #define PDK_CHECK(cond, ctx, code, ...)                                                         \
