@@ -155,7 +155,8 @@ pdk_bond_index pdk_kernel_lps_force2_ref(
 
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
-#define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke with J <= 0) */
+#define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */
+#define PDK_CORR_FLAG_FAILED 4u   /* Johnson-Cook: the particle has failed (no stress) */
 #define PDK_CORR_SPAN_RTOL 1e-6   /* flag when det K < PDK_CORR_SPAN_RTOL * (tr K / d)^d */
 
 typedef struct pdk_corr_consts {
@@ -167,6 +168,11 @@ typedef struct pdk_corr_consts {
   double horizon;      /* delta [length] (hourglass form) */
   double span_rtol;    /* PDK_CORR_SPAN_RTOL */
   double s00, alpha;   /* critical stretch and its alpha (bond failure) */
+  /* Johnson-Cook law (law == PDK_LAW_JC) */
+  const struct pdk_jc_params *jc; /* material; NULL for the elastic laws */
+  double dt;                      /* step length passed to the update [time] (> 0) */
+  int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
+  int break_failed;               /* 1: bonds of failed particles break (both ends) */
 } pdk_corr_consts;
 
 /* Arrays the kernels read and write. Per-particle arrays are [n_pad]; tensors are dim*dim such
@@ -187,8 +193,22 @@ typedef struct pdk_corr_arrays {
   int32_t *num_alive;               /* intact bonds when K^-1 was computed; NULL if no failure */
   double *W;                        /* strain energy density [energy/length^3] */
   double *f[3];                     /* force density [force/length^3] */
-  const double *s0;                 /* critical stretch per particle, previous pass */
+  const double *s0;                 /* critical stretch per particle, previous pass; NULL: no
+                                       stretch criterion */
   double *s0_next;                  /* critical stretch per particle, next pass */
+  /* Johnson-Cook history (committed state; NULL unless law == PDK_LAW_JC) */
+  double *cp_inv[6];  /* C_p^-1, Voigt xx yy zz yz xz xy */
+  double *eps_p;      /* equivalent plastic strain */
+  double *damage;     /* D */
+  double *temp_rise;  /* [K]; NULL without the thermal term */
+  uint8_t *failed;    /* 1 once D >= D_c */
+  double *eps_p_rate; /* plastic strain rate of the last committed step [1/time] */
+  double *w_plastic;  /* accumulated plastic work [energy/length^3] */
+  double *w_damage;   /* accumulated damage energy [energy/length^3] */
+  /* Bond breaking bookkeeping (NULL when bonds never break) */
+  double *w_broken; /* accumulated energy released by breaking [energy/length^3] */
+  uint8_t *changed; /* [n] bit 0: row lost bonds in this round, bit 1: in this commit pass */
+  uint8_t *detach;  /* [n] semi-TL: particle detached in this round; NULL in TL */
 } pdk_corr_arrays;
 
 /* Shape: K^-1, m, flag bit SPAN, num_alive for i in [i0, i1); returns how many do not span. */
@@ -200,8 +220,24 @@ void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *
 /* Pass 2: f (and W += Silling stabilization energy); reads A, F of neighbours from pass 1. */
 void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
                                pdk_index i1);
-/* Bond failure by the s0 rule (commit passes); returns the directed bonds broken. */
+/* Bond failure (commit passes): the s0 rule (when s0 != NULL) and, with break_failed, every bond
+ * with a failed end; sets changed[i] to 3 for rows that lost bonds, 0 otherwise. Returns the
+ * directed bonds broken. */
 pdk_bond_index pdk_kernel_corr_break_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                          pdk_index i0, pdk_index i1);
+/* Shape again for rows with changed bit 0; with detach != NULL (semi-TL) sets detach[i] = 1 for
+ * those whose intact family no longer spans but still has bonds (0 for every other i). Returns
+ * how many it detached. */
+pdk_index pdk_kernel_corr_reshape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                      pdk_index i0, pdk_index i1);
+/* semi-TL detachment: breaks every intact bond of row i with detach[i] or detach[j]; changed[i]
+ * bit 0 = row lost bonds now, bit 1 kept and set. Returns the directed bonds broken. */
+pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                       pdk_index i0, pdk_index i1);
+/* Energy released by breaking, for rows with changed bit 1 (after their shape was recomputed):
+ * w_broken[i] += W[i] - (stored energy at the current x with the new family, plus the plastic
+ * and damage work of the jump of F, history frozen). */
+void pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                 pdk_index i0, pdk_index i1);
 
 #endif

@@ -440,6 +440,7 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
                    opts.dt, e->dt_stable, opts.dt / e->dt_stable, e->dt_stable, opts.safety);
     e->dt = opts.dt;
   }
+  PDK_CALL_GOTO(pdk_model_set_dt(m, e->dt)); /* history updates (rate terms) use the step */
   apply_kinematic_bcs(e, 0.0);
   PDK_CALL_GOTO(pdk_model_force(m, &e->strain));
   *out = e;
@@ -465,6 +466,7 @@ long pdk_explicit_step(const pdk_explicit *e) { return e->step; }
 
 int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
   PDK_CHECK(num_steps >= 0, e->ctx, PDK_ERR_ARG, "number of steps must be >= 0, got %ld", num_steps);
+  PDK_CALL(pdk_model_set_dt(e->m, e->dt)); /* a restore may have changed e->dt */
   for (long s = 0; s < num_steps; ++s) {
     double t0 = e->time, t1 = e->time + e->dt;
     double p0 = external_power(e, t0);
@@ -488,6 +490,8 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     hist->external_work = e->external_work;
     reactions(e, hist->reaction);
     hist->broken = pdk_model_num_broken(e->m);
+    PDK_CALL(pdk_model_plastic_work(e->m, &hist->plastic_work, &hist->damage_work,
+                                    &hist->breaking_work));
   }
   return PDK_SUCCESS;
 }

@@ -14,6 +14,10 @@ pdk_model_opts pdk_model_opts_default(void) {
   o.stab_coefficient = 0.1;
   o.law = PDK_LAW_LINEAR_ELASTIC;
   o.precision = PDK_PRECISION_DOUBLE;
+  o.jc = pdk_jc_params_default();
+  o.failed_keeps_bonds = 0;
+  o.connectivity = PDK_CONNECTIVITY_TL;
+  o.compact_fraction = 0.02;
   return o;
 }
 
@@ -73,19 +77,70 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "stabilization %d unknown; use none, silling or hourglass", (int)o->stabilization);
   PDK_CHECK(isfinite(o->stab_coefficient) && o->stab_coefficient >= 0, ctx, PDK_ERR_ARG,
             "stabilization coefficient must be >= 0, got %g", o->stab_coefficient);
-  PDK_CHECK((unsigned)o->law <= PDK_LAW_NEO_HOOKE, ctx, PDK_ERR_ARG,
-            "material law %d unknown; use linear_elastic, svk or neo_hooke", (int)o->law);
+  PDK_CHECK((unsigned)o->law <= PDK_LAW_JC, ctx, PDK_ERR_ARG,
+            "material law %d unknown; use linear_elastic, svk, neo_hooke or jc", (int)o->law);
+  PDK_CHECK((unsigned)o->connectivity <= PDK_CONNECTIVITY_SEMI_TL, ctx, PDK_ERR_ARG,
+            "connectivity mode %d unknown; use tl (0) or semi_tl (1)", (int)o->connectivity);
+  PDK_CHECK(o->connectivity == PDK_CONNECTIVITY_TL || o->kind == PDK_MODEL_CORRESPONDENCE, ctx,
+            PDK_ERR_UNSUPPORTED,
+            "semi_tl connectivity is implemented for the correspondence model only (model kind is "
+            "%s); use tl", name);
+  PDK_CHECK(isfinite(o->compact_fraction) && o->compact_fraction >= 0 && o->compact_fraction <= 1,
+            ctx, PDK_ERR_ARG, "compact_fraction must lie in [0, 1], got %g", o->compact_fraction);
+  PDK_CHECK(o->failed_keeps_bonds == 0 || o->failed_keeps_bonds == 1, ctx, PDK_ERR_ARG,
+            "failed_keeps_bonds must be 0 or 1, got %d", o->failed_keeps_bonds);
+  if (o->law == PDK_LAW_JC) {
+    PDK_CHECK(o->kind == PDK_MODEL_CORRESPONDENCE, ctx, PDK_ERR_ARG,
+              "the Johnson-Cook law needs the correspondence model (model kind is %s)", name);
+    PDK_CALL(pdk_jc_params_check(ctx, &o->jc));
+  }
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   return PDK_SUCCESS;
 }
 
-int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts,
+/* Law JC: the Johnson-Cook parameters are the one source of truth for the elastic constants and
+ * the density. Zero model values are taken from them; given values must agree. */
+static int resolve_jc_constants(pdk_ctx *ctx, pdk_model_opts *o) {
+  if (o->law != PDK_LAW_JC) return PDK_SUCCESS;
+  const double E = o->jc.young_modulus, nu = o->jc.poisson_ratio;
+  const double K = E / (3.0 * (1.0 - 2.0 * nu)), G = E / (2.0 * (1.0 + nu));
+  const double rtol = 1e-9;
+  const double *have[3] = {&o->bulk_modulus, &o->shear_modulus, &o->density};
+  const double want[3] = {K, G, o->jc.density};
+  const char *what[3] = {"bulk modulus", "shear modulus", "density"};
+  for (int k = 0; k < 3; ++k) {
+    if (*have[k] == 0.0) continue;
+    PDK_CHECK(fabs(*have[k] - want[k]) <= rtol * fabs(want[k]), ctx, PDK_ERR_ARG,
+              "Johnson-Cook law: the model's %s %.17g disagrees with %.17g from the Johnson-Cook "
+              "parameters (E %g, nu %g, density %g); leave it 0 to take the Johnson-Cook value",
+              what[k], *have[k], want[k], E, nu, o->jc.density);
+  }
+  o->bulk_modulus = K;
+  o->shear_modulus = G;
+  o->density = o->jc.density;
+  return PDK_SUCCESS;
+}
+
+/* Bonds can break: a critical stretch, or failed Johnson-Cook particles that break theirs. */
+static int model_can_break(const pdk_model_opts *o) {
+  return o->critical_stretch > 0 ||
+         (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC && o->jc.damage &&
+          !o->failed_keeps_bonds);
+}
+
+int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts_in,
                      pdk_model **out) {
   pdk_ctx *ctx = pdk_particles_ctx(p);
   int err = PDK_SUCCESS;
   pdk_model *m = NULL;
   *out = NULL;
+  pdk_model_opts resolved = *opts_in;
+  const pdk_model_opts *opts = &resolved;
+  if (resolved.law == PDK_LAW_JC) {
+    PDK_CALL(pdk_jc_params_check(ctx, &resolved.jc));
+    PDK_CALL(resolve_jc_constants(ctx, &resolved));
+  }
   PDK_CALL(check_opts(ctx, opts));
   PDK_CHECK(pdk_families_num_particles(fam) == pdk_particles_count(p), ctx, PDK_ERR_ARG,
             "families were built for %d particles but the store holds %d; rebuild the families",
@@ -111,13 +166,16 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
       memcpy(pdk_particles_field_data(p, "x", c), pdk_particles_X(p, c), (size_t)n * sizeof(double));
   }
   PDK_CALL_GOTO(pdk_particles_field_add(p, "f", PDK_F64, dim));
-  if (opts->critical_stretch > 0) {
+  if (model_can_break(opts)) {
     pdk_bond_index nb = pdk_families_num_bonds(fam);
     m->bond_alive = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), 1);
-    m->s0 = pdk_alloc_aligned((size_t)pdk_particles_count_padded(p), sizeof(double));
-    PDK_CHECK_GOTO(m->bond_alive && m->s0, ctx, PDK_ERR_MEMORY,
+    PDK_CHECK_GOTO(m->bond_alive, ctx, PDK_ERR_MEMORY,
                    "out of memory for the bond state of %lld bonds", (long long)nb);
     memset(m->bond_alive, 1, (size_t)nb);
+  }
+  if (opts->critical_stretch > 0) {
+    m->s0 = pdk_alloc_aligned((size_t)pdk_particles_count_padded(p), sizeof(double));
+    PDK_CHECK_GOTO(m->s0, ctx, PDK_ERR_MEMORY, "out of memory for the critical stretches");
     for (pdk_index i = 0; i < n; ++i) m->s0[i] = opts->critical_stretch;
   }
   PDK_CALL_GOTO(m->ops->setup(m));
@@ -149,3 +207,51 @@ pdk_families *pdk_model_families(const pdk_model *m) { return m->fam; }
 const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m->bond_alive; }
 pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; }
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
+pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
+long pdk_model_num_compactions(const pdk_model *m) { return m->num_compactions; }
+
+int pdk_model_set_dt(pdk_model *m, double dt) {
+  PDK_CHECK(isfinite(dt) && dt > 0, m->ctx, PDK_ERR_ARG, "model time step must be > 0 and finite, got %g",
+            dt);
+  m->dt = dt;
+  return PDK_SUCCESS;
+}
+
+/* Particles per block of the energy sums: a constant, so the order of the sum is fixed. */
+#define PDK_MODEL_SUM_BLOCK 4096
+
+/* sum_i V_i w_i over field `name` (0 when the field does not exist), in fixed blocks. */
+static int volume_sum(pdk_model *m, const char *name, double *out) {
+  *out = 0.0;
+  const double *w = pdk_particles_field_data(m->p, name, 0);
+  if (!w) return PDK_SUCCESS;
+  const double *volume = pdk_particles_volume(m->p);
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index num_blocks = (n + PDK_MODEL_SUM_BLOCK - 1) / PDK_MODEL_SUM_BLOCK;
+  double *part = malloc((size_t)(num_blocks > 0 ? num_blocks : 1) * sizeof *part);
+  PDK_CHECK(part, m->ctx, PDK_ERR_MEMORY, "out of memory summing energies");
+  const int nt = m->ctx->num_threads;
+#pragma omp parallel for default(none) shared(part, w, volume, n, num_blocks) schedule(static)    \
+    num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = blk * PDK_MODEL_SUM_BLOCK;
+    const pdk_index i1 = i0 + PDK_MODEL_SUM_BLOCK < n ? i0 + PDK_MODEL_SUM_BLOCK : n;
+    double s = 0.0;
+    for (pdk_index i = i0; i < i1; ++i)
+      s += volume[i] * w[i];
+    part[blk] = s;
+  }
+  double total = 0.0;
+  for (pdk_index blk = 0; blk < num_blocks; ++blk)
+    total += part[blk];
+  free(part);
+  *out = total;
+  return PDK_SUCCESS;
+}
+
+int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking) {
+  if (plastic) PDK_CALL(volume_sum(m, "w_plastic", plastic));
+  if (damage) PDK_CALL(volume_sum(m, "w_damage", damage));
+  if (breaking) PDK_CALL(volume_sum(m, "w_broken", breaking));
+  return PDK_SUCCESS;
+}

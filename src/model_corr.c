@@ -15,8 +15,40 @@
  *           bonds (LAMMPS s0 rule, the same as PMB) and swaps s0; the next pass 1 recomputes K^-1
  *           of every particle whose intact-bond count changed (broken bonds carry weight 0 in K,
  *           N, the force and the stabilization).
- *   num_flagged counts particles with any flag bit after a force pass (after setup: those whose
- *   family does not span). A flagged particle has F = A = 0 (F = 0 for SPAN only) and W = 0.
+ *   num_flagged counts particles with flag bit SPAN or INVERTED after a force pass (after setup:
+ *   those whose family does not span). A flagged particle has F = A = 0 (F = 0 for SPAN only) and
+ *   W = 0.
+ *
+ * Johnson-Cook law (law PDK_LAW_JC): setup also declares the history fields listed in
+ * include/pdk/model.h ("cp_inv", "eps_p", "damage", ["temp_rise"], "failed", "eps_p_rate",
+ * "w_plastic", "w_damage"); pass 1 calls pdk_jc_update per particle, advancing the history in
+ * place in a commit pass and into a discarded copy in a trial pass (kernels/ref/corr.c). Memory:
+ * 12 doubles + 1 byte per particle (13 with temperature). Cost: one exponential-map update per
+ * particle per pass (a 3 x 3 Jacobi eigen-decomposition, logs and exps), against a family loop of
+ * tens of bonds: see the report of the issue for the measured ratio.
+ *
+ * Bond breaking (bond state exists: critical stretch, or JC failure with failed_keeps_bonds = 0).
+ * A commit pass runs the break kernel after pass 2 when there is something to decide: always with
+ * a critical stretch (the s0 rule needs every bond's stretch), and with JC failure only when the
+ * number of failed particles grew (a failed particle loses all its bonds in the pass it fails, so
+ * older failures never break anything again). If bonds broke: the changed rows are reshaped (K, m
+ * from the intact bonds, reference configuration); semi-TL detaches degenerate families (cut and
+ * reshape until nothing more detaches); the released energy is booked into "w_broken"; semi-TL
+ * may compact its list. Passes with nothing new cost nothing of this.
+ *
+ * semi-TL bond list. The families object is shared and never changed; the model keeps its own CSR
+ * of intact bonds: c_start [n+1] (int64), c_j [len] (int32), c_omega [len] (double), c_alive
+ * [len] (u8, so bonds broken since the last compaction can stay in the list with weight 0):
+ * 8 bytes per particle + 13 bytes per bond still listed, allocated at the first compaction
+ * (before it the passes walk the families' CSR with the model's bond state) and reallocated to the
+ * intact count at each compaction (old and new lists coexist during it). Compaction is triggered
+ * when the broken entries still listed exceed compact_fraction of the list, so its O(bonds) cost
+ * comes in batches and never in a pass where nothing broke. A bond's entry order is kept, so every
+ * sum runs over the same terms in the same order as in TL (where broken bonds add exact zeros),
+ * which is why TL and semi-TL agree bit for bit until a particle is detached. The model's bond
+ * state over the families' bonds (pdk_model_bond_alive, checkpoints) is kept current: rows that
+ * lost bonds copy their compacted state back in the same pass. After a restore the model starts
+ * without a compacted list (the bond state says everything) and compacts at the next batch.
  *
  * Zero-energy-mode control, and why this normalisation. Silling (CMAME 322 (2017) 42-57) adds to
  * the correspondence force state a term proportional to omega z, z = Y - F xi, with a dimensionless
@@ -57,9 +89,20 @@ typedef struct corr_impl {
   double *W;            /* [n_pad] strain energy density of the last pass */
   double *m;            /* [n_pad] weighted volume; NULL without stabilization */
   int32_t *num_alive;   /* [n] intact bonds when K^-1 was computed; NULL without failure */
-  double *s0_next;      /* [n_pad] critical stretch for the next pass; NULL without failure */
+  double *s0_next;      /* [n_pad] critical stretch for the next pass; NULL without s0 */
   double *block_energy; /* [num_blocks] */
   pdk_index num_blocks;
+  uint8_t *changed;     /* [n_pad] rows that lost bonds (bits, see kernels.h); NULL: no failure */
+  uint8_t *detach;      /* [n_pad] semi-TL detach marks; NULL in TL */
+  /* semi-TL compacted list of intact bonds; NULL before the first compaction */
+  pdk_bond_index *c_start; /* [n+1] */
+  pdk_index *c_j;          /* [c_len] */
+  double *c_omega;         /* [c_len] */
+  uint8_t *c_alive;        /* [c_len] */
+  pdk_bond_index c_len;    /* entries in the list the passes walk (families' before compaction) */
+  pdk_bond_index c_dead;   /* broken entries still in that list (counted since creation or the
+                              last compaction) */
+  pdk_index failed_seen;   /* failed particles when the break kernel last ran */
 } corr_impl;
 
 /* Points the kernel arrays at the current fields. */
@@ -68,10 +111,17 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
   pdk_particles *p = m->p;
   const int dim = pdk_particles_dim(p);
   memset(a, 0, sizeof *a);
-  a->bond_start = pdk_families_bond_start(m->fam);
-  a->bond_j = pdk_families_bond_j(m->fam);
-  a->bond_omega = c->bond_omega;
-  a->bond_alive = m->bond_alive;
+  if (c->c_start) {
+    a->bond_start = c->c_start;
+    a->bond_j = c->c_j;
+    a->bond_omega = c->c_omega;
+    a->bond_alive = c->c_alive;
+  } else {
+    a->bond_start = pdk_families_bond_start(m->fam);
+    a->bond_j = pdk_families_bond_j(m->fam);
+    a->bond_omega = c->bond_omega;
+    a->bond_alive = m->bond_alive;
+  }
   for (int d = 0; d < dim; ++d) {
     a->X[d] = pdk_particles_X(p, d);
     a->x[d] = pdk_particles_field_data(p, "x", d);
@@ -89,6 +139,31 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
   a->W = c->W;
   a->s0 = m->s0;
   a->s0_next = c->s0_next;
+  if (m->opts.law == PDK_LAW_JC) {
+    for (int t = 0; t < 6; ++t)
+      a->cp_inv[t] = pdk_particles_field_data(p, "cp_inv", t);
+    a->eps_p = pdk_particles_field_data(p, "eps_p", 0);
+    a->damage = pdk_particles_field_data(p, "damage", 0);
+    a->temp_rise = pdk_particles_field_data(p, "temp_rise", 0); /* NULL unless thermal */
+    a->failed = pdk_particles_field_data(p, "failed", 0);
+    a->eps_p_rate = pdk_particles_field_data(p, "eps_p_rate", 0);
+    a->w_plastic = pdk_particles_field_data(p, "w_plastic", 0);
+    a->w_damage = pdk_particles_field_data(p, "w_damage", 0);
+  }
+  a->w_broken = pdk_particles_field_data(p, "w_broken", 0);
+  a->changed = c->changed;
+  a->detach = c->detach;
+}
+
+static void free_compacted(corr_impl *c) {
+  pdk_free_aligned(c->c_start);
+  pdk_free_aligned(c->c_j);
+  pdk_free_aligned(c->c_omega);
+  pdk_free_aligned(c->c_alive);
+  c->c_start = NULL;
+  c->c_j = NULL;
+  c->c_omega = NULL;
+  c->c_alive = NULL;
 }
 
 static void corr_destroy(pdk_model *m) {
@@ -100,6 +175,9 @@ static void corr_destroy(pdk_model *m) {
   pdk_free_aligned(c->num_alive);
   pdk_free_aligned(c->s0_next);
   pdk_free_aligned(c->block_energy);
+  pdk_free_aligned(c->changed);
+  pdk_free_aligned(c->detach);
+  free_compacted(c);
   free(c);
   m->impl = NULL;
 }
@@ -130,9 +208,18 @@ static int corr_setup(pdk_model *m) {
   }
   if (m->bond_alive) {
     c->num_alive = pdk_alloc_aligned((size_t)n_pad, sizeof(int32_t));
-    c->s0_next = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
-    ok = ok && c->num_alive && c->s0_next;
+    c->changed = pdk_alloc_aligned((size_t)n_pad, 1);
+    ok = ok && c->num_alive && c->changed;
+    if (o->connectivity == PDK_CONNECTIVITY_SEMI_TL) {
+      c->detach = pdk_alloc_aligned((size_t)n_pad, 1);
+      ok = ok && c->detach;
+    }
   }
+  if (m->s0) {
+    c->s0_next = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+    ok = ok && c->s0_next;
+  }
+  c->c_len = nb;
   PDK_CHECK(ok, ctx, PDK_ERR_MEMORY,
             "out of memory for the correspondence model's arrays (%lld bonds, %d particles)",
             (long long)nb, (int)n);
@@ -141,6 +228,29 @@ static int corr_setup(pdk_model *m) {
   PDK_CALL(pdk_particles_field_add(p, "F", PDK_F64, dim * dim));
   PDK_CALL(pdk_particles_field_add(p, "A", PDK_F64, dim * dim));
   PDK_CALL(pdk_particles_field_add(p, "flag", PDK_U8, 1));
+  if (m->bond_alive) PDK_CALL(pdk_particles_field_add(p, "w_broken", PDK_F64, 1));
+  if (o->law == PDK_LAW_JC) {
+    /* History: a field declared here starts virgin (zero, C_p^-1 = 1); one that exists already
+     * (a store reused from an earlier model) is kept, as "x" is. */
+    const int fresh = !pdk_particles_field_exists(p, "cp_inv");
+    PDK_CALL(pdk_particles_field_add(p, "cp_inv", PDK_F64, 6));
+    PDK_CALL(pdk_particles_field_add(p, "eps_p", PDK_F64, 1));
+    PDK_CALL(pdk_particles_field_add(p, "damage", PDK_F64, 1));
+    if (o->jc.thermal) PDK_CALL(pdk_particles_field_add(p, "temp_rise", PDK_F64, 1));
+    PDK_CALL(pdk_particles_field_add(p, "failed", PDK_U8, 1));
+    PDK_CALL(pdk_particles_field_add(p, "eps_p_rate", PDK_F64, 1));
+    PDK_CALL(pdk_particles_field_add(p, "w_plastic", PDK_F64, 1));
+    PDK_CALL(pdk_particles_field_add(p, "w_damage", PDK_F64, 1));
+    if (fresh)
+      for (int t = 0; t < 3; ++t) {
+        double *cp = pdk_particles_field_data(p, "cp_inv", t);
+        for (pdk_index i = 0; i < n; ++i)
+          cp[i] = 1.0;
+      }
+    const uint8_t *failed = pdk_particles_field_data(p, "failed", 0);
+    for (pdk_index i = 0; i < n; ++i)
+      c->failed_seen += failed[i] != 0;
+  }
 
   pdk_corr_consts *k = &c->k;
   k->dim = dim;
@@ -153,6 +263,10 @@ static int corr_setup(pdk_model *m) {
   k->span_rtol = PDK_CORR_SPAN_RTOL;
   k->s00 = o->critical_stretch;
   k->alpha = o->alpha;
+  k->jc = o->law == PDK_LAW_JC ? &m->opts.jc : NULL;
+  k->dt = 0.0;
+  k->commit = 0;
+  k->break_failed = o->law == PDK_LAW_JC && o->jc.damage && !o->failed_keeps_bonds;
 
   /* Influence weight per bond (first touch in the pass order). A bond of zero length would give
    * omega = infinity (1/r) and a singular family; it is an input error. */
@@ -220,9 +334,184 @@ static int corr_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
+/* Block range of particles [i0, i1) for block blk. */
+#define CORR_BLOCK_RANGE(blk, n, i0, i1)                                                        \
+  const pdk_index i0 = (blk) * PDK_CORR_BLOCK;                                                  \
+  const pdk_index i1 = i0 + PDK_CORR_BLOCK < (n) ? i0 + PDK_CORR_BLOCK : (n)
+
+/* semi-TL: rebuilds the compacted list from the intact bonds of the list the passes walk now (the
+ * families' CSR with the model's bond state before the first compaction). Row order and entry
+ * order are kept. */
+static int corr_compact(pdk_model *m) {
+  corr_impl *c = m->impl;
+  pdk_ctx *ctx = m->ctx;
+  pdk_corr_arrays a;
+  corr_arrays(m, &a);
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index num_blocks = c->num_blocks;
+  const int nt = ctx->num_threads;
+  const pdk_bond_index *old_start = a.bond_start;
+  const pdk_index *old_j = a.bond_j;
+  const double *old_omega = a.bond_omega;
+  const uint8_t *old_alive = a.bond_alive;
+  pdk_bond_index *start = pdk_alloc_aligned((size_t)n + 1, sizeof *start);
+  PDK_CHECK(start, ctx, PDK_ERR_MEMORY, "out of memory compacting the bond list (semi-TL)");
+#pragma omp parallel for default(none) shared(old_start, old_alive, start, n, num_blocks)         \
+    schedule(static) num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
+    for (pdk_index i = i0; i < i1; ++i) {
+      pdk_bond_index count = 0;
+      for (pdk_bond_index b = old_start[i]; b < old_start[i + 1]; ++b)
+        count += old_alive[b] != 0;
+      start[i + 1] = count;
+    }
+  }
+  start[0] = 0;
+  for (pdk_index i = 0; i < n; ++i)
+    start[i + 1] += start[i];
+  const pdk_bond_index len = start[n];
+  const size_t alloc = (size_t)(len > 0 ? len : 1);
+  pdk_index *bj = pdk_alloc_aligned(alloc, sizeof *bj);
+  double *omega = pdk_alloc_aligned(alloc, sizeof *omega);
+  uint8_t *alive = pdk_alloc_aligned(alloc, 1);
+  if (!bj || !omega || !alive) {
+    pdk_free_aligned(start);
+    pdk_free_aligned(bj);
+    pdk_free_aligned(omega);
+    pdk_free_aligned(alive);
+    return pdk_ctx_error_set(ctx, PDK_ERR_MEMORY, __func__,
+                             "out of memory compacting the bond list (semi-TL): %lld bonds",
+                             (long long)len);
+  }
+#pragma omp parallel for default(none)                                                          \
+    shared(old_start, old_j, old_omega, old_alive, start, bj, omega, alive, n, num_blocks)      \
+    schedule(static) num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
+    for (pdk_index i = i0; i < i1; ++i) {
+      pdk_bond_index out = start[i];
+      for (pdk_bond_index b = old_start[i]; b < old_start[i + 1]; ++b) {
+        if (!old_alive[b]) continue;
+        bj[out] = old_j[b];
+        omega[out] = old_omega[b];
+        alive[out] = 1;
+        ++out;
+      }
+    }
+  }
+  free_compacted(c);
+  c->c_start = start;
+  c->c_j = bj;
+  c->c_omega = omega;
+  c->c_alive = alive;
+  c->c_len = len;
+  c->c_dead = 0;
+  m->num_compactions++;
+  return PDK_SUCCESS;
+}
+
+/* semi-TL with a compacted list: copies the broken state of the rows that lost bonds in this pass
+ * back to the model's bond state over the families' bonds. The compacted row is a subsequence of
+ * the families' row in the same order, so one forward walk pairs the entries. */
+static void corr_sync_bond_state(pdk_model *m) {
+  corr_impl *c = m->impl;
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index num_blocks = c->num_blocks;
+  const int nt = m->ctx->num_threads;
+  const pdk_bond_index *fam_start = pdk_families_bond_start(m->fam);
+  const pdk_index *fam_j = pdk_families_bond_j(m->fam);
+  const pdk_bond_index *c_start = c->c_start;
+  const pdk_index *c_j = c->c_j;
+  const uint8_t *c_alive = c->c_alive;
+  const uint8_t *changed = c->changed;
+  uint8_t *alive = m->bond_alive;
+#pragma omp parallel for default(none)                                                          \
+    shared(fam_start, fam_j, c_start, c_j, c_alive, changed, alive, n, num_blocks)              \
+    schedule(static) num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
+    for (pdk_index i = i0; i < i1; ++i) {
+      if (!(changed[i] & 2u)) continue;
+      pdk_bond_index b = fam_start[i];
+      for (pdk_bond_index e = c_start[i]; e < c_start[i + 1]; ++e) {
+        while (fam_j[b] != c_j[e])
+          ++b;
+        if (!c_alive[e]) alive[b] = 0;
+        ++b;
+      }
+    }
+  }
+}
+
+/* After the break kernel broke bonds in a commit pass: reshape the changed rows, detach
+ * degenerate families (semi-TL), book the released energy, keep the bond state current, compact
+ * in batches (semi-TL). `broken` is what the break kernel broke. */
+static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_index broken) {
+  corr_impl *c = m->impl;
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index num_blocks = c->num_blocks;
+  const int nt = m->ctx->num_threads;
+  pdk_corr_arrays a;
+  corr_arrays(m, &a);
+  pdk_bond_index total = broken;
+  for (;;) {
+    pdk_index detached = 0;
+#pragma omp parallel for default(none) shared(a, k, n, num_blocks) reduction(+ : detached)        \
+    schedule(static) num_threads(nt)
+    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
+      detached += pdk_kernel_corr_reshape_ref(k, &a, i0, i1);
+    }
+    if (!detached) break;
+    pdk_bond_index cut = 0;
+#pragma omp parallel for default(none) shared(a, k, n, num_blocks) reduction(+ : cut)             \
+    schedule(static) num_threads(nt)
+    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
+      cut += pdk_kernel_corr_cut_ref(k, &a, i0, i1);
+    }
+    total += cut;
+  }
+  m->num_broken += total;
+  if (c->c_start) corr_sync_bond_state(m);
+  const uint8_t *flag = a.flag;
+  pdk_index flagged = 0;
+#pragma omp parallel for default(none) shared(a, k, n, num_blocks, flag) reduction(+ : flagged)   \
+    schedule(static) num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
+    pdk_kernel_corr_release_ref(k, &a, i0, i1);
+    for (pdk_index i = i0; i < i1; ++i)
+      flagged += (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) != 0;
+  }
+  m->num_flagged = flagged;
+  if (m->opts.connectivity == PDK_CONNECTIVITY_SEMI_TL) {
+    c->c_dead += total;
+    if (c->c_dead > 0 && (double)c->c_dead > m->opts.compact_fraction * (double)c->c_len)
+      PDK_CALL(corr_compact(m));
+  }
+  return PDK_SUCCESS;
+}
+
 static int corr_force(pdk_model *m, int commit, double *energy) {
   corr_impl *c = m->impl;
-  const pdk_corr_consts *k = &c->k;
+  pdk_corr_consts kc = c->k;
+  const pdk_corr_consts *k = &kc;
+  kc.commit = commit;
+  if (m->opts.law == PDK_LAW_JC) {
+    const pdk_jc_params *jc = &m->opts.jc;
+    const int rate_needed = jc->C != 0.0 || (jc->damage && jc->D4 != 0.0);
+    if (m->dt > 0.0)
+      kc.dt = m->dt;
+    else if (commit)
+      PDK_CHECK(!rate_needed, m->ctx, PDK_ERR_ARG,
+                "correspondence model: the Johnson-Cook rate terms (C = %g, D4 = %g) need the time "
+                "step; call pdk_model_set_dt before a committing force pass",
+                jc->C, jc->damage ? jc->D4 : 0.0);
+    else
+      kc.dt = INFINITY; /* trial before any step: the quasi-static limit */
+  }
   pdk_corr_arrays a;
   corr_arrays(m, &a);
   const pdk_index n = pdk_particles_count(m->p);
@@ -230,34 +519,38 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   const double *volume = a.volume;
   const double *W = c->W;
   const uint8_t *flag = a.flag;
+  const uint8_t *failed = a.failed;
   double *block_energy = c->block_energy;
   const int nt = m->ctx->num_threads;
-  pdk_index flagged = 0;
+  pdk_index flagged = 0, num_failed = 0;
 
-#pragma omp parallel default(none) shared(a, k, num_blocks, n, volume, W, flag, block_energy)    \
-    reduction(+ : flagged) num_threads(nt)
+#pragma omp parallel default(none)                                                              \
+    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy)                          \
+    reduction(+ : flagged, num_failed) num_threads(nt)
   {
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      const pdk_index i0 = blk * PDK_CORR_BLOCK;
-      const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
       pdk_kernel_corr_pass1_ref(k, &a, i0, i1);
     }
     /* implicit barrier: pass 2 reads A and F of neighbours in other blocks */
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      const pdk_index i0 = blk * PDK_CORR_BLOCK;
-      const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
       pdk_kernel_corr_pass2_ref(k, &a, i0, i1);
       double e = 0.0;
       for (pdk_index i = i0; i < i1; ++i) {
         e += volume[i] * W[i];
-        flagged += flag[i] != 0;
+        flagged += (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) != 0;
       }
+      if (failed)
+        for (pdk_index i = i0; i < i1; ++i)
+          num_failed += failed[i] != 0;
       block_energy[blk] = e;
     }
   }
   m->num_flagged = flagged;
+  m->num_failed = num_failed;
   if (energy) {
     double e = 0.0;
     for (pdk_index blk = 0; blk < num_blocks; ++blk)
@@ -265,19 +558,23 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
     *energy = e;
   }
 
-  if (commit && m->bond_alive && m->s0 && c->s0_next) {
+  /* Bond breaking, commit passes only: state read by this pass, written for the next. */
+  const int new_failures = k->break_failed && num_failed != c->failed_seen;
+  if (commit && m->bond_alive && (m->s0 || new_failures)) {
     pdk_bond_index broken = 0;
 #pragma omp parallel for default(none) shared(a, k, num_blocks, n) reduction(+ : broken)         \
     schedule(static) num_threads(nt)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      const pdk_index i0 = blk * PDK_CORR_BLOCK;
-      const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
       broken += pdk_kernel_corr_break_ref(k, &a, i0, i1);
     }
-    m->num_broken += broken;
-    double *t = m->s0; /* the next pass reads the critical stretches just written */
-    m->s0 = c->s0_next;
-    c->s0_next = t;
+    c->failed_seen = num_failed;
+    if (m->s0) {
+      double *t = m->s0; /* the next pass reads the critical stretches just written */
+      m->s0 = c->s0_next;
+      c->s0_next = t;
+    }
+    if (broken) PDK_CALL(corr_after_breaking(m, k, broken));
   }
   return PDK_SUCCESS;
 }

@@ -30,6 +30,9 @@ struct pdk_model {
   double *s0;                  /* [n_pad] LAMMPS critical stretch per particle, or NULL */
   pdk_bond_index num_broken;
   pdk_index num_flagged;
+  pdk_index num_failed;  /* Johnson-Cook: failed particles after the last pass */
+  long num_compactions;  /* semi-TL bond-list compactions */
+  double dt;             /* time step for history updates; 0 until pdk_model_set_dt */
 };
 
 extern const pdk_model_ops pdk_model_ops_pmb;

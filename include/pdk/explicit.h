@@ -73,6 +73,12 @@ typedef struct pdk_history {
   double external_work;  /* work done by prescribed displacements/velocities and body forces */
   double reaction[8][3]; /* first 8 reaction sets */
   pdk_bond_index broken; /* directed bonds broken so far */
+  /* Energy dissipated so far (pdk_model_plastic_work): plastic flow, damage, bond breaking.
+   * external_work = kinetic + strain + plastic_work + damage_work + breaking_work, up to the
+   * time-integration error. */
+  double plastic_work;
+  double damage_work;
+  double breaking_work;
 } pdk_history;
 
 typedef struct pdk_explicit pdk_explicit;

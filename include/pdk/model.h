@@ -6,7 +6,29 @@
  *   "f"  f64 x dim  internal force density [force/length^dim] (written by pdk_model_force)
  * plus what its kind needs (LPS: "m" weighted volume, "theta" dilation; correspondence: "Kinv"
  * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag).
- * Bond state (intact = 1, broken = 0) exists only when the model can break bonds.
+ * Bond state (intact = 1, broken = 0) exists only when the model can break bonds: a critical
+ * stretch is set, or the correspondence model uses the Johnson-Cook law with damage and failed
+ * particles break their bonds.
+ *
+ * Johnson-Cook law (PDK_LAW_JC, correspondence only; the material point is pdk/plasticity.h).
+ * History, declared only with this law, committed by pdk_model_force and never touched by
+ * pdk_model_force_trial (a field that exists already when the model is created is kept, as "x"):
+ *   "cp_inv"     f64 x 6  plastic metric C_p^-1 (Voigt xx yy zz yz xz xy), identity at start
+ *   "eps_p"      f64 x 1  equivalent plastic strain [-]
+ *   "damage"     f64 x 1  Johnson-Cook damage D [-]
+ *   "temp_rise"  f64 x 1  adiabatic temperature rise [K] (only with jc.thermal = 1)
+ *   "failed"     u8  x 1  1 once D >= D_c: the particle carries no stress from then on
+ *   "eps_p_rate" f64 x 1  plastic strain rate of the last committed step [1/time]
+ *   "w_plastic"  f64 x 1  plastic dissipation so far [energy/length^3 of reference volume]
+ *   "w_damage"   f64 x 1  energy released by damage so far [energy/length^3]
+ * and, whenever correspondence bonds can break,
+ *   "w_broken"   f64 x 1  energy released by bond breaking so far [energy/length^3]: the drop
+ *                         of the particle's stored energy (plus the plastic and damage work the
+ *                         jump of F would cause) when its family lost bonds, at fixed positions.
+ * Elastic constants: the Johnson-Cook parameters are the one source of truth. With law JC,
+ * bulk_modulus, shear_modulus and density may be left 0 and are then set from jc (K = E/(3(1 -
+ * 2 nu)), G = E/(2(1 + nu)), rho = jc.density; pdk_model_opts_get shows the values used); when
+ * given they must agree with jc to a relative 1e-9, or creation fails naming both values.
  *
  * Units: any consistent set (SI or N-mm-s-tonne). Volumes in 2-D are area x thickness; 2-D
  * models are plane strain.
@@ -20,6 +42,7 @@
 
 #include "pdk/families.h"
 #include "pdk/particles.h"
+#include "pdk/plasticity.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,8 +72,25 @@ typedef enum pdk_stabilization {
 typedef enum pdk_law {
   PDK_LAW_LINEAR_ELASTIC = 0, /* small strain: sigma = lambda tr(eps) I + 2 mu eps, P = sigma */
   PDK_LAW_SVK = 1,            /* St Venant-Kirchhoff: S = lambda tr(E) I + 2 mu E, P = F S */
-  PDK_LAW_NEO_HOOKE = 2       /* compressible: P = mu (F - F^-T) + lambda ln(J) F^-T */
+  PDK_LAW_NEO_HOOKE = 2,      /* compressible: P = mu (F - F^-T) + lambda ln(J) F^-T */
+  PDK_LAW_JC = 3              /* finite J2 plasticity, Johnson-Cook hardening and damage (opts.jc) */
 } pdk_law;
+
+/* How families follow broken bonds (correspondence; PMB and LPS are always TL). In both modes K
+ * (and the weighted volume) of a particle whose family lost bonds is recomputed in the reference
+ * configuration from its intact bonds, in the commit pass where they broke, so TL and semi-TL give
+ * the same bits until semi-TL detaches a particle. */
+typedef enum pdk_connectivity {
+  PDK_CONNECTIVITY_TL = 0,     /* total Lagrangian: families fixed, broken bonds carry weight 0; a
+                                  particle whose intact bonds no longer span the space is flagged
+                                  (no stress of its own) but stays attached by its neighbours' */
+  PDK_CONNECTIVITY_SEMI_TL = 1 /* semi-total Lagrangian: the model keeps its own CSR of intact
+                                  bonds, compacted in batches (compact_fraction), so passes walk
+                                  intact bonds only; a particle whose family no longer spans is
+                                  detached: all its bonds break, it moves freely, carries no
+                                  stress and counts in num_flagged (a cascade to neighbours that
+                                  become degenerate in turn is followed in the same pass) */
+} pdk_connectivity;
 
 typedef enum pdk_precision {
   PDK_PRECISION_DOUBLE = 0,
@@ -64,7 +104,7 @@ typedef struct pdk_model_opts {
   double density;       /* rho [mass / length^3] */
   /* Critical-stretch failure (PMB, LPS; an extra criterion elsewhere), LAMMPS s0 rule:
    * a bond breaks when its stretch exceeds min(s0_i, s0_j); after each force pass
-   * s0_i = s00 - alpha * min_j(stretch_ij). critical_stretch = s00 <= 0: no breaking. */
+   * s0_i = s00 - alpha * min_j(stretch_ij). critical_stretch = s00 <= 0: no stretch criterion. */
   double critical_stretch;
   double alpha;
   /* LAMMPS partial-volume scaling of neighbours near the horizon edge (half_lc = lattice/2);
@@ -76,6 +116,17 @@ typedef struct pdk_model_opts {
   double stab_coefficient; /* C_s (Silling) or the hourglass coefficient; default 0.1 */
   pdk_law law;
   pdk_precision precision;
+  /* Johnson-Cook material (law PDK_LAW_JC; default pdk_jc_params_default(), the V-JC steel). Its
+   * coupling and failed_mode say how damage acts on the stress before and after failure. */
+  pdk_jc_params jc;
+  /* 1: a failed particle keeps its bonds (Bode 2021 section 8.1: continuum damage only, the
+   * failed particle carries no stress of its own); 0 (default): it breaks all of them, from both
+   * ends, in the commit pass where it fails, so no force crosses the crack. */
+  int failed_keeps_bonds;
+  pdk_connectivity connectivity;
+  /* semi-TL: compact the bond list when the broken bonds still in it exceed this fraction of its
+   * length (0: in every commit pass that broke bonds; default 0.02). Never when nothing broke. */
+  double compact_fraction;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
@@ -104,6 +155,19 @@ const uint8_t *pdk_model_bond_alive(const pdk_model *m);
 pdk_bond_index pdk_model_num_broken(const pdk_model *m); /* directed bonds broken so far */
 /* Particles whose family no longer spans the space (correspondence): count, after a force pass. */
 pdk_index pdk_model_num_flagged(const pdk_model *m);
+/* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
+pdk_index pdk_model_num_failed(const pdk_model *m);
+/* semi-TL: how many times the bond list was compacted (0 in TL). */
+long pdk_model_num_compactions(const pdk_model *m);
+/* Time step [time] the history update uses (rate terms and "eps_p_rate"); dt > 0. The explicit
+ * solver sets it. Until it is set, a commit pass of a law with rate terms is refused and trial
+ * passes take the quasi-static limit (dt = infinity: no rate hardening). */
+int pdk_model_set_dt(pdk_model *m, double dt);
+/* Energy dissipated so far [energy], each summed over particles in a fixed order (thread-count
+ * independent): plastic work, damage, and what bond breaking released (see "w_broken"). A
+ * quantity the model does not track is 0. Any pointer may be NULL. Together with the strain
+ * energy of pdk_model_force: external work = kinetic + strain + plastic + damage + breaking. */
+int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking);
 const char *pdk_model_kind_name(pdk_model_kind kind);
 
 #ifdef __cplusplus

@@ -26,9 +26,20 @@
  *                     W = lambda/2 tr(E)^2 + mu E:E
  *     Neo-Hooke       J = det F, P = mu (F - F^-T) + lambda ln(J) F^-T,
  *                     W = mu/2 (tr(F^T F) - d) - mu ln J + lambda/2 (ln J)^2
- *   A particle flagged by the shape gets F = 0, A = 0, W = 0. With Neo-Hooke, J <= 0 (or a
- *   non-finite J) sets flag bit PDK_CORR_FLAG_INVERTED and A = 0, W = 0 for this pass (the bit is
- *   recomputed every pass). So no NaN or infinity is ever stored.
+ *     Johnson-Cook    P, W from pdk_jc_update (pdk/plasticity.h, kernels/ref/jc.c) with F_i, the
+ *                     committed history of i as `in` and, in a commit pass, the same history as
+ *                     `out` (advanced in place: i's history is read and written by i alone in
+ *                     pass 1 and read by nobody else until the pass ends); in a trial pass `out`
+ *                     is a local copy that is thrown away, so a trial changes no history. A
+ *                     commit also adds the step's plastic and damage work to w_plastic, w_damage
+ *                     and stores eps_p_rate. A failed particle (history failed = 1) gets P = 0
+ *                     (or the compressive pressure of failed_mode) and flag bit
+ *                     PDK_CORR_FLAG_FAILED, which also turns its stabilization off: it carries no
+ *                     stress. A flagged (SPAN) particle's history is frozen (eps_p_rate = 0).
+ *   A particle flagged by the shape gets F = 0, A = 0, W = 0. With Neo-Hooke or Johnson-Cook,
+ *   J <= 0 (or a non-finite J) sets flag bit PDK_CORR_FLAG_INVERTED and A = 0, W = 0 for this
+ *   pass (the bit is recomputed every pass; the JC history does not advance). So no NaN or
+ *   infinity is ever stored.
  *   When bond_alive != NULL, pass 1 counts the intact bonds of i; if the count differs from
  *   num_alive[i] (bonds broke since K_i was computed), it recomputes the shape of i first.
  *
@@ -60,11 +71,27 @@
  *   rescaling of omega, like F and the correspondence force, and stiffer at surfaces, as LPS is.
  *   Why this and not another reading: see src/model_corr.c.
  *
- * Bond failure (pdk_kernel_corr_break_ref, commit passes only, bond_alive != NULL): the LAMMPS s0
- * rule of kernels/ref/pmb.c. For every bond intact at entry, s = (|Y| - |xi|)/|xi|; it breaks
- * (bond_alive = 0) when s > min(s0_i, s0_j); s0_next_i = max over those bonds of s00 - alpha s,
- * DBL_MAX if none. Both ends compute bit-identical s (Y and xi only change sign), so a bond breaks
- * from both ends in the same pass. Returns the number of directed bonds broken.
+ * Bond failure (pdk_kernel_corr_break_ref, commit passes only, bond_alive != NULL), after pass 2,
+ * so the state it writes is read by the next pass: a bond intact at entry breaks when
+ *   - (s0 != NULL) the LAMMPS s0 rule of kernels/ref/pmb.c: s = (|Y| - |xi|)/|xi| > min(s0_i,
+ *     s0_j); s0_next_i = max over the bonds intact at entry of s00 - alpha s, DBL_MAX if none;
+ *   - (break_failed) failed_i or failed_j, the histories just committed by pass 1.
+ * Both ends decide identically: s is bit-identical from both ends (Y and xi only change sign) and
+ * the failed test is symmetric, so a bond breaks from both ends in the same pass. Returns the
+ * number of directed bonds broken; changed[i] = 3 marks the rows that lost bonds.
+ *
+ * After breaking (driver: src/model_corr.c), per commit pass with broken bonds:
+ *   reshape  K, m recomputed from the intact family of every changed row (reference
+ *            configuration); in semi-TL a changed row whose intact bonds no longer span (but are
+ *            not none) is marked detach;
+ *   cut      (semi-TL) every intact bond with a detached end breaks, from both ends; the rows
+ *            that lost bonds are reshaped and the two steps repeat until nothing detaches;
+ *   release  for every row that lost bonds in this pass: w_broken_i += W_i - W'_i, W_i the
+ *            energy density of this pass (law + Silling term) and W'_i = the same at the same x
+ *            with the new family, plus the plastic and damage work the jump of F would cause from
+ *            the committed history (a trial update; nothing is written but w_broken). Only i's
+ *            own family enters F_i, K_i, m_i and i's Silling term, so only changed rows jump:
+ *            external work = kinetic + strain + plastic + damage + released holds across breaks.
  *
  * Contract: pure functions over particles [i0, i1); no allocation, no OpenMP region. A call writes
  * only per-particle entries i in [i0, i1) and bond entries of those particles' rows, and reads
@@ -76,7 +103,7 @@
 #include <math.h>
 
 #include "kernels.h"
-#include "pdk/model.h" /* pdk_law, pdk_stabilization */
+#include "pdk/model.h" /* pdk_law, pdk_stabilization, pdk_jc_update */
 
 /* ---- small dense tensors (row-major, d x d in the top-left of 3 x 3) ------------------------- */
 
@@ -252,6 +279,56 @@ pdk_index pdk_kernel_corr_shape_ref(const pdk_corr_consts *k, const pdk_corr_arr
   return flagged;
 }
 
+/* ---- Johnson-Cook history ---------------------------------------------------------------------
+ */
+
+static void jc_load(const pdk_corr_arrays *a, pdk_index i, pdk_jc_state *s) {
+  for (int c = 0; c < 6; ++c)
+    s->cp_inv[c] = a->cp_inv[c][i];
+  s->eps_p = a->eps_p[i];
+  s->damage = a->damage[i];
+  s->temp_rise = a->temp_rise ? a->temp_rise[i] : 0.0;
+  s->failed = a->failed[i];
+}
+
+static void jc_store(const pdk_corr_arrays *a, pdk_index i, const pdk_jc_state *s) {
+  for (int c = 0; c < 6; ++c)
+    a->cp_inv[c][i] = s->cp_inv[c];
+  a->eps_p[i] = s->eps_p;
+  a->damage[i] = s->damage;
+  if (a->temp_rise) a->temp_rise[i] = s->temp_rise;
+  a->failed[i] = (uint8_t)(s->failed != 0);
+}
+
+/* Johnson-Cook stress of particle i at F: A = P K^-1 and W stored, the history advanced when
+ * k->commit. */
+static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                     const double F[3][3], const double Kinv[3][3]) {
+  pdk_jc_state in, out;
+  pdk_jc_result res;
+  double P[3][3], A[3][3];
+  jc_load(a, i, &in);
+  if (pdk_jc_update(k->jc, d, F, k->dt, &in, &out, P, &res)) {
+    store_zero_d(d, a->A, i);
+    a->W[i] = 0.0;
+    a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
+    if (k->commit) a->eps_p_rate[i] = 0.0;
+    return;
+  }
+  mul_d(d, P, Kinv, A);
+  store_d(d, a->A, i, A);
+  a->W[i] = res.W;
+  const unsigned failed = out.failed ? PDK_CORR_FLAG_FAILED : 0u;
+  a->flag[i] =
+      (uint8_t)((a->flag[i] & ~(PDK_CORR_FLAG_INVERTED | PDK_CORR_FLAG_FAILED)) | failed);
+  if (k->commit) {
+    jc_store(a, i, &out);
+    a->w_plastic[i] += res.dW_plastic;
+    a->w_damage[i] += res.dW_damage;
+    a->eps_p_rate[i] = res.eps_p_rate;
+  }
+}
+
 /* ---- pass 1 -----------------------------------------------------------------------------------
  */
 
@@ -283,12 +360,17 @@ static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
     store_zero_d(d, a->F, i);
     store_zero_d(d, a->A, i);
     a->W[i] = 0.0;
+    if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
     return;
   }
   double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
   load_d(d, a->Kinv, i, Kinv);
   mul_d(d, N, Kinv, F);
   store_d(d, a->F, i, F);
+  if (k->law == PDK_LAW_JC) {
+    pass1_jc(d, k, a, i, F, Kinv);
+    return;
+  }
   if (law_eval(k, F, P, &W)) {
     mul_d(d, P, Kinv, A);
     store_d(d, a->A, i, A);
@@ -418,27 +500,134 @@ pdk_bond_index pdk_kernel_corr_break_ref(const pdk_corr_consts *k, const pdk_cor
   uint8_t *restrict alive = a->bond_alive;
   const double *restrict s0 = a->s0;
   double *restrict s0_next = a->s0_next;
+  const uint8_t *restrict failed = k->break_failed ? a->failed : NULL;
   pdk_bond_index broken = 0;
   for (pdk_index i = i0; i < i1; ++i) {
     double s0_max = -DBL_MAX;
+    const int failed_i = failed ? failed[i] != 0 : 0;
+    int changed = 0;
     for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
       if (!alive[b]) continue;
       const pdk_index j = bond_j[b];
-      double x2 = 0.0, y2 = 0.0;
-      for (int c = 0; c < d; ++c) {
-        const double xi = a->X[c][j] - a->X[c][i], Y = a->x[c][j] - a->x[c][i];
-        x2 += xi * xi;
-        y2 += Y * Y;
+      int cut = failed ? (failed_i || failed[j] != 0) : 0;
+      if (s0) {
+        double x2 = 0.0, y2 = 0.0;
+        for (int c = 0; c < d; ++c) {
+          const double xi = a->X[c][j] - a->X[c][i], Y = a->x[c][j] - a->x[c][i];
+          x2 += xi * xi;
+          y2 += Y * Y;
+        }
+        const double r0 = sqrt(x2);
+        const double s = (sqrt(y2) - r0) / r0;
+        if (s > fmin(s0[i], s0[j])) cut = 1;
+        s0_max = fmax(s0_max, k->s00 - k->alpha * s);
       }
-      const double r0 = sqrt(x2);
-      const double s = (sqrt(y2) - r0) / r0;
-      if (s > fmin(s0[i], s0[j])) {
+      if (cut) {
         alive[b] = 0;
         ++broken;
+        changed = 1;
       }
-      s0_max = fmax(s0_max, k->s00 - k->alpha * s);
     }
-    s0_next[i] = s0_max == -DBL_MAX ? DBL_MAX : s0_max;
+    if (s0_next) s0_next[i] = s0_max == -DBL_MAX ? DBL_MAX : s0_max;
+    if (a->changed) a->changed[i] = changed ? 3u : 0u;
   }
   return broken;
+}
+
+/* ---- after breaking: shape, semi-TL detachment, released energy -------------------------------
+ */
+
+pdk_index pdk_kernel_corr_reshape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                      pdk_index i0, pdk_index i1) {
+  pdk_index detached = 0;
+  for (pdk_index i = i0; i < i1; ++i) {
+    int detach = 0;
+    if (a->changed[i] & 1u) {
+      const int not_span = shape_one(k, a, i);
+      detach = a->detach && not_span && a->num_alive[i] > 0;
+    }
+    if (a->detach) a->detach[i] = (uint8_t)detach;
+    detached += detach;
+  }
+  return detached;
+}
+
+pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                       pdk_index i0, pdk_index i1) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  uint8_t *restrict alive = a->bond_alive;
+  const uint8_t *restrict detach = a->detach;
+  pdk_bond_index broken = 0;
+  for (pdk_index i = i0; i < i1; ++i) {
+    const int detach_i = detach[i] != 0;
+    int changed = 0;
+    for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+      if (!alive[b] || !(detach_i || detach[bond_j[b]])) continue;
+      alive[b] = 0;
+      ++broken;
+      changed = 1;
+    }
+    a->changed[i] = (uint8_t)((a->changed[i] & 2u) | (changed ? 3u : 0u));
+  }
+  (void)k;
+  return broken;
+}
+
+/* Energy density of particle i at the current x with its current (intact) family and the
+ * committed history: the law's W (for Johnson-Cook a trial update, plus the plastic and damage
+ * work it would do) plus the Silling term. */
+static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                         pdk_index i) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  if (a->flag[i] & PDK_CORR_FLAG_SPAN) return 0.0;
+  double N[3][3] = {{0}};
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    const pdk_index j = bond_j[b];
+    const double wv = alive[b] ? omega[b] * volume[j] : 0.0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        N[r][c] += wv * (a->x[r][j] - a->x[r][i]) * (a->X[c][j] - a->X[c][i]);
+  }
+  double Kinv[3][3], F[3][3], P[3][3], e = 0.0;
+  int stress_free = 0;
+  load_d(d, a->Kinv, i, Kinv);
+  mul_d(d, N, Kinv, F);
+  if (k->law == PDK_LAW_JC) {
+    pdk_jc_state in, out;
+    pdk_jc_result res;
+    jc_load(a, i, &in);
+    if (pdk_jc_update(k->jc, d, F, k->dt, &in, &out, P, &res)) return 0.0;
+    e = res.W + res.dW_plastic + res.dW_damage;
+    stress_free = out.failed != 0;
+  } else if (!law_eval(k, F, P, &e)) {
+    return 0.0;
+  }
+  if (k->stab == PDK_STAB_SILLING && !stress_free && a->m[i] > 0.0) {
+    double zz = 0.0;
+    for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+      if (!alive[b]) continue;
+      const pdk_index j = bond_j[b];
+      const double wv = omega[b] * volume[j];
+      for (int r = 0; r < d; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < d; ++c)
+          s += F[r][c] * (a->X[c][j] - a->X[c][i]);
+        const double z = (a->x[r][j] - a->x[r][i]) - s;
+        zz += wv * z * z;
+      }
+    }
+    e += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+  }
+  return e;
+}
+
+void pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                 pdk_index i0, pdk_index i1) {
+  for (pdk_index i = i0; i < i1; ++i)
+    if (a->changed[i] & 2u) a->w_broken[i] += a->W[i] - energy_one(k->dim, k, a, i);
 }

@@ -1,0 +1,132 @@
+/* Helpers shared by the Johnson-Cook correspondence and damage tests (t10x): history snapshots
+ * compared bit for bit, bond-state checks, connected components of the intact bond graph, and a
+ * 2-D bar built by hand. */
+#ifndef PDK_JC_CORR_UTIL_H
+#define PDK_JC_CORR_UTIL_H
+
+#include "pdk/geometry.h"
+#include "pdk/model.h"
+#include "test_util.h"
+
+/* Every per-particle history field a JC correspondence model may declare. */
+static const char *const jcu_history_fields[] = {"cp_inv",    "eps_p",     "damage",
+                                                 "temp_rise", "failed",    "eps_p_rate",
+                                                 "w_plastic", "w_damage",  "w_broken"};
+#define JCU_NUM_HISTORY ((int)(sizeof jcu_history_fields / sizeof jcu_history_fields[0]))
+
+/* A copy of every history field that exists, plus the bond state. */
+typedef struct jcu_snapshot {
+  unsigned char *data;
+  size_t bytes;
+} jcu_snapshot;
+
+static inline size_t jcu_snapshot_fill(pdk_model *m, unsigned char *out) {
+  pdk_particles *p = pdk_model_particles(m);
+  const pdk_index n = pdk_particles_count(p);
+  size_t off = 0;
+  for (int k = 0; k < JCU_NUM_HISTORY; ++k) {
+    pdk_type type;
+    int num_comp;
+    if (!pdk_particles_field_exists(p, jcu_history_fields[k])) continue;
+    pdk_particles_field_info(p, jcu_history_fields[k], &type, &num_comp);
+    const size_t len = (size_t)n * pdk_type_size(type);
+    for (int c = 0; c < num_comp; ++c) {
+      if (out) memcpy(out + off, pdk_particles_field_data(p, jcu_history_fields[k], c), len);
+      off += len;
+    }
+  }
+  const uint8_t *alive = pdk_model_bond_alive(m);
+  const size_t nb = (size_t)pdk_families_num_bonds(pdk_model_families(m));
+  if (alive) {
+    if (out) memcpy(out + off, alive, nb);
+    off += nb;
+  }
+  return off;
+}
+
+static inline jcu_snapshot jcu_snapshot_take(pdk_model *m) {
+  jcu_snapshot s;
+  s.bytes = jcu_snapshot_fill(m, NULL);
+  s.data = malloc(s.bytes ? s.bytes : 1);
+  if (!s.data) T_FAIL("out of memory");
+  jcu_snapshot_fill(m, s.data);
+  return s;
+}
+
+/* 1 when the model's history and bond state equal the snapshot bit for bit. */
+static inline int jcu_snapshot_equal(pdk_model *m, const jcu_snapshot *s) {
+  jcu_snapshot now = jcu_snapshot_take(m);
+  const int eq = now.bytes == s->bytes && !memcmp(now.data, s->data, s->bytes);
+  free(now.data);
+  return eq;
+}
+
+/* Bond state symmetric (alive i->j == alive j->i) and num_broken equal to the broken count. */
+static inline void jcu_check_bond_state(pdk_model *m, const char *what) {
+  pdk_families *fam = pdk_model_families(m);
+  const pdk_index n = pdk_families_num_particles(fam);
+  const pdk_bond_index *start = pdk_families_bond_start(fam);
+  const pdk_index *bj = pdk_families_bond_j(fam);
+  const uint8_t *alive = pdk_model_bond_alive(m);
+  if (!alive) T_FAIL("%s: the model has no bond state", what);
+  pdk_bond_index broken = 0;
+  for (pdk_index i = 0; i < n; ++i)
+    for (pdk_bond_index b = start[i]; b < start[i + 1]; ++b) {
+      const pdk_index j = bj[b];
+      broken += !alive[b];
+      pdk_bond_index r = start[j];
+      while (r < start[j + 1] && bj[r] != i)
+        ++r;
+      T_ASSERT(r < start[j + 1], "%s: bond %d-%d has no reverse", what, (int)i, (int)j);
+      T_ASSERT(alive[b] == alive[r], "%s: bond %d-%d is %d from %d and %d from %d", what, (int)i,
+               (int)j, alive[b], (int)i, alive[r], (int)j);
+    }
+  T_ASSERT(broken == pdk_model_num_broken(m), "%s: %lld bonds broken, num_broken says %lld", what,
+           (long long)broken, (long long)pdk_model_num_broken(m));
+}
+
+/* Connected components of the intact bond graph: comp[i] = smallest index in i's component.
+ * Returns the number of components. */
+static inline pdk_index jcu_components(pdk_model *m, pdk_index *comp) {
+  pdk_families *fam = pdk_model_families(m);
+  const pdk_index n = pdk_families_num_particles(fam);
+  const pdk_bond_index *start = pdk_families_bond_start(fam);
+  const pdk_index *bj = pdk_families_bond_j(fam);
+  const uint8_t *alive = pdk_model_bond_alive(m);
+  pdk_index *stack = malloc((size_t)n * sizeof *stack);
+  if (!stack) T_FAIL("out of memory");
+  for (pdk_index i = 0; i < n; ++i)
+    comp[i] = -1;
+  pdk_index num = 0;
+  for (pdk_index s = 0; s < n; ++s) {
+    if (comp[s] >= 0) continue;
+    ++num;
+    pdk_index top = 0;
+    stack[top++] = s;
+    comp[s] = s;
+    while (top) {
+      const pdk_index i = stack[--top];
+      for (pdk_bond_index b = start[i]; b < start[i + 1]; ++b)
+        if ((!alive || alive[b]) && comp[bj[b]] < 0) {
+          comp[bj[b]] = s;
+          stack[top++] = bj[b];
+        }
+    }
+  }
+  free(stack);
+  return num;
+}
+
+/* Every double component of field `name` finite. */
+static inline void jcu_check_finite(pdk_particles *p, const char *name, const char *what) {
+  pdk_type type;
+  int num_comp;
+  if (pdk_particles_field_info(p, name, &type, &num_comp) || type != PDK_F64) return;
+  for (int c = 0; c < num_comp; ++c) {
+    const double *v = pdk_particles_field_data(p, name, c);
+    for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
+      T_ASSERT(isfinite(v[i]), "%s: %s[%d] of particle %d is %g", what, name, c, (int)i, v[i]);
+  }
+}
+
+#endif
