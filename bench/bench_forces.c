@@ -4,7 +4,7 @@
  * Morton order of the family cells (or lattice order). Each configuration is timed R times after
  * two warm-up passes; the median is reported, per thread count.
  *
- *   bench_forces [--side L]... [--model pmb|lps|corr]... [--threads T]... [--repeat R]
+ *   bench_forces [--side L]... [--model pmb|lps|corr|pmb-r0]... [--threads T]... [--repeat R]
  *                [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
@@ -73,7 +73,9 @@ static double cpu_time(void) {
 }
 
 static const char *short_name(pdk_model_kind kind) {
-  return kind == PDK_MODEL_CORRESPONDENCE ? "corr" : pdk_model_kind_name(kind);
+  return kind == PDK_MODEL_CORRESPONDENCE ? "corr"
+         : kind == (pdk_model_kind)100    ? "pmb-r0"
+                                          : pdk_model_kind_name(kind);
 }
 
 static void die(pdk_ctx *ctx, const char *what) {
@@ -121,6 +123,70 @@ static double bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_part
   return first + second;
 }
 
+/* ---- experiment: PMB with the bond length r0 stored per bond ------------------------------------
+ * Not a library kernel: the same force as kernels/ref/pmb.c (no bond state, no energy), but r0 is
+ * read from a per-bond array instead of recomputed from X (3 gathers and a sqrt fewer per bond,
+ * 8 bytes per bond more to stream and to hold). Selected with --model pmb-r0, to measure the trade.
+ */
+#define PMB_R0 ((pdk_model_kind)100)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#pragma GCC push_options
+#pragma GCC target("prefer-vector-width=256")
+#endif
+static void pmb_r0_rows(pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bs,
+                        const pdk_index *restrict bj, const double *restrict r0s,
+                        const double *restrict x, const double *restrict y,
+                        const double *restrict z, const double *restrict V, double c, double vs_a,
+                        double vs_b, double *restrict fx, double *restrict fy,
+                        double *restrict fz) {
+  for (pdk_index i = i0; i < i1; ++i) {
+    const double xi = x[i], yi = y[i], zi = z[i];
+    double f0 = 0, f1 = 0, f2 = 0;
+#pragma omp simd reduction(+ : f0, f1, f2)
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      const pdk_index j = bj[b];
+      const double dx = x[j] - xi, dy = y[j] - yi, dz = z[j] - zi;
+      const double r0 = r0s[b], r = sqrt(dx * dx + dy * dy + dz * dz);
+      const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0;
+      const double t = (vs_a - r0) * vs_b;
+      const double g = c * V[j] * (t < 1.0 ? t : 1.0) * (r - r0) * q;
+      f0 += g * dx;
+      f1 += g * dy;
+      f2 += g * dz;
+    }
+    fx[i] = f0, fy[i] = f1, fz[i] = f2;
+  }
+}
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#pragma GCC pop_options
+#endif
+
+typedef struct pmb_r0_case {
+  pdk_particles *p;
+  pdk_families *fam;
+  double *r0; /* [num_bonds] */
+  double c, vs_a, vs_b;
+} pmb_r0_case;
+
+static void pmb_r0_pass(const pmb_r0_case *e, int nt) {
+  const pdk_index n = pdk_particles_count(e->p);
+  const pdk_bond_index *bs = pdk_families_bond_start(e->fam);
+  const pdk_index *bj = pdk_families_bond_j(e->fam);
+  const double *x = pdk_particles_field_data(e->p, "x", 0),
+               *y = pdk_particles_field_data(e->p, "x", 1),
+               *z = pdk_particles_field_data(e->p, "x", 2), *V = pdk_particles_volume(e->p);
+  double *fx = pdk_particles_field_data(e->p, "f", 0), *fy = pdk_particles_field_data(e->p, "f", 1),
+         *fz = pdk_particles_field_data(e->p, "f", 2);
+  const double *r0 = e->r0, c = e->c, vs_a = e->vs_a, vs_b = e->vs_b;
+  const int64_t nblk = ((int64_t)n + 1023) / 1024;
+#pragma omp parallel for default(none) shared(nblk, n, bs, bj, r0, x, y, z, V, c, vs_a, vs_b, fx,  \
+                                              fy, fz) schedule(static) num_threads(nt)
+  for (int64_t blk = 0; blk < nblk; ++blk) {
+    const pdk_index i0 = (pdk_index)(blk * 1024), i1 = (pdk_index)(i0 + 1024 < n ? i0 + 1024 : n);
+    pmb_r0_rows(i0, i1, bs, bj, r0, x, y, z, V, c, vs_a, vs_b, fx, fy, fz);
+  }
+}
+
 int main(int argc, char **argv) {
   long sides[MAX_LIST] = {46, 100};
   int num_sides = 2, threads[MAX_LIST] = {1, 2}, num_threads = 2, user_sides = 0, user_threads = 0;
@@ -135,8 +201,9 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[k], "--model") && k + 1 < argc) {
       if (!user_models) num_models = 0, user_models = 1;
       const char *m = argv[++k];
-      pdk_model_kind kind = !strcmp(m, "pmb")   ? PDK_MODEL_PMB
-                            : !strcmp(m, "lps") ? PDK_MODEL_LPS
+      pdk_model_kind kind = !strcmp(m, "pmb-r0") ? PMB_R0
+                            : !strcmp(m, "pmb")  ? PDK_MODEL_PMB
+                            : !strcmp(m, "lps")  ? PDK_MODEL_LPS
                             : !strcmp(m, "corr") || !strcmp(m, "correspondence")
                                 ? PDK_MODEL_CORRESPONDENCE
                                 : (pdk_model_kind)-1;
@@ -180,7 +247,7 @@ int main(int argc, char **argv) {
          "kernels %s, %s of %d\n",
          order, s00, pdk_ctx_kernels_name(ctx), steps ? "steps" : "median pass",
          steps ? steps : repeat);
-  printf("# %-5s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model", "n", "bonds",
+  printf("# %-6s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model", "n", "bonds",
          "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c", "Gbond/s", "B/bond", "GB/s", "triad",
          "roof%", "cpu_ns/b");
   for (int is = 0; is < num_sides; ++is) {
@@ -204,8 +271,11 @@ int main(int argc, char **argv) {
     const double bpp = (double)nb / n;
 
     for (int im = 0; im < num_models; ++im) {
+      const int experiment = models[im] == PMB_R0;
+      pmb_r0_case ex = {
+          p, fam, NULL, 18.0 * 1.6e11 / (M_PI * pow(delta, 4)), delta + 0.5 * dx, 1.0 / dx};
       pdk_model_opts mo = pdk_model_opts_default();
-      mo.kind = models[im];
+      mo.kind = experiment ? PDK_MODEL_PMB : models[im];
       mo.bulk_modulus = 1.6e11;
       mo.shear_modulus = 0.8e11;
       mo.density = rho;
@@ -214,22 +284,44 @@ int main(int argc, char **argv) {
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
-        printf("  %-5s (not part of this build: %s)\n", short_name(models[im]),
+        printf("  %-6s (not part of this build: %s)\n", short_name(models[im]),
                pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
       }
       if (err) die(ctx, "model");
+      if (experiment) {
+        const pdk_bond_index *bs = pdk_families_bond_start(fam);
+        const pdk_index *bj = pdk_families_bond_j(fam);
+        ex.r0 = malloc((size_t)nb * sizeof(double));
+        if (!ex.r0) die(NULL, "out of memory for r0");
+        for (pdk_index i = 0; i < n; ++i)
+          for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+            double d2 = 0;
+            for (int a = 0; a < 3; ++a) {
+              double d = pdk_particles_X(p, a)[bj[b]] - pdk_particles_X(p, a)[i];
+              d2 += d * d;
+            }
+            ex.r0[b] = sqrt(d2);
+          }
+      }
       for (int it = 0; it < num_threads; ++it) {
         if (pdk_ctx_set_num_threads(ctx, threads[it])) die(ctx, "threads");
         double t_med, cpu_med;
+#define FORCE_PASS()                                                                               \
+  do {                                                                                             \
+    if (experiment)                                                                                \
+      pmb_r0_pass(&ex, threads[it]);                                                               \
+    else if (pdk_model_force(m, NULL))                                                             \
+      die(ctx, "force");                                                                           \
+  } while (0)
         for (int w = 0; w < 2; ++w)
-          if (pdk_model_force(m, NULL)) die(ctx, "force");
+          FORCE_PASS();
         if (!steps) {
           double *times = malloc(2 * (size_t)repeat * sizeof *times), *cpus = times + repeat;
           for (int r = 0; r < repeat; ++r) {
             double c0 = cpu_time(), t0 = pdk_wtime();
-            if (pdk_model_force(m, NULL)) die(ctx, "force");
+            FORCE_PASS();
             times[r] = pdk_wtime() - t0;
             cpus[r] = cpu_time() - c0;
           }
@@ -254,7 +346,7 @@ int main(int argc, char **argv) {
                 v[a][i] += h * f[a][i];
                 x[a][i] += dt * v[a][i];
               }
-            if (pdk_model_force(m, NULL)) die(ctx, "force");
+            FORCE_PASS();
 #pragma omp parallel for default(none) shared(v, f, n, h, dim) schedule(static) num_threads(nt)
             for (pdk_index i = 0; i < n; ++i)
               for (int a = 0; a < dim; ++a)
@@ -268,15 +360,16 @@ int main(int argc, char **argv) {
           for (int a = 0; a < dim; ++a)
             memcpy(x[a], pdk_particles_X(p, a), (size_t)n * sizeof(double));
         }
-        const double bb = bytes_per_bond(models[im], 3, bpp, s00 > 0);
+        const double bb = bytes_per_bond(mo.kind, 3, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
-        printf("  %-5s %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f %7.1f %8.3f\n",
+        printf("  %-6s %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f %7.1f %8.3f\n",
                short_name(models[im]), (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
                triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9);
         fflush(stdout);
       }
       pdk_model_destroy(&m);
+      free(ex.r0);
     }
     pdk_families_destroy(&fam);
     pdk_particles_destroy(&p);
