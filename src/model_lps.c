@@ -94,7 +94,7 @@ static int lps_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(num_blocks > 0 ? num_blocks : 1), sizeof(double));
   PDK_CHECK(im->inv_m && im->block_energy, ctx, PDK_ERR_MEMORY,
             "lps model: out of memory for %d particles", (int)n);
-  if (m->bond_alive) {
+  if (m->bond_alive && m->s0) {
     im->s0_next = pdk_alloc_aligned(n_pad, sizeof(double));
     PDK_CHECK(im->s0_next, ctx, PDK_ERR_MEMORY,
               "lps model: out of memory for %d critical stretches", (int)n);
@@ -149,7 +149,7 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
   const double *inv_m = im->inv_m;
   uint8_t *alive = m->bond_alive;
   const double *s0 = m->s0;
-  double *s0_next = commit && alive ? im->s0_next : NULL;
+  double *s0_next = commit && alive && s0 ? im->s0_next : NULL;
   double *w = energy ? im->w : NULL;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;

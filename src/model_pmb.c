@@ -71,7 +71,7 @@ static int pmb_setup(pdk_model *m) {
   partial_volume_consts(delta, o->lattice_constant, &im->k.vs_a, &im->k.vs_b);
   im->k.s00 = o->critical_stretch;
   im->k.alpha = o->alpha;
-  if (m->bond_alive) {
+  if (m->bond_alive && m->s0) {
     im->s0_next = pdk_alloc_aligned((size_t)pdk_particles_count_padded(m->p), sizeof(double));
     PDK_CHECK(im->s0_next, ctx, PDK_ERR_MEMORY,
               "pmb model: out of memory for %d critical stretches", (int)im->n);
@@ -106,7 +106,7 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
             "pmb model: fields \"x\" and \"f\" are missing from the particle store");
   uint8_t *alive = m->bond_alive;
   const double *s0 = m->s0;
-  double *s0_next = commit && alive ? im->s0_next : NULL;
+  double *s0_next = commit && alive && s0 ? im->s0_next : NULL;
   double *w = energy ? im->w : NULL;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;

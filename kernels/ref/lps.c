@@ -177,7 +177,7 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
   const double s00 = k->s00, alpha = k->alpha, d = k->theta_factor;
   const double theta_i = theta[i], inv_m_i = inv_m[i], q_i = theta_i * inv_m_i;
   const double sd_i = theta_i / d; /* deviatoric extension: e - theta r0/d = e - sd_i r0 */
-  const double s0_i = has_state ? s0[i] : 0.0;
+  const double s0_i = has_state && commit ? s0[i] : 0.0;
   double f0 = 0.0, f1 = 0.0, f2 = 0.0, wdev = 0.0, s0_max = -DBL_MAX;
   pdk_bond_index broken = 0;
   const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];

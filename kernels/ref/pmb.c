@@ -68,7 +68,7 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
   const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
   const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
   const double c = k->c, vs_a = k->vs_a, vs_b = k->vs_b, s00 = k->s00, alpha = k->alpha;
-  const double s0_i = has_state ? s0[i] : 0.0;
+  const double s0_i = has_state && commit ? s0[i] : 0.0;
   double f0 = 0.0, f1 = 0.0, f2 = 0.0, wi = 0.0, s0_max = -DBL_MAX;
   pdk_bond_index broken = 0;
   const pdk_bond_index b0 = bond_start[i], b1 = bond_start[i + 1];
