@@ -157,6 +157,8 @@ pdk_bond_index pdk_kernel_lps_force2_ref(
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */
 #define PDK_CORR_FLAG_FAILED 4u   /* Johnson-Cook: the particle has failed (no stress) */
+#define PDK_CORR_FLAG_FAILED_NOW 8u /* ... in this commit pass (its Silling energy is booked as
+                                       damage by pass 2) */
 #define PDK_CORR_SPAN_RTOL 1e-6   /* flag when det K < PDK_CORR_SPAN_RTOL * (tr K / d)^d */
 
 typedef struct pdk_corr_consts {
@@ -236,8 +238,9 @@ pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_
                                        pdk_index i0, pdk_index i1);
 /* Energy released by breaking, for rows with changed bit 1 (after their shape was recomputed):
  * w_broken[i] += W[i] - (stored energy at the current x with the new family, plus the plastic
- * and damage work of the jump of F, history frozen). */
-void pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                                 pdk_index i0, pdk_index i1);
+ * and damage work of the jump of F, history frozen). Returns sum_i V_i (that increment) over the
+ * range, in index order. */
+double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                   pdk_index i0, pdk_index i1);
 
 #endif

@@ -137,7 +137,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   *out = NULL;
   pdk_model_opts resolved = *opts_in;
   const pdk_model_opts *opts = &resolved;
-  if (resolved.law == PDK_LAW_JC) {
+  if (resolved.law == PDK_LAW_JC && resolved.kind == PDK_MODEL_CORRESPONDENCE) {
     PDK_CALL(pdk_jc_params_check(ctx, &resolved.jc));
     PDK_CALL(resolve_jc_constants(ctx, &resolved));
   }

@@ -445,9 +445,11 @@ static void corr_sync_bond_state(pdk_model *m) {
 }
 
 /* After the break kernel broke bonds in a commit pass: reshape the changed rows, detach
- * degenerate families (semi-TL), book the released energy, keep the bond state current, compact
- * in batches (semi-TL). `broken` is what the break kernel broke. */
-static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_index broken) {
+ * degenerate families (semi-TL), book the released energy (its total, sum_i V_i dw_broken_i
+ * summed in block order, into *released), keep the bond state current, compact in batches
+ * (semi-TL). `broken` is what the break kernel broke. */
+static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_index broken,
+                               double *released) {
   corr_impl *c = m->impl;
   const pdk_index n = pdk_particles_count(m->p);
   const pdk_index num_blocks = c->num_blocks;
@@ -476,16 +478,22 @@ static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_
   m->num_broken += total;
   if (c->c_start) corr_sync_bond_state(m);
   const uint8_t *flag = a.flag;
+  double *block_released = c->block_energy; /* free again: the pass's energy is summed */
   pdk_index flagged = 0;
-#pragma omp parallel for default(none) shared(a, k, n, num_blocks, flag) reduction(+ : flagged)   \
-    schedule(static) num_threads(nt)
+#pragma omp parallel for default(none)                                                          \
+    shared(a, k, n, num_blocks, flag, block_released) reduction(+ : flagged) schedule(static)    \
+    num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     CORR_BLOCK_RANGE(blk, n, i0, i1);
-    pdk_kernel_corr_release_ref(k, &a, i0, i1);
+    block_released[blk] = pdk_kernel_corr_release_ref(k, &a, i0, i1);
     for (pdk_index i = i0; i < i1; ++i)
       flagged += (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) != 0;
   }
   m->num_flagged = flagged;
+  double sum = 0.0;
+  for (pdk_index blk = 0; blk < num_blocks; ++blk)
+    sum += block_released[blk];
+  *released = sum;
   if (m->opts.connectivity == PDK_CONNECTIVITY_SEMI_TL) {
     c->c_dead += total;
     if (c->c_dead > 0 && (double)c->c_dead > m->opts.compact_fraction * (double)c->c_len)
@@ -574,7 +582,15 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       m->s0 = c->s0_next;
       c->s0_next = t;
     }
-    if (broken) PDK_CALL(corr_after_breaking(m, k, broken));
+    if (broken) {
+      /* The energy returned is that of the state the next step starts from: the pass's, less
+       * what the breaks released (the plastic and damage work of the jump of F stays in it until
+       * the next commit books it), so external work = kinetic + strain + plastic + damage +
+       * breaking holds at every step, not only one step after a break. */
+      double released = 0.0;
+      PDK_CALL(corr_after_breaking(m, k, broken, &released));
+      if (energy) *energy -= released;
+    }
   }
   return PDK_SUCCESS;
 }

@@ -35,7 +35,10 @@
  *                     and stores eps_p_rate. A failed particle (history failed = 1) gets P = 0
  *                     (or the compressive pressure of failed_mode) and flag bit
  *                     PDK_CORR_FLAG_FAILED, which also turns its stabilization off: it carries no
- *                     stress. A flagged (SPAN) particle's history is frozen (eps_p_rate = 0).
+ *                     stress. In the commit pass where it fails (bit PDK_CORR_FLAG_FAILED_NOW),
+ *                     pass 2 adds the Silling energy it would have held at this x to w_damage, so
+ *                     the term's energy is accounted like the law's. A flagged (SPAN) particle's
+ *                     history is frozen (eps_p_rate = 0).
  *   A particle flagged by the shape gets F = 0, A = 0, W = 0. With Neo-Hooke or Johnson-Cook,
  *   J <= 0 (or a non-finite J) sets flag bit PDK_CORR_FLAG_INVERTED and A = 0, W = 0 for this
  *   pass (the bit is recomputed every pass; the JC history does not advance). So no NaN or
@@ -318,9 +321,11 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
   mul_d(d, P, Kinv, A);
   store_d(d, a->A, i, A);
   a->W[i] = res.W;
-  const unsigned failed = out.failed ? PDK_CORR_FLAG_FAILED : 0u;
-  a->flag[i] =
-      (uint8_t)((a->flag[i] & ~(PDK_CORR_FLAG_INVERTED | PDK_CORR_FLAG_FAILED)) | failed);
+  const unsigned failed = (out.failed ? PDK_CORR_FLAG_FAILED : 0u) |
+                          (k->commit && out.failed && !in.failed ? PDK_CORR_FLAG_FAILED_NOW : 0u);
+  a->flag[i] = (uint8_t)((a->flag[i] & ~(PDK_CORR_FLAG_INVERTED | PDK_CORR_FLAG_FAILED |
+                                         PDK_CORR_FLAG_FAILED_NOW)) |
+                         failed);
   if (k->commit) {
     jc_store(a, i, &out);
     a->w_plastic[i] += res.dW_plastic;
@@ -477,6 +482,10 @@ static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
   for (int r = 0; r < d; ++r)
     a->f[r][i] = f[r];
   if (silling) a->W[i] += 0.5 * ki * zz;
+  /* A particle failing in this commit pass drops its Silling term with its stress: the energy the
+   * term would hold at this x goes to the damage account, as the law's stored energy does. */
+  if (silling && (a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
+    a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
 }
 
 void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
@@ -626,8 +635,14 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   return e;
 }
 
-void pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                                 pdk_index i0, pdk_index i1) {
+double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                   pdk_index i0, pdk_index i1) {
+  double sum = 0.0;
   for (pdk_index i = i0; i < i1; ++i)
-    if (a->changed[i] & 2u) a->w_broken[i] += a->W[i] - energy_one(k->dim, k, a, i);
+    if (a->changed[i] & 2u) {
+      const double released = a->W[i] - energy_one(k->dim, k, a, i);
+      a->w_broken[i] += released;
+      sum += a->volume[i] * released;
+    }
+  return sum;
 }

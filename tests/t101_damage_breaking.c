@@ -1,0 +1,237 @@
+/* Johnson-Cook damage breaks bonds: a notched 2-D bar pulled until it tears in two.
+ *
+ * Bar [0, 40] x [0, 10] mm, square lattice dx = 1 mm, horizon 3.015 dx, plane strain, a pre-crack
+ * (notch) at x = 20 mm from the bottom edge to y = 4 mm; left three columns fixed, right three
+ * columns pulled at 10 m/s along x (the elastic wave rho c v ~ 450 MPa stays below the yield
+ * stress, so plasticity starts at the notch tip). Material: the V-JC steel with a short failure
+ * strain (D1 = 0.02, D2 = 0: eps_f = 0.02, failure at eps_p = D_c eps_f = 0.006) so that the
+ * tear takes a few thousand steps; correspondence with Silling stabilization.
+ * Checked:
+ *   - bonds of failed particles are broken, from both ends; the bond state is symmetric and
+ *     num_broken counts it;
+ *   - the bar separates: the fixed and the pulled ends lie in different connected components of
+ *     the intact bond graph, in TL and in semi-TL;
+ *   - after separation no force crosses the crack: the internal force summed over the pulled
+ *     piece, sum V_i f_i, is 0 to round-off (1e-10 of the peak reaction: internal pair forces
+ *     cancel to about 1e-16 of their size);
+ *   - bond state, positions and history bitwise identical on 1 and 2 threads (TL and semi-TL);
+ *   - TL and semi-TL bitwise identical up to and including the step of the first break.
+ * labels: physics threads */
+#include "jc_corr_util.h"
+
+#define DX 1e-3
+#define MAX_STEPS 8000
+#define CHUNK 20
+#define EXTRA_STEPS 200 /* steps run after separation before the checks */
+
+typedef struct sim {
+  pdk_particles *p;
+  pdk_families *fam;
+  pdk_model *m;
+  pdk_explicit *e;
+} sim;
+
+static pdk_bc bcs[2];
+static const char *rsets[2] = {"set:left", "set:right"};
+
+static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
+  pdk_lattice_opts lo = pdk_lattice_opts_default();
+  lo.type = PDK_LATTICE_SQUARE;
+  lo.spacing = DX;
+  lo.hi[0] = 40 * DX;
+  lo.hi[1] = 10 * DX;
+  T_OK(ctx, pdk_lattice_create(ctx, &lo, &s->p));
+  T_OK(ctx, pdk_particles_reorder_morton(s->p, 3.015 * DX, NULL));
+  double a[3] = {-1, -1, -1}, b[3] = {3 * DX, 1, 1}, c[3] = {37 * DX, -1, -1}, d[3] = {1, 1, 1};
+  pdk_region left = pdk_region_box(a, b), right = pdk_region_box(c, d);
+  T_OK(ctx, pdk_particles_set_define(s->p, "left", &left, NULL));
+  T_OK(ctx, pdk_particles_set_define(s->p, "right", &right, NULL));
+  static const double notch[4] = {20 * DX, -DX, 20 * DX, 4 * DX};
+  pdk_precrack crack = {2, notch};
+  pdk_families_opts fo = pdk_families_opts_default();
+  fo.horizon = 3.015 * DX;
+  fo.precracks = &crack;
+  fo.num_precracks = 1;
+  T_OK(ctx, pdk_families_build(s->p, &fo, &s->fam));
+  pdk_model_opts mo = pdk_model_opts_default();
+  mo.kind = PDK_MODEL_CORRESPONDENCE;
+  mo.law = PDK_LAW_JC;
+  mo.jc.D1 = 0.02;
+  mo.jc.D2 = 0.0;
+  mo.stabilization = PDK_STAB_SILLING;
+  mo.connectivity = mode;
+  T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
+  memset(bcs, 0, sizeof bcs);
+  bcs[0].kind = PDK_BC_DISPLACEMENT;
+  bcs[0].set = "set:left";
+  bcs[0].components = 3;
+  bcs[1].kind = PDK_BC_VELOCITY;
+  bcs[1].set = "set:right";
+  bcs[1].components = 1;
+  bcs[1].value[0] = pdk_tfun_constant(10.0);
+  pdk_explicit_opts eo = pdk_explicit_opts_default();
+  eo.bcs = bcs;
+  eo.num_bcs = 2;
+  eo.reaction_sets = rsets;
+  eo.num_reaction_sets = 2;
+  eo.dt = 1.5e-7; /* fixed so every run takes the same steps; stable step about 2e-7 s */
+  T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
+}
+
+static void destroy(sim *s) {
+  pdk_explicit_destroy(&s->e);
+  pdk_model_destroy(&s->m);
+  pdk_families_destroy(&s->fam);
+  pdk_particles_destroy(&s->p);
+}
+
+/* First member of a set. */
+static pdk_index first_of(pdk_particles *p, const char *set) {
+  const uint8_t *mem = pdk_particles_field_data(p, set, 0);
+  for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
+    if (mem[i]) return i;
+  T_FAIL("set %s is empty", set);
+}
+
+/* 1 when the fixed and the pulled ends are no longer connected by intact bonds. */
+static int separated(sim *s, pdk_index *comp) {
+  jcu_components(s->m, comp);
+  return comp[first_of(s->p, "set:left")] != comp[first_of(s->p, "set:right")];
+}
+
+/* Everything a step depends on, as bytes: x, v, history, bond state. */
+static unsigned char *state_bytes(sim *s, size_t *bytes) {
+  const pdk_index n = pdk_particles_count(s->p);
+  const size_t xv = 4 * (size_t)n * sizeof(double);
+  jcu_snapshot h = jcu_snapshot_take(s->m);
+  unsigned char *out = malloc(xv + h.bytes);
+  T_ASSERT(out, "out of memory");
+  for (int c = 0; c < 2; ++c) {
+    memcpy(out + (size_t)c * n * sizeof(double), pdk_particles_field_data(s->p, "x", c),
+           (size_t)n * sizeof(double));
+    memcpy(out + (size_t)(2 + c) * n * sizeof(double), pdk_particles_field_data(s->p, "v", c),
+           (size_t)n * sizeof(double));
+  }
+  memcpy(out + xv, h.data, h.bytes);
+  free(h.data);
+  *bytes = xv + h.bytes;
+  return out;
+}
+
+/* Runs until separation plus EXTRA_STEPS; returns the step count. Checks the failed particles'
+ * bonds, the bond state and the force across the crack. */
+static long run_to_separation(pdk_ctx *ctx, sim *s, const char *what) {
+  const pdk_index n = pdk_particles_count(s->p);
+  pdk_index *comp = malloc((size_t)n * sizeof *comp);
+  T_ASSERT(comp, "out of memory");
+  double peak = 0.0;
+  long steps = 0, sep_step = -1;
+  pdk_history h;
+  while (steps < MAX_STEPS) {
+    T_OK(ctx, pdk_explicit_run(s->e, CHUNK, &h));
+    steps += CHUNK;
+    peak = fmax(peak, fabs(h.reaction[1][0]));
+    if (sep_step < 0 && separated(s, comp)) sep_step = steps;
+    if (sep_step >= 0 && steps >= sep_step + EXTRA_STEPS) break;
+  }
+  T_ASSERT(sep_step >= 0, "%s: the bar did not separate in %d steps (%lld bonds broken, %d failed)",
+           what, MAX_STEPS, (long long)pdk_model_num_broken(s->m), (int)pdk_model_num_failed(s->m));
+  T_ASSERT(separated(s, comp), "%s: separated pieces reconnected", what);
+  if (getenv("PDK_TEST_VERBOSE"))
+    printf("%s: separated by step %ld; %lld bonds broken, %d failed, %d flagged, peak reaction "
+           "%g N, plastic work %g J, damage %g J, released %g J, compactions %ld\n",
+           what, sep_step, (long long)pdk_model_num_broken(s->m), (int)pdk_model_num_failed(s->m),
+           (int)pdk_model_num_flagged(s->m), peak, h.plastic_work, h.damage_work,
+           h.breaking_work, pdk_model_num_compactions(s->m));
+
+  /* failed particles: every bond broken, from both ends (the reverse is in jcu_check_bond_state) */
+  const uint8_t *failed = pdk_particles_field_data(s->p, "failed", 0);
+  const pdk_bond_index *start = pdk_families_bond_start(s->fam);
+  const uint8_t *alive = pdk_model_bond_alive(s->m);
+  pdk_index num_failed = 0;
+  for (pdk_index i = 0; i < n; ++i) {
+    if (!failed[i]) continue;
+    ++num_failed;
+    for (pdk_bond_index b = start[i]; b < start[i + 1]; ++b)
+      T_ASSERT(!alive[b], "%s: failed particle %d keeps bond %lld", what, (int)i, (long long)b);
+  }
+  T_ASSERT(num_failed > 0 && num_failed == pdk_model_num_failed(s->m), "%s: %d failed (model %d)",
+           what, (int)num_failed, (int)pdk_model_num_failed(s->m));
+  jcu_check_bond_state(s->m, what);
+
+  /* no force across the crack: internal force on the pulled piece */
+  const pdk_index piece = comp[first_of(s->p, "set:right")];
+  const double *vol = pdk_particles_volume(s->p);
+  for (int c = 0; c < 2; ++c) {
+    const double *f = pdk_particles_field_data(s->p, "f", c);
+    double sum = 0.0;
+    for (pdk_index i = 0; i < n; ++i)
+      if (comp[i] == piece) sum += vol[i] * f[i];
+    T_NEAR(sum, 0.0, 0.0, 1e-10 * peak, "%s: force across the crack, component %d (peak %g N)",
+           what, c, peak);
+  }
+  T_ASSERT(h.plastic_work > 0.0 && h.damage_work > 0.0, "%s: plastic %g, damage %g", what,
+           h.plastic_work, h.damage_work);
+  free(comp);
+  return steps;
+}
+
+int main(void) {
+  pdk_ctx *ctx = t_ctx(1);
+  const pdk_connectivity modes[2] = {PDK_CONNECTIVITY_TL, PDK_CONNECTIVITY_SEMI_TL};
+  const char *names[2] = {"TL", "semi-TL"};
+
+  /* 1. TL and semi-TL in lockstep: bitwise equal up to and including the first break. */
+  {
+    sim a, b;
+    build(ctx, PDK_CONNECTIVITY_TL, &a);
+    build(ctx, PDK_CONNECTIVITY_SEMI_TL, &b);
+    long step = 0;
+    for (; step < MAX_STEPS; ++step) {
+      T_OK(ctx, pdk_explicit_run(a.e, 1, NULL));
+      T_OK(ctx, pdk_explicit_run(b.e, 1, NULL));
+      size_t na, nb;
+      unsigned char *sa = state_bytes(&a, &na), *sb = state_bytes(&b, &nb);
+      T_ASSERT(na == nb && !memcmp(sa, sb, na), "TL and semi-TL differ at step %ld, before the "
+               "first break", step + 1);
+      free(sa);
+      free(sb);
+      if (pdk_model_num_broken(a.m) > 0) break;
+    }
+    T_ASSERT(step < MAX_STEPS && pdk_model_num_broken(b.m) == pdk_model_num_broken(a.m),
+             "first break: TL %lld, semi-TL %lld bonds", (long long)pdk_model_num_broken(a.m),
+             (long long)pdk_model_num_broken(b.m));
+    destroy(&a);
+    destroy(&b);
+  }
+
+  /* 2. Each mode tears the bar; 2 threads give the same bits. */
+  for (int k = 0; k < 2; ++k) {
+    unsigned char *ref = NULL;
+    size_t ref_bytes = 0;
+    long ref_steps = 0;
+    for (int threads = 1; threads <= 2; ++threads) {
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
+      sim s;
+      build(ctx, modes[k], &s);
+      char what[64];
+      snprintf(what, sizeof what, "%s, %d thread%s", names[k], threads, threads > 1 ? "s" : "");
+      if (threads == 1) {
+        ref_steps = run_to_separation(ctx, &s, what);
+        ref = state_bytes(&s, &ref_bytes);
+      } else {
+        T_OK(ctx, pdk_explicit_run(s.e, ref_steps, NULL));
+        size_t bytes;
+        unsigned char *now = state_bytes(&s, &bytes);
+        T_ASSERT(bytes == ref_bytes && !memcmp(now, ref, bytes),
+                 "%s: state after %ld steps differs from 1 thread", what, ref_steps);
+        free(now);
+      }
+      destroy(&s);
+    }
+    free(ref);
+    T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
+  }
+  pdk_ctx_destroy(&ctx);
+  return 0;
+}
