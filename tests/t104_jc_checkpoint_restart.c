@@ -1,0 +1,138 @@
+/* Checkpoint and restart of a tearing Johnson-Cook bar: bitwise the same as a continuous run.
+ *
+ * The notched bar of t101 (JC damage with a short failure strain, Silling stabilization, left end
+ * fixed, right end pulled at 10 m/s), in TL and semi-TL with compaction in every breaking pass:
+ * 400 steps in one go against 300 steps, a checkpoint, everything destroyed and rebuilt, a
+ * restore and 100 steps. Bonds start breaking near step 270 and the bar separates near step 340,
+ * so the checkpoint falls in the middle of the tear: the restored semi-TL model starts without
+ * its compacted bond list (it walks the families with the restored bond state until its next
+ * compaction) and recomputes K of every particle with broken bonds, and must still give the same
+ * bits. Compared: x, v, f, every history field (cp_inv, eps_p, damage, failed, eps_p_rate,
+ * w_plastic, w_damage, w_broken), the bond state and the last history record (energies included).
+ * On 1 and 2 threads.
+ * labels: unit threads */
+#include "jc_corr_util.h"
+#include "pdk/output.h"
+
+#define DX 1e-3
+#define N_STEPS 400
+#define N_FIRST 300
+
+typedef struct sim {
+  pdk_particles *p;
+  pdk_families *fam;
+  pdk_model *m;
+  pdk_explicit *e;
+} sim;
+
+static pdk_bc bcs[2];
+
+static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
+  pdk_lattice_opts lo = pdk_lattice_opts_default();
+  lo.type = PDK_LATTICE_SQUARE;
+  lo.spacing = DX;
+  lo.hi[0] = 40 * DX;
+  lo.hi[1] = 10 * DX;
+  T_OK(ctx, pdk_lattice_create(ctx, &lo, &s->p));
+  T_OK(ctx, pdk_particles_reorder_morton(s->p, 3.015 * DX, NULL));
+  double a[3] = {-1, -1, -1}, b[3] = {3 * DX, 1, 1}, c[3] = {37 * DX, -1, -1}, d[3] = {1, 1, 1};
+  pdk_region left = pdk_region_box(a, b), right = pdk_region_box(c, d);
+  T_OK(ctx, pdk_particles_set_define(s->p, "left", &left, NULL));
+  T_OK(ctx, pdk_particles_set_define(s->p, "right", &right, NULL));
+  static const double notch[4] = {20 * DX, -DX, 20 * DX, 4 * DX};
+  pdk_precrack crack = {2, notch};
+  pdk_families_opts fo = pdk_families_opts_default();
+  fo.horizon = 3.015 * DX;
+  fo.precracks = &crack;
+  fo.num_precracks = 1;
+  T_OK(ctx, pdk_families_build(s->p, &fo, &s->fam));
+  pdk_model_opts mo = pdk_model_opts_default();
+  mo.kind = PDK_MODEL_CORRESPONDENCE;
+  mo.law = PDK_LAW_JC;
+  mo.jc.D1 = 0.02;
+  mo.jc.D2 = 0.0;
+  mo.stabilization = PDK_STAB_SILLING;
+  mo.connectivity = mode;
+  mo.compact_fraction = 0.0;
+  T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
+  memset(bcs, 0, sizeof bcs);
+  bcs[0].kind = PDK_BC_DISPLACEMENT;
+  bcs[0].set = "set:left";
+  bcs[0].components = 3;
+  bcs[1].kind = PDK_BC_VELOCITY;
+  bcs[1].set = "set:right";
+  bcs[1].components = 1;
+  bcs[1].value[0] = pdk_tfun_constant(10.0);
+  pdk_explicit_opts eo = pdk_explicit_opts_default();
+  eo.bcs = bcs;
+  eo.num_bcs = 2;
+  eo.dt = 1.5e-7;
+  T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
+}
+
+static void destroy(sim *s) {
+  pdk_explicit_destroy(&s->e);
+  pdk_model_destroy(&s->m);
+  pdk_families_destroy(&s->fam);
+  pdk_particles_destroy(&s->p);
+}
+
+/* x, v, f, history fields and bond state as bytes. */
+static unsigned char *state_bytes(sim *s, size_t *bytes) {
+  const pdk_index n = pdk_particles_count(s->p);
+  const char *names[3] = {"x", "v", "f"};
+  const size_t len = (size_t)n * sizeof(double);
+  jcu_snapshot h = jcu_snapshot_take(s->m);
+  unsigned char *out = malloc(6 * len + h.bytes);
+  T_ASSERT(out, "out of memory");
+  for (int q = 0; q < 3; ++q)
+    for (int c = 0; c < 2; ++c)
+      memcpy(out + (2 * q + c) * len, pdk_particles_field_data(s->p, names[q], c), len);
+  memcpy(out + 6 * len, h.data, h.bytes);
+  free(h.data);
+  *bytes = 6 * len + h.bytes;
+  return out;
+}
+
+int main(void) {
+  pdk_ctx *ctx = t_ctx(1);
+  const char *path = "t104_jc.ckpt.h5";
+  for (int mode = 0; mode < 2; ++mode) {
+    const pdk_connectivity conn = mode ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL;
+    for (int threads = 1; threads <= 2; ++threads) {
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
+      const char *what = mode ? "semi-TL" : "TL";
+      sim s;
+      pdk_history h1, h2;
+      build(ctx, conn, &s);
+      T_OK(ctx, pdk_explicit_run(s.e, N_STEPS, &h1));
+      T_ASSERT(h1.broken > 0 && pdk_model_num_failed(s.m) > 0, "%s: nothing broke", what);
+      size_t b1, b2;
+      unsigned char *one = state_bytes(&s, &b1);
+      destroy(&s);
+
+      build(ctx, conn, &s);
+      T_OK(ctx, pdk_explicit_run(s.e, N_FIRST, NULL));
+      T_ASSERT(pdk_model_num_broken(s.m) > 0, "%s: no bond broken before the checkpoint", what);
+      T_OK(ctx, pdk_checkpoint_write(ctx, path, s.e, NULL));
+      destroy(&s);
+      build(ctx, conn, &s);
+      T_OK(ctx, pdk_checkpoint_read(ctx, path, s.e));
+      T_OK(ctx, pdk_explicit_run(s.e, N_STEPS - N_FIRST, &h2));
+      unsigned char *two = state_bytes(&s, &b2);
+      T_ASSERT(b1 == b2 && !memcmp(one, two, b1), "%s, %d threads: restarted state differs", what,
+               threads);
+      T_ASSERT(!memcmp(&h1, &h2, sizeof h1),
+               "%s, %d threads: history differs: strain %.17g vs %.17g, plastic %.17g vs %.17g, "
+               "breaking %.17g vs %.17g",
+               what, threads, h1.strain, h2.strain, h1.plastic_work, h2.plastic_work,
+               h1.breaking_work, h2.breaking_work);
+      free(one);
+      free(two);
+      destroy(&s);
+      remove(path);
+    }
+  }
+  pdk_ctx_destroy(&ctx);
+  return 0;
+}
