@@ -12,5 +12,6 @@
 #include "pdk/scene.h"
 #include "pdk/output.h"
 #include "pdk/plasticity.h"
+#include "pdk/static.h"
 
 #endif

@@ -1,0 +1,530 @@
+/* Static solvers, the shared part: options, conditions, load levels, the residual and its norms,
+ * the coloring of the coupling graph, difference perturbations, and the level / commit loop that
+ * calls ADR (adr.c) or Newton (newton.c) for each round. See include/pdk/static.h.
+ *
+ * Reductions (norms) are summed per block of PDK_STATIC_BLOCK particles, particles in index order
+ * within a block and blocks in order, so they do not depend on the thread count.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "cells.h"
+#include "static_impl.h"
+
+pdk_static_opts pdk_static_opts_default(pdk_static_method method) {
+  pdk_static_opts o;
+  memset(&o, 0, sizeof o);
+  o.method = method;
+  o.num_levels = 1;
+  o.rtol = method == PDK_STATIC_NEWTON ? 1e-10 : 1e-6;
+  o.atol = 0.0;
+  o.max_iterations = method == PDK_STATIC_NEWTON ? 50 : 200000;
+  o.max_break_rounds = 1000;
+  o.extrapolate = 1;
+  o.adr_mass = PDK_ADR_MASS_AUTO;
+  o.adr_safety = 1.0;
+  o.fd_scheme = PDK_FD_CENTRAL;
+  o.fd_step = 0.0;
+  o.linear_solver = PDK_LINEAR_AUTO;
+  o.sym_rtol = 1e-6;
+  o.singular_rtol = 1e-8;
+  o.max_backtracks = 10;
+  return o;
+}
+
+const char *pdk_static_method_name(pdk_static_method method) {
+  switch (method) {
+  case PDK_STATIC_ADR: return "adr";
+  case PDK_STATIC_NEWTON: return "newton";
+  }
+  return "?";
+}
+
+double pdk_static_wtime(void) { return pdk_wtime(); }
+
+static double *field(pdk_particles *p, const char *name, int c) {
+  return pdk_particles_field_data(p, name, c);
+}
+
+static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
+  PDK_CHECK((unsigned)o->method <= PDK_STATIC_NEWTON, ctx, PDK_ERR_ARG,
+            "static solver method %d is not adr (0) or newton (1)", (int)o->method);
+  const char *name = pdk_static_method_name(o->method);
+  PDK_CHECK(o->num_bcs >= 0 && o->num_bcs <= PDK_STATIC_MAX_BCS, ctx, PDK_ERR_ARG,
+            "%s: at most %d boundary conditions, got %d", name, PDK_STATIC_MAX_BCS, o->num_bcs);
+  PDK_CHECK(o->num_bcs == 0 || o->bcs, ctx, PDK_ERR_ARG, "%s: %d conditions but bcs is NULL", name,
+            o->num_bcs);
+  PDK_CHECK(o->num_levels >= 1, ctx, PDK_ERR_ARG, "%s: the number of load levels must be >= 1, got %d",
+            name, o->num_levels);
+  PDK_CHECK(isfinite(o->rtol) && o->rtol >= 0 && isfinite(o->atol) && o->atol >= 0 &&
+                o->rtol + o->atol > 0,
+            ctx, PDK_ERR_ARG,
+            "%s: tolerances must be >= 0 and not both 0, got rtol %g, atol %g", name, o->rtol, o->atol);
+  PDK_CHECK(o->max_iterations > 0, ctx, PDK_ERR_ARG, "%s: max_iterations must be > 0, got %ld", name,
+            o->max_iterations);
+  PDK_CHECK(o->max_break_rounds >= 0, ctx, PDK_ERR_ARG, "%s: max_break_rounds must be >= 0, got %d",
+            name, o->max_break_rounds);
+  PDK_CHECK((unsigned)o->adr_mass <= PDK_ADR_MASS_LANCZOS, ctx, PDK_ERR_ARG,
+            "%s: adr_mass %d is not auto (0), row_sum (1) or lanczos (2)", name, (int)o->adr_mass);
+  PDK_CHECK(isfinite(o->adr_safety) && o->adr_safety > 0, ctx, PDK_ERR_ARG,
+            "%s: adr_safety must be > 0, got %g", name, o->adr_safety);
+  PDK_CHECK((unsigned)o->fd_scheme <= PDK_FD_FORWARD, ctx, PDK_ERR_ARG,
+            "%s: fd_scheme %d is not central (0) or forward (1)", name, (int)o->fd_scheme);
+  PDK_CHECK(isfinite(o->fd_step) && o->fd_step >= 0 && o->fd_step < 0.1, ctx, PDK_ERR_ARG,
+            "%s: fd_step (relative to the horizon) must be in [0, 0.1), got %g", name, o->fd_step);
+  PDK_CHECK((unsigned)o->linear_solver <= PDK_LINEAR_UMFPACK, ctx, PDK_ERR_ARG,
+            "%s: linear_solver %d is not auto (0), cholmod (1) or umfpack (2)", name,
+            (int)o->linear_solver);
+  PDK_CHECK(isfinite(o->sym_rtol) && o->sym_rtol >= 0, ctx, PDK_ERR_ARG,
+            "%s: sym_rtol must be >= 0, got %g", name, o->sym_rtol);
+  PDK_CHECK(isfinite(o->singular_rtol) && o->singular_rtol >= 0 && o->singular_rtol < 1, ctx, PDK_ERR_ARG,
+            "%s: singular_rtol must be in [0, 1), got %g", name, o->singular_rtol);
+  PDK_CHECK(o->max_backtracks >= 0 && o->max_backtracks <= 60, ctx, PDK_ERR_ARG,
+            "%s: max_backtracks must be in 0..60, got %d", name, o->max_backtracks);
+  PDK_CHECK(o->num_reaction_sets >= 0 && o->num_reaction_sets <= PDK_STATIC_MAX_REACTION_SETS, ctx,
+            PDK_ERR_ARG, "%s: at most %d reaction sets, got %d", name, PDK_STATIC_MAX_REACTION_SETS,
+            o->num_reaction_sets);
+  if (o->load_levels) {
+    double prev = 0.0;
+    for (int k = 0; k < o->num_levels; ++k) {
+      PDK_CHECK(isfinite(o->load_levels[k]) && o->load_levels[k] > prev, ctx, PDK_ERR_ARG,
+                "%s: load level %d is %g; levels must be finite, positive and increasing", name, k,
+                o->load_levels[k]);
+      prev = o->load_levels[k];
+    }
+  }
+  return PDK_SUCCESS;
+}
+
+/* Reads the conditions into fixed / u_presc / b_unit. */
+static int setup_conditions(pdk_static *s) {
+  pdk_ctx *ctx = s->ctx;
+  const int dim = s->dim;
+  const pdk_index n = s->n;
+  int32_t *owner = NULL; /* [n] bc prescribing the component being scanned, -1 none */
+  int err = PDK_SUCCESS;
+  owner = malloc((size_t)n * sizeof *owner);
+  PDK_CHECK_GOTO(owner, ctx, PDK_ERR_MEMORY, "static solver: out of memory for condition maps");
+  for (int c = 0; c < dim; ++c) {
+    for (pdk_index i = 0; i < n; ++i) owner[i] = -1;
+    for (int k = 0; k < s->opts.num_bcs; ++k) {
+      const pdk_bc *bc = &s->bcs[k];
+      PDK_CHECK_GOTO(bc->kind == PDK_BC_DISPLACEMENT || bc->kind == PDK_BC_BODY_FORCE, ctx,
+                     PDK_ERR_ARG,
+                     "boundary condition %d is a %s condition; static solvers take displacement and "
+                     "body-force conditions only (prescribe the displacement instead)",
+                     k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
+      PDK_CHECK_GOTO(bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
+                     "boundary condition %d: component mask %u must select some of the %d components",
+                     k, bc->components, dim);
+      const uint8_t *mem = NULL;
+      if (bc->set) {
+        mem = pdk_particles_field_data(s->p, bc->set, 0);
+        PDK_CHECK_GOTO(mem, ctx, PDK_ERR_NOT_FOUND,
+                       "boundary condition %d names the set field '%s', which does not exist; "
+                       "define the set first",
+                       k, bc->set);
+      }
+      if (!(bc->components & (1u << c))) continue;
+      const pdk_tfun *tf = &bc->value[c];
+      PDK_CHECK_GOTO((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
+                         ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
+                           tf->kind != PDK_TFUN_SINE) ||
+                          tf->b > 0),
+                     ctx, PDK_ERR_ARG,
+                     "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
+                     "ramp, smooth and sine need a positive duration b",
+                     k, c, (int)tf->kind, tf->a, tf->b);
+      const double value = pdk_tfun_value(tf, 1.0); /* static: the value at t = 1 */
+      for (pdk_index i = 0; i < n; ++i) {
+        if (mem && !mem[i]) continue;
+        if (bc->kind == PDK_BC_BODY_FORCE) {
+          s->b_unit[c][i] += value;
+          s->has_body_force = 1;
+          continue;
+        }
+        PDK_CHECK_GOTO(owner[i] < 0, ctx, PDK_ERR_ARG,
+                       "particle %d (id %lld), component %d is prescribed by both boundary "
+                       "conditions %d and %d; give each component of a particle one condition",
+                       (int)i, (long long)pdk_particles_id(s->p)[i], c, owner[i], k);
+        owner[i] = k;
+        s->fixed[c][i] = 1;
+        s->u_presc[c][i] = value;
+        s->num_fixed++;
+      }
+    }
+  }
+cleanup:
+  free(owner);
+  return err;
+}
+
+int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static **out) {
+  pdk_ctx *ctx = m->ctx;
+  int err = PDK_SUCCESS;
+  pdk_static *s = NULL;
+  *out = NULL;
+  PDK_CHECK(opts_in, ctx, PDK_ERR_ARG, "static solver: options are NULL; start from "
+                                       "pdk_static_opts_default(method)");
+  PDK_CALL(check_opts(ctx, opts_in));
+  s = calloc(1, sizeof *s);
+  PDK_CHECK(s, ctx, PDK_ERR_MEMORY, "out of memory creating the static solver");
+  s->ctx = ctx;
+  s->m = m;
+  s->p = m->p;
+  s->fam = m->fam;
+  s->opts = *opts_in;
+  s->dim = pdk_particles_dim(s->p);
+  s->n = pdk_particles_count(s->p);
+  s->horizon = pdk_families_horizon(s->fam);
+  s->hops = m->opts.kind == PDK_MODEL_PMB ? 1 : 2;
+  s->num_blocks = (s->n + PDK_STATIC_BLOCK - 1) / PDK_STATIC_BLOCK;
+  s->stats.coupling_hops = s->hops;
+  if (s->opts.num_bcs) {
+    s->bcs = malloc((size_t)s->opts.num_bcs * sizeof *s->bcs);
+    PDK_CHECK_GOTO(s->bcs, ctx, PDK_ERR_MEMORY, "out of memory copying boundary conditions");
+    memcpy(s->bcs, opts_in->bcs, (size_t)s->opts.num_bcs * sizeof *s->bcs);
+  }
+  s->opts.bcs = s->bcs;
+  s->num_levels = s->opts.num_levels;
+  s->levels = malloc((size_t)s->num_levels * sizeof *s->levels);
+  PDK_CHECK_GOTO(s->levels, ctx, PDK_ERR_MEMORY, "out of memory for load levels");
+  for (int k = 0; k < s->num_levels; ++k)
+    s->levels[k] = opts_in->load_levels ? opts_in->load_levels[k] : (double)(k + 1) / s->num_levels;
+  s->opts.load_levels = s->levels;
+  if (s->opts.fd_step == 0.0) s->opts.fd_step = s->opts.fd_scheme == PDK_FD_CENTRAL ? 1e-5 : 1e-7;
+  for (int c = 0; c < s->dim; ++c) {
+    s->fixed[c] = calloc((size_t)s->n, 1);
+    s->u_presc[c] = calloc((size_t)s->n, sizeof(double));
+    s->b_unit[c] = calloc((size_t)s->n, sizeof(double));
+    s->r[c] = calloc((size_t)s->n, sizeof(double));
+    PDK_CHECK_GOTO(s->fixed[c] && s->u_presc[c] && s->b_unit[c] && s->r[c], ctx, PDK_ERR_MEMORY,
+                   "static solver: out of memory for %d particles", (int)s->n);
+  }
+  s->block_part = calloc((size_t)(s->num_blocks > 0 ? s->num_blocks : 1) * 2, sizeof(double));
+  PDK_CHECK_GOTO(s->block_part, ctx, PDK_ERR_MEMORY, "static solver: out of memory");
+  PDK_CALL_GOTO(setup_conditions(s));
+  for (int k = 0; k < s->opts.num_reaction_sets; ++k) {
+    s->reaction_member[k] = pdk_particles_field_data(s->p, s->opts.reaction_sets[k], 0);
+    PDK_CHECK_GOTO(s->reaction_member[k], ctx, PDK_ERR_NOT_FOUND,
+                   "reaction set field '%s' does not exist", s->opts.reaction_sets[k]);
+  }
+  s->num_reaction = s->opts.num_reaction_sets;
+  s->opts.reaction_sets = NULL; /* not kept: the caller's strings may go away */
+  if (s->opts.method == PDK_STATIC_ADR) PDK_CALL_GOTO(pdk_adr_setup(s));
+  else PDK_CALL_GOTO(pdk_newton_setup(s));
+  *out = s;
+  return PDK_SUCCESS;
+cleanup:
+  pdk_static_destroy(&s);
+  return err;
+}
+
+void pdk_static_destroy(pdk_static **sp) {
+  if (!sp || !*sp) return;
+  pdk_static *s = *sp;
+  pdk_adr_free(s);
+  pdk_newton_free(s);
+  for (int c = 0; c < 3; ++c) {
+    free(s->fixed[c]);
+    free(s->u_presc[c]);
+    free(s->b_unit[c]);
+    free(s->r[c]);
+  }
+  free(s->bcs);
+  free(s->levels);
+  free(s->color_of);
+  free(s->color_start);
+  free(s->color_members);
+  free(s->block_part);
+  free(s);
+  *sp = NULL;
+}
+
+const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return &s->stats; }
+
+void pdk_static_apply_prescribed(pdk_static *s) {
+  const double lambda = s->lambda;
+  for (int c = 0; c < s->dim; ++c) {
+    double *x = field(s->p, "x", c);
+    const double *X = pdk_particles_X(s->p, c);
+    const uint8_t *fixed = s->fixed[c];
+    const double *u = s->u_presc[c];
+    for (pdk_index i = 0; i < s->n; ++i)
+      if (fixed[i]) x[i] = X[i] + lambda * u[i];
+  }
+}
+
+int pdk_static_residual(pdk_static *s) {
+  PDK_CALL(pdk_model_force_trial(s->m, NULL));
+  s->stats.force_passes++;
+  const int dim = s->dim;
+  const pdk_index n = s->n, num_blocks = s->num_blocks;
+  const double lambda = s->lambda;
+  const double *vol = pdk_particles_volume(s->p);
+  const double *f[3] = {NULL, NULL, NULL}, *b[3] = {NULL, NULL, NULL};
+  const uint8_t *fixed[3] = {NULL, NULL, NULL};
+  double *r[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    f[c] = field(s->p, "f", c);
+    b[c] = s->b_unit[c];
+    fixed[c] = s->fixed[c];
+    r[c] = s->r[c];
+  }
+  double *part = s->block_part;
+  const int nt = s->ctx->num_threads;
+#pragma omp parallel for default(none) shared(f, b, fixed, r, vol, part, n, num_blocks, dim, lambda) \
+    schedule(static) num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = blk * PDK_STATIC_BLOCK;
+    const pdk_index i1 = i0 + PDK_STATIC_BLOCK < n ? i0 + PDK_STATIC_BLOCK : n;
+    double rs = 0.0, fs = 0.0;
+    for (pdk_index i = i0; i < i1; ++i)
+      for (int c = 0; c < dim; ++c) {
+        const double load = vol[i] * lambda * b[c][i];
+        const double ri = vol[i] * f[c][i] + load;
+        r[c][i] = ri;
+        if (fixed[c][i]) fs += ri * ri;
+        else {
+          rs += ri * ri;
+          fs += load * load;
+        }
+      }
+    part[2 * blk] = rs;
+    part[2 * blk + 1] = fs;
+  }
+  double rs = 0.0, fs = 0.0;
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    rs += part[2 * blk];
+    fs += part[2 * blk + 1];
+  }
+  s->rnorm = sqrt(rs);
+  s->fnorm = sqrt(fs);
+  return PDK_SUCCESS;
+}
+
+int pdk_static_converged(const pdk_static *s) {
+  return s->rnorm <= fmax(s->opts.rtol * s->fnorm + s->opts.atol, s->floor);
+}
+
+int pdk_static_nonfinite(pdk_static *s, const char *method, long iteration, const char *hint) {
+  pdk_index bad = -1;
+  int bad_c = 0;
+  for (pdk_index i = 0; i < s->n && bad < 0; ++i)
+    for (int c = 0; c < s->dim; ++c)
+      if (!isfinite(s->r[c][i]) || !isfinite(field(s->p, "x", c)[i])) {
+        bad = i;
+        bad_c = c;
+        break;
+      }
+  long long id = bad >= 0 ? (long long)pdk_particles_id(s->p)[bad] : -1;
+  return pdk_ctx_error_set(s->ctx, PDK_ERR_NUMERIC, method,
+                           "the residual became non-finite at load level %d (load factor %g), "
+                           "round %d, iteration %ld: particle %d (id %lld), component %d; %s",
+                           s->level, s->lambda, s->round, iteration, (int)bad, id, bad_c, hint);
+}
+
+/* Greedy coloring over a cell list of edge >= R = 2 hops delta: particle i takes the smallest
+ * color not used by an earlier particle within R. Two particles of one color are then more than
+ * R apart, so no particle lies within hops delta of both: their difference columns share no row
+ * (a distance-2 coloring of the coupling graph, which the R-ball graph contains). */
+int pdk_static_color(pdk_static *s) {
+  if (s->color_of) return PDK_SUCCESS;
+  pdk_ctx *ctx = s->ctx;
+  int err = PDK_SUCCESS;
+  pdk_cells *cells = NULL;
+  pdk_index *stamp = NULL;
+  const pdk_index n = s->n;
+  const int dim = s->dim;
+  const double t0 = pdk_wtime();
+  const double R = 2.0 * s->hops * s->horizon * (1.0 + 1e-9);
+  const double R2 = R * R;
+  s->color_of = malloc((size_t)n * sizeof *s->color_of);
+  s->color_members = malloc((size_t)n * sizeof *s->color_members);
+  stamp = malloc((size_t)(n + 1) * sizeof *stamp);
+  PDK_CHECK_GOTO(s->color_of && s->color_members && stamp, ctx, PDK_ERR_MEMORY,
+                 "static solver: out of memory coloring %d particles", (int)n);
+  PDK_CALL_GOTO(pdk_cells_build(s->p, R, &cells));
+  for (pdk_index k = 0; k <= n; ++k) stamp[k] = -1;
+  int num_colors = 0;
+  const double *X[3] = {pdk_particles_X(s->p, 0), pdk_particles_X(s->p, 1),
+                        dim == 3 ? pdk_particles_X(s->p, 2) : NULL};
+  const int nb = dim == 3 ? 27 : 9;
+  for (pdk_index i = 0; i < n; ++i) {
+    const pdk_index ci = cells->cell_of[i];
+    for (int q = 0; q < nb; ++q) {
+      const pdk_index cn = cells->neighbours[(int64_t)ci * PDK_CELLS_NB + q];
+      if (cn < 0) continue;
+      for (pdk_index sl = cells->cell_start[cn]; sl < cells->cell_start[cn + 1]; ++sl) {
+        const pdk_index j = cells->slot_id[sl];
+        if (j >= i) continue; /* only already-colored particles */
+        double d2 = 0.0;
+        for (int a = 0; a < dim; ++a) {
+          const double d = X[a][j] - X[a][i];
+          d2 += d * d;
+        }
+        if (d2 <= R2) stamp[s->color_of[j]] = i;
+      }
+    }
+    int col = 0;
+    while (stamp[col] == i) ++col;
+    s->color_of[i] = col;
+    if (col + 1 > num_colors) num_colors = col + 1;
+  }
+  s->color_start = calloc((size_t)num_colors + 1, sizeof *s->color_start);
+  PDK_CHECK_GOTO(s->color_start, ctx, PDK_ERR_MEMORY, "static solver: out of memory for colors");
+  for (pdk_index i = 0; i < n; ++i) s->color_start[s->color_of[i] + 1]++;
+  for (int k = 0; k < num_colors; ++k) s->color_start[k + 1] += s->color_start[k];
+  for (int k = 0; k <= num_colors; ++k) stamp[k] = s->color_start[k];
+  for (pdk_index i = 0; i < n; ++i) s->color_members[stamp[s->color_of[i]]++] = i;
+  s->num_colors = num_colors;
+  s->stats.num_colors = num_colors;
+  s->stats.time_setup += pdk_wtime() - t0;
+cleanup:
+  pdk_cells_destroy(&cells);
+  free(stamp);
+  if (err) {
+    free(s->color_of);
+    free(s->color_members);
+    free(s->color_start);
+    s->color_of = s->color_members = s->color_start = NULL;
+  }
+  return err;
+}
+
+void pdk_static_perturb(pdk_static *s, int k, int c, double step, double *h_actual) {
+  double *x = field(s->p, "x", c);
+  for (pdk_index q = s->color_start[k]; q < s->color_start[k + 1]; ++q) {
+    const pdk_index i = s->color_members[q];
+    const double x0 = x[i];
+    x[i] = x0 + step;
+    if (h_actual) h_actual[i] = x[i] - x0; /* exact: the perturbation actually applied */
+  }
+}
+
+void pdk_static_restore(pdk_static *s, int k, int c, const double *saved) {
+  double *x = field(s->p, "x", c);
+  for (pdk_index q = s->color_start[k]; q < s->color_start[k + 1]; ++q) {
+    const pdk_index i = s->color_members[q];
+    x[i] = saved[i];
+  }
+}
+
+/* Reactions -sum_{i in set} V_i f_i from the current "f", in index order. */
+static void reactions(pdk_static *s, double out[][3]) {
+  const double *vol = pdk_particles_volume(s->p);
+  for (int k = 0; k < s->num_reaction; ++k) {
+    const uint8_t *mem = s->reaction_member[k];
+    for (int c = 0; c < 3; ++c) out[k][c] = 0.0;
+    for (int c = 0; c < s->dim; ++c) {
+      const double *f = field(s->p, "f", c);
+      double sum = 0.0;
+      for (pdk_index i = 0; i < s->n; ++i)
+        if (mem[i]) sum += vol[i] * f[i];
+      out[k][c] = -sum;
+    }
+  }
+}
+
+static void emit(pdk_static *s, pdk_static_phase phase, long iterations, double strain,
+                 pdk_bond_index broken_now) {
+  if (!s->opts.monitor) return;
+  pdk_static_event ev;
+  memset(&ev, 0, sizeof ev);
+  ev.phase = phase;
+  ev.level = s->level;
+  ev.load_factor = s->lambda;
+  ev.round = s->round;
+  ev.iterations = iterations;
+  ev.residual = s->rnorm;
+  ev.load_norm = s->fnorm;
+  ev.strain = strain;
+  ev.broken = pdk_model_num_broken(s->m);
+  ev.broken_now = broken_now;
+  reactions(s, ev.reaction);
+  s->opts.monitor(s->opts.monitor_user, &ev);
+}
+
+/* Scales the displacement of the free components by `factor` (extrapolation between levels). */
+static void scale_free(pdk_static *s, double factor) {
+  for (int c = 0; c < s->dim; ++c) {
+    double *x = field(s->p, "x", c);
+    const double *X = pdk_particles_X(s->p, c);
+    const uint8_t *fixed = s->fixed[c];
+    for (pdk_index i = 0; i < s->n; ++i)
+      if (!fixed[i]) x[i] = X[i] + factor * (x[i] - X[i]);
+  }
+}
+
+int pdk_static_solve(pdk_static *s) {
+  pdk_ctx *ctx = s->ctx;
+  const double t0 = pdk_wtime();
+  int err = PDK_SUCCESS;
+  for (int k = 0; k < s->num_levels; ++k) {
+    const double lambda = s->levels[k];
+    if (s->opts.extrapolate && s->lambda > 0.0) scale_free(s, lambda / s->lambda);
+    s->lambda = lambda;
+    s->level = k;
+    pdk_static_apply_prescribed(s);
+    for (int round = 0;; ++round) {
+      s->round = round;
+      long iterations = 0;
+      if (s->opts.method == PDK_STATIC_ADR) PDK_CALL_GOTO(pdk_adr_relax(s, &iterations));
+      else PDK_CALL_GOTO(pdk_newton_solve_level(s, &iterations));
+      s->stats.iterations += iterations;
+      emit(s, PDK_STATIC_CONVERGED, iterations, 0.0, 0);
+      /* History advances here, and only here: one committing pass at the equilibrium. */
+      const pdk_bond_index before = pdk_model_num_broken(s->m);
+      double strain = 0.0;
+      PDK_CALL_GOTO(pdk_model_force(s->m, &strain));
+      s->stats.commit_passes++;
+      const pdk_bond_index broken_now = pdk_model_num_broken(s->m) - before;
+      emit(s, PDK_STATIC_COMMITTED, iterations, strain, broken_now);
+      if (broken_now == 0) break;
+      PDK_CHECK_GOTO(round < s->opts.max_break_rounds, ctx, PDK_ERR_NUMERIC,
+                     "%s: load level %d (load factor %g) still breaks bonds after %d re-solves "
+                     "(%lld broken in the last); the body is probably failing at this load: "
+                     "stop at a lower level or raise max_break_rounds",
+                     pdk_static_method_name(s->opts.method), k, lambda, round,
+                     (long long)broken_now);
+      s->stats.break_rounds++;
+    }
+    s->stats.levels_done++;
+  }
+  s->stats.residual = s->rnorm;
+  s->stats.load_norm = s->fnorm;
+  s->stats.residual_floor = s->floor;
+cleanup:
+  s->stats.time_total += pdk_wtime() - t0;
+  return err;
+}
+
+void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
+  const double mib = 1.0 / (1024.0 * 1024.0);
+  fprintf(out, "levels %d, iterations %ld, force passes %ld (+%ld commits), re-solves %d\n",
+          st->levels_done, st->iterations, st->force_passes, st->commit_passes, st->break_rounds);
+  fprintf(out, "residual %.3e of load %.3e\n", st->residual, st->load_norm);
+  if (st->num_colors)
+    fprintf(out, "coloring: %d colors (coupling %d hops), %ld passes per difference tangent\n",
+            st->num_colors, st->coupling_hops, st->passes_per_tangent);
+  if (st->mass_max > 0)
+    fprintf(out, "ADR mass (%s): %.3e .. %.3e\n",
+            st->adr_mass == PDK_ADR_MASS_ROW_SUM ? "row sums" : "Lanczos", st->mass_min,
+            st->mass_max);
+  if (st->num_unknowns) {
+    fprintf(out, "tangent: %ld unknowns, %lld nonzeros (%.1f per row), %.1f MiB; asymmetry %.2e\n",
+            st->num_unknowns, (long long)st->tangent_nnz, st->tangent_nnz_per_row,
+            (double)st->tangent_bytes * mib, st->asymmetry);
+    fprintf(out,
+            "factor: %lld nonzeros, %.1f MiB; cholmod %d, umfpack %d; min pivot %.2e, min eig %.2e "
+            "(of max diag)\n",
+            (long long)st->factor_nnz, (double)st->factor_bytes * mib, st->cholmod_factorizations,
+            st->umfpack_factorizations, st->min_pivot_ratio, st->min_eig_ratio);
+  }
+  fprintf(out,
+          "time [s]: setup %.3f, mass %.3f, assembly %.3f (%d), analysis %.3f (%d), "
+          "factorization %.3f (%d), solve %.3f (%d), total %.3f\n",
+          st->time_setup, st->time_mass, st->time_assembly, st->assemblies, st->time_analysis,
+          st->analyses, st->time_factorization, st->factorizations, st->time_solve, st->solves,
+          st->time_total);
+}
