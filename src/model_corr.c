@@ -92,8 +92,8 @@ typedef struct corr_impl {
   double *s0_next;      /* [n_pad] critical stretch for the next pass; NULL without s0 */
   double *block_energy; /* [num_blocks] */
   pdk_index num_blocks;
-  uint8_t *changed;     /* [n_pad] rows that lost bonds (bits, see kernels.h); NULL: no failure */
-  uint8_t *detach;      /* [n_pad] semi-TL detach marks; NULL in TL */
+  uint8_t *changed; /* [n_pad] rows that lost bonds (bits, see kernels.h); NULL: no failure */
+  uint8_t *detach;  /* [n_pad] semi-TL detach marks; NULL in TL */
   /* semi-TL compacted list of intact bonds; NULL before the first compaction */
   pdk_bond_index *c_start; /* [n+1] */
   pdk_index *c_j;          /* [c_len] */

@@ -80,8 +80,8 @@ static void check_block(pdk_ctx *ctx, int dim, int N) {
     path(dim, s * 1.5, F0);
     move_affine(p, F0);
     T_OK(ctx, pdk_model_force_trial(m, NULL));
-    T_ASSERT(jcu_snapshot_equal(m, &before), "%d-D step %d: a trial pass changed the history",
-             dim, step);
+    T_ASSERT(jcu_snapshot_equal(m, &before), "%d-D step %d: a trial pass changed the history", dim,
+             step);
     free(before.data);
 
     path(dim, s, F0);
@@ -106,8 +106,8 @@ static void check_block(pdk_ctx *ctx, int dim, int N) {
         for (int b = 0; b < dim; ++b) {
           F[a][b] = cu_field(p, "F", a * dim + b)[i];
           Kinv[a][b] = cu_field(p, "Kinv", a * dim + b)[i];
-          T_NEAR(F[a][b], F0[a][b], 0.0, 1e-12, "%d-D step %d: F[%d][%d] of particle %d", dim,
-                 step, a, b, (int)i);
+          T_NEAR(F[a][b], F0[a][b], 0.0, 1e-12, "%d-D step %d: F[%d][%d] of particle %d", dim, step,
+                 a, b, (int)i);
         }
       pdk_jc_result res;
       ju_update(jc, dim, F, DT, &hist[i], &hist[i], P, &res);
@@ -143,8 +143,8 @@ static void check_block(pdk_ctx *ctx, int dim, int N) {
       esum += pdk_particles_volume(p)[i] * res.W;
       if (cu_inside(p, i, N, reach)) {
         T_NEAR(hist[i].eps_p, exact.eps_p, 1e-9, 1e-15,
-               "%d-D step %d: eps_p of interior particle %d vs the material point at F0", dim,
-               step, (int)i);
+               "%d-D step %d: eps_p of interior particle %d vs the material point at F0", dim, step,
+               (int)i);
       }
       if (cu_inside(p, i, N, 2 * reach)) /* i and all its neighbours have full families */
         for (int a = 0; a < dim; ++a)

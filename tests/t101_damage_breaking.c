@@ -141,8 +141,8 @@ static long run_to_separation(pdk_ctx *ctx, sim *s, const char *what) {
     printf("%s: separated by step %ld; %lld bonds broken, %d failed, %d flagged, peak reaction "
            "%g N, plastic work %g J, damage %g J, released %g J, compactions %ld\n",
            what, sep_step, (long long)pdk_model_num_broken(s->m), (int)pdk_model_num_failed(s->m),
-           (int)pdk_model_num_flagged(s->m), peak, h.plastic_work, h.damage_work,
-           h.breaking_work, pdk_model_num_compactions(s->m));
+           (int)pdk_model_num_flagged(s->m), peak, h.plastic_work, h.damage_work, h.breaking_work,
+           pdk_model_num_compactions(s->m));
 
   /* failed particles: every bond broken, from both ends (the reverse is in jcu_check_bond_state) */
   const uint8_t *failed = pdk_particles_field_data(s->p, "failed", 0);
@@ -192,8 +192,10 @@ int main(void) {
       T_OK(ctx, pdk_explicit_run(b.e, 1, NULL));
       size_t na, nb;
       unsigned char *sa = state_bytes(&a, &na), *sb = state_bytes(&b, &nb);
-      T_ASSERT(na == nb && !memcmp(sa, sb, na), "TL and semi-TL differ at step %ld, before the "
-               "first break", step + 1);
+      T_ASSERT(na == nb && !memcmp(sa, sb, na),
+               "TL and semi-TL differ at step %ld, before the "
+               "first break",
+               step + 1);
       free(sa);
       free(sb);
       if (pdk_model_num_broken(a.m) > 0) break;

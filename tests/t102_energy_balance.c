@@ -184,8 +184,8 @@ int main(void) {
              h.external_work, h.kinetic, h.strain, h.plastic_work, h.damage_work, h.breaking_work,
              imbalance(&s, &h) / h.external_work, worst_rel[k]);
     T_ASSERT(sep > 0, "case %d: the bar did not separate", k);
-    T_ASSERT(h.damage_work > 0.0 && h.breaking_work != 0.0, "damage %g, breaking %g",
-             h.damage_work, h.breaking_work);
+    T_ASSERT(h.damage_work > 0.0 && h.breaking_work != 0.0, "damage %g, breaking %g", h.damage_work,
+             h.breaking_work);
     T_NEAR(worst, 0.0, 0.0, 5e-3 * h.external_work,
            "energy balance with damage and breaking (case %d, dt %g)", k, dts[k]);
     free(comp);

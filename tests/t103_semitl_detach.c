@@ -86,7 +86,9 @@ static void scenario(pdk_ctx *ctx, pdk_connectivity mode, double fraction, doubl
   pdk_model *m = make(ctx, p, fam, mode, fraction);
   const pdk_index c = at(4, 4), L = at(3, 4), R = at(5, 4), far = at(7, 7);
   const pdk_index n = pdk_particles_count(p);
-  const char *name = mode == PDK_CONNECTIVITY_TL ? "TL" : fraction > 0 ? "batched semi-TL" : "semi-TL";
+  const char *name = mode == PDK_CONNECTIVITY_TL ? "TL"
+                     : fraction > 0              ? "batched semi-TL"
+                                                 : "semi-TL";
   T_OK(ctx, pdk_model_set_dt(m, 1e-7));
   for (int k = 0; k < 3; ++k) {
     T_OK(ctx, pdk_model_force(m, NULL));
@@ -108,8 +110,7 @@ static void scenario(pdk_ctx *ctx, pdk_connectivity mode, double fraction, doubl
   if (mode == PDK_CONNECTIVITY_SEMI_TL) {
     T_ASSERT(pdk_model_num_flagged(m) == 8 + 2, "%s: flagged %d, expected the 8 failed + c + L",
              name, (int)pdk_model_num_flagged(m));
-    T_ASSERT(intact_bonds(m, R) == 3, "%s: R keeps %d bonds, expected 3", name,
-             intact_bonds(m, R));
+    T_ASSERT(intact_bonds(m, R) == 3, "%s: R keeps %d bonds, expected 3", name, intact_bonds(m, R));
     check_detached(m, c, name);
     check_detached(m, L, name); /* the cascade */
   } else {

@@ -635,8 +635,8 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   return e;
 }
 
-double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                                   pdk_index i0, pdk_index i1) {
+double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                                   pdk_index i1) {
   double sum = 0.0;
   for (pdk_index i = i0; i < i1; ++i)
     if (a->changed[i] & 2u) {
