@@ -15,6 +15,7 @@
  * Compactions (compact_fraction 0): none while nothing breaks (commit and trial passes), one per
  * commit pass that broke bonds; with compact_fraction 0.5 none at all for the same breaks, and
  * the forces are bitwise those of the compacted model.
+ * An elastic law with a critical stretch in semi-TL: compacted once, forces bitwise TL's.
  * Option errors: JC with PMB, semi-TL with PMB, elastic constants that disagree with the JC
  * parameters, compact_fraction out of range, a commit pass of a rate-dependent law before the
  * time step is set.
@@ -194,6 +195,45 @@ int main(void) {
   T_ASSERT(!memcmp(alive[0], alive[1], (size_t)nb), "batched semi-TL: bond state differs");
   T_ASSERT(!memcmp(f[0], f[1], 2 * (size_t)n * sizeof(double)),
            "batched semi-TL: forces differ from the compacted run");
+
+  /* An elastic law with a critical stretch: a particle pulled out of the lattice loses every bond
+   * (t042's scenario); semi-TL compacts once and gives TL's forces bit for bit (nothing is
+   * degenerate but the isolated particle, which has no bonds left to cut). */
+  {
+    double *fe[2];
+    for (int mode = 0; mode < 2; ++mode) {
+      pdk_particles *p = cu_lattice(ctx, 2, 8, 0.0, 0);
+      pdk_families *fam = cu_families(ctx, p, 2.015);
+      pdk_model_opts o = cu_opts(PDK_LAW_SVK, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
+      o.critical_stretch = 0.02;
+      o.connectivity = mode ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL;
+      o.compact_fraction = 0.0;
+      pdk_model *m = cu_model(ctx, p, fam, &o);
+      const pdk_index victim = 3 + 8 * 4, n8 = pdk_particles_count(p);
+      T_OK(ctx, pdk_model_force(m, NULL));
+      cu_field(p, "x", 0)[victim] += 50.0;
+      T_OK(ctx, pdk_model_force(m, NULL));
+      T_ASSERT(pdk_model_num_broken(m) == 24 && pdk_model_num_flagged(m) == 1,
+               "elastic %s: %lld broken, %d flagged", mode ? "semi-TL" : "TL",
+               (long long)pdk_model_num_broken(m), (int)pdk_model_num_flagged(m));
+      T_ASSERT(pdk_model_num_compactions(m) == mode, "elastic: %ld compactions",
+               pdk_model_num_compactions(m));
+      cu_random_x(p, 0.05, 5);
+      T_OK(ctx, pdk_model_force(m, NULL));
+      fe[mode] = malloc(2 * (size_t)n8 * sizeof(double));
+      T_ASSERT(fe[mode], "out of memory");
+      for (int a = 0; a < 2; ++a)
+        memcpy(fe[mode] + a * n8, cu_field(p, "f", a), (size_t)n8 * sizeof(double));
+      jcu_check_bond_state(m, "elastic");
+      if (mode) {
+        T_ASSERT(!memcmp(fe[0], fe[1], 2 * (size_t)n8 * sizeof(double)),
+                 "elastic: semi-TL forces differ from TL");
+        free(fe[0]);
+        free(fe[1]);
+      }
+      destroy(&p, &fam, &m);
+    }
+  }
 
   /* option errors */
   pdk_particles *p = cu_lattice(ctx, 2, N, 0.0, 0);
