@@ -190,12 +190,14 @@ static int check_held(pdk_static *s) {
   if (!num_free) return PDK_SUCCESS;
   return pdk_ctx_error_set(
       s->ctx, PDK_ERR_ARG, "newton",
-      "the body is not held: the displacement conditions leave %d rigid motion%s free (%s), which "
-      "the tangent cannot resist (it is singular). Constrain at least one component in each "
-      "direction (%s) and, against rotation, %s; or solve a self-equilibrated problem with ADR",
-      num_free, num_free > 1 ? "s" : "", free_modes, dim == 3 ? "x, y and z" : "x and y",
+      "the body is not held: constrain at least one component in each direction (%s) and, "
+      "against rotation, %s. The displacement conditions leave %d rigid motion%s free (%s), which "
+      "the tangent cannot resist (it is singular); a self-equilibrated problem can be solved with "
+      "ADR",
+      dim == 3 ? "x, y and z" : "x and y",
       dim == 3 ? "components at three points not on one line (e.g. fix a whole face)"
-               : "a component at a second point (e.g. u_y at two particles with different x)");
+               : "a component at a second point (e.g. u_y at two particles with different x)",
+      num_free, num_free > 1 ? "s" : "", free_modes);
 }
 
 /* ---- pattern -------------------------------------------------------------------------------- */

@@ -438,6 +438,7 @@ static void emit(pdk_static *s, pdk_static_phase phase, long iterations, double 
   ev.iterations = iterations;
   ev.residual = s->rnorm;
   ev.load_norm = s->fnorm;
+  ev.tolerance = fmax(s->opts.rtol * s->fnorm + s->opts.atol, s->floor);
   ev.strain = strain;
   ev.broken = pdk_model_num_broken(s->m);
   ev.broken_now = broken_now;

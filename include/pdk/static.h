@@ -127,6 +127,8 @@ typedef struct pdk_static_event {
   long iterations;            /* ADR iterations or Newton iterations of this round */
   double residual;            /* ||r||_free [force] at the equilibrium */
   double load_norm;           /* ||F_ext|| [force] */
+  double tolerance;           /* the residual bound that was met: max(rtol ||F_ext|| + atol, round-off
+                                 floor) [force] */
   double strain;              /* strain energy (COMMITTED only) */
   pdk_bond_index broken;      /* directed bonds broken so far (model total) */
   pdk_bond_index broken_now;  /* bonds this commit broke (COMMITTED only) */
