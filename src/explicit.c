@@ -58,8 +58,31 @@ static double *field(pdk_particles *p, const char *name, int c) {
   return pdk_particles_field_data(p, name, c);
 }
 
-/* Sets prescribed positions and velocities of constrained components at time t. */
-static void apply_kinematic_bcs(pdk_explicit *e, double t) {
+double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1) {
+  const double a = f->a, b = f->b;
+  switch (f->kind) {
+  case PDK_TFUN_CONSTANT: return a * (t1 - t0);
+  case PDK_TFUN_LINEAR: return a * (t1 - t0) + 0.5 * b * (t1 * t1 - t0 * t0);
+  case PDK_TFUN_RAMP: { /* G(t) = a t^2 / (2b) for t < b, a (t - b/2) after */
+    double g1 = t1 < b ? a * t1 * t1 / (2.0 * b) : a * (t1 - 0.5 * b);
+    double g0 = t0 < b ? a * t0 * t0 / (2.0 * b) : a * (t0 - 0.5 * b);
+    return g1 - g0;
+  }
+  case PDK_TFUN_SMOOTH: { /* G(t) = a b (5/2 r^4 - 3 r^5 + r^6), r = t/b, for t < b */
+    double r1 = t1 < b ? t1 / b : 1.0, r0 = t0 < b ? t0 / b : 1.0;
+    double g1 = a * b * r1 * r1 * r1 * r1 * (2.5 - 3.0 * r1 + r1 * r1) + (t1 > b ? a * (t1 - b) : 0.0);
+    double g0 = a * b * r0 * r0 * r0 * r0 * (2.5 - 3.0 * r0 + r0 * r0) + (t0 > b ? a * (t0 - b) : 0.0);
+    return g1 - g0;
+  }
+  case PDK_TFUN_SINE: return -a * b / (2.0 * M_PI) * (cos(2.0 * M_PI * t1 / b) - cos(2.0 * M_PI * t0 / b));
+  }
+  return 0.0;
+}
+
+/* Sets prescribed positions and velocities of constrained components at time t. With drifted = 1
+ * (right after the drift x += dt v(t - dt)), a velocity-prescribed position is corrected to the
+ * exact integral of the prescribed velocity over the step. */
+static void apply_kinematic_bcs(pdk_explicit *e, double t, int drifted) {
   const int dim = e->dim;
   const pdk_index n = e->n;
   for (int c = 0; c < dim; ++c) {
@@ -68,7 +91,8 @@ static void apply_kinematic_bcs(pdk_explicit *e, double t) {
     const double *X = pdk_particles_X(e->p, c);
     const pdk_bc *bcs = e->bcs;
     int nthreads = e->ctx->num_threads;
-#pragma omp parallel for default(none) shared(bc_of, x, v, X, bcs, n, c, t) schedule(static) num_threads(nthreads)
+    const double dt = e->dt;
+#pragma omp parallel for default(none) shared(bc_of, x, v, X, bcs, n, c, t, dt, drifted) schedule(static) num_threads(nthreads)
     for (pdk_index i = 0; i < n; ++i) {
       int k = bc_of[i];
       if (k < 0) continue;
@@ -76,7 +100,9 @@ static void apply_kinematic_bcs(pdk_explicit *e, double t) {
       if (bc->kind == PDK_BC_DISPLACEMENT) {
         x[i] = X[i] + pdk_tfun_value(&bc->value[c], t);
         v[i] = pdk_tfun_rate(&bc->value[c], t);
-      } else { /* velocity: position already advanced with the prescribed velocity */
+      } else {
+        /* the drift moved x by dt v(t - dt); v still holds v(t - dt) (kicks skip it) */
+        if (drifted) x[i] += pdk_tfun_integral(&bc->value[c], t - dt, t) - dt * v[i];
         v[i] = pdk_tfun_value(&bc->value[c], t);
       }
     }
@@ -206,6 +232,19 @@ static void reactions(pdk_explicit *e, double out[][3]) {
       out[k][c] = -s;
     }
   }
+}
+
+/* Kinetic energy of the prescribed components: the constraints supply its changes. */
+static double constrained_kinetic(pdk_explicit *e) {
+  const double *vol = pdk_particles_volume(e->p);
+  double s = 0.0;
+  for (int c = 0; c < e->dim; ++c) {
+    const double *v = field(e->p, "v", c);
+    const int32_t *bc_of = e->bc_of[c];
+    for (pdk_index i = 0; i < e->n; ++i)
+      if (bc_of[i] >= 0) s += vol[i] * v[i] * v[i];
+  }
+  return 0.5 * e->rho * s;
 }
 
 /* Power of the constraints and body forces on the body at the current state:
@@ -441,7 +480,7 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
     e->dt = opts.dt;
   }
   PDK_CALL_GOTO(pdk_model_set_dt(m, e->dt)); /* history updates (rate terms) use the step */
-  apply_kinematic_bcs(e, 0.0);
+  apply_kinematic_bcs(e, 0.0, 0);
   PDK_CALL_GOTO(pdk_model_force(m, &e->strain));
   *out = e;
   return PDK_SUCCESS;
@@ -469,17 +508,19 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
   PDK_CALL(pdk_model_set_dt(e->m, e->dt)); /* a restore may have changed e->dt */
   for (long s = 0; s < num_steps; ++s) {
     double t0 = e->time, t1 = e->time + e->dt;
-    double p0 = external_power(e, t0);
+    double p0 = external_power(e, t0), k0 = constrained_kinetic(e);
     half_kick(e, t0);
     drift(e);
-    apply_kinematic_bcs(e, t1);
+    apply_kinematic_bcs(e, t1, 1);
     PDK_CALL(pdk_model_force(e->m, &e->strain));
     half_kick(e, t1);
-    apply_kinematic_bcs(e, t1);
+    apply_kinematic_bcs(e, t1, 0);
     e->time = t1;
     e->step++;
     PDK_CALL(check_state(e));
-    e->external_work += 0.5 * e->dt * (p0 + external_power(e, t1));
+    /* work of the constraints: the trapezoid of their power against the internal forces, plus
+     * the change of the prescribed particles' kinetic energy (their inertia) */
+    e->external_work += 0.5 * e->dt * (p0 + external_power(e, t1)) + constrained_kinetic(e) - k0;
   }
   if (hist) {
     memset(hist, 0, sizeof *hist);

@@ -33,6 +33,7 @@ typedef struct pdk_tfun {
 pdk_tfun pdk_tfun_constant(double a);
 double pdk_tfun_value(const pdk_tfun *f, double t);
 double pdk_tfun_rate(const pdk_tfun *f, double t); /* d/dt */
+double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1); /* exact integral over [t0, t1] */
 
 typedef enum pdk_bc_kind {
   PDK_BC_DISPLACEMENT = 0, /* u_c(t) = value(t) on the chosen components; fixed: value 0 */
