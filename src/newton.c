@@ -1074,6 +1074,7 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
   *iterations = 0;
   PDK_CALL(pdk_static_residual(s));
   if (!isfinite(s->rnorm) || !isfinite(s->fnorm)) return pdk_static_nonfinite(s, "newton", 0, hint);
+  int reuse = 0; /* never across rounds or levels: bonds broke or the load moved */
   for (long it = 0;; ++it) {
     if (pdk_static_converged(s)) return PDK_SUCCESS;
     if (it == s->opts.max_iterations)
@@ -1084,8 +1085,14 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
           "load levels or raise max_iterations",
           it, s->level, s->lambda, s->round, s->rnorm, s->opts.rtol * s->fnorm + s->opts.atol,
           s->opts.rtol, s->fnorm, s->opts.atol);
-    PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
-    PDK_CALL(factor_and_solve(s));
+    if (reuse) { /* the last full step contracted ||r|| by >= 1000: keep the factorized tangent */
+      for (long k = 0; k < ns->nf; ++k) ns->rhs[k] = s->r[ns->dof_comp[k]][ns->dof_particle[k]];
+      PDK_CALL(solve_linear(s));
+      s->stats.tangent_reuses++;
+    } else {
+      PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
+      PDK_CALL(factor_and_solve(s));
+    }
     /* Backtracking line search on ||r||. */
     const double phi0 = s->rnorm;
     for (int c = 0; c < dim; ++c) memcpy(ns->x0[c], field(s->p, "x", c), (size_t)n * sizeof(double));
@@ -1107,6 +1114,7 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
       s->stats.line_search_cuts++;
     }
     *iterations = it + 1;
+    reuse = s->opts.reuse_tangent && accepted && alpha == 1.0 && s->rnorm <= 1e-3 * phi0;
     if (!accepted) {
       for (int c = 0; c < dim; ++c) memcpy(field(s->p, "x", c), ns->x0[c], (size_t)n * sizeof(double));
       const double tried = s->rnorm;

@@ -29,6 +29,7 @@ pdk_static_opts pdk_static_opts_default(pdk_static_method method) {
   o.sym_rtol = 1e-6;
   o.singular_rtol = 1e-8;
   o.max_backtracks = 10;
+  o.reuse_tangent = 1;
   return o;
 }
 
@@ -523,9 +524,10 @@ void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
             st->umfpack_factorizations, st->min_pivot_ratio, st->min_eig_ratio);
   }
   fprintf(out,
-          "time [s]: setup %.3f, mass %.3f, assembly %.3f (%d), analysis %.3f (%d), "
+          "time [s]: setup %.3f, mass %.3f, assembly %.3f (%d, %d reuses), analysis %.3f (%d), "
           "factorization %.3f (%d), solve %.3f (%d), total %.3f\n",
-          st->time_setup, st->time_mass, st->time_assembly, st->assemblies, st->time_analysis,
+          st->time_setup, st->time_mass, st->time_assembly, st->assemblies, st->tangent_reuses,
+          st->time_analysis,
           st->analyses, st->time_factorization, st->factorizations, st->time_solve, st->solves,
           st->time_total);
 }

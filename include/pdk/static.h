@@ -57,6 +57,8 @@
  *   - The symbolic analysis (ordering) is done once and reused while the coupling pattern is
  *     unchanged: the pattern follows the families, not the bond state, so broken bonds only zero
  *     entries and never force a new analysis.
+ *   - Tangent reuse: within a round, an iteration keeps the factorized tangent of the previous one
+ *     when that full step reduced ||r|| by at least 1000 (opts.reuse_tangent).
  *   - Each iteration does a backtracking line search on ||r||: step lengths 1, 1/2, 1/4, ...
  *     until ||r(x + a dx)|| <= (1 - 1e-4 a) ||r(x)||.
  *   - Round-off floor. Positions are absolute, so a one-ulp change of the coordinates changes r
@@ -160,6 +162,10 @@ typedef struct pdk_static_opts {
   double singular_rtol; /* singular when a pivot or the smallest eigenvalue is below this times the
                            largest diagonal (default 1e-8, above the difference error; 0: off) */
   int max_backtracks; /* line-search halvings (default 10) */
+  int reuse_tangent;  /* 1 (default): within a round, keep the factorized tangent for the next
+                         iteration when the last full step reduced ||r|| by at least 1000 (the
+                         problem behaves linearly: a linear problem costs one assembly; a looser
+                         rule turns Newton into a slow chord method); 0: assemble every iteration */
   /* Output */
   const char *const *reaction_sets; /* set fields ("set:<name>"), at most 8 */
   int num_reaction_sets;
@@ -200,7 +206,7 @@ typedef struct pdk_static_stats {
   double residual_floor;      /* round-off floor of ||r||: eps |x|_max ||K||_F [force] */
   double null_nonaffine;      /* singular tangent: non-affine fraction of its near-null vector
                                  (~1 zero-energy mode, ~0 rigid motion of a loose part; -1 n/a) */
-  int assemblies, analyses, factorizations, solves, line_search_cuts;
+  int assemblies, analyses, factorizations, solves, line_search_cuts, tangent_reuses;
   double time_setup;          /* coloring, pattern, transpose map */
   double time_mass;           /* ADR fictitious mass */
   double time_assembly, time_analysis, time_factorization, time_solve;
