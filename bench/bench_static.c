@@ -11,13 +11,18 @@
  * creation (coloring, fictitious mass, pattern) to the converged state.
  *
  * Usage: bench_static [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] [--threads t]
+ *                     [--mass auto|rowsum|lanczos] (ADR fictitious mass)
  *   defaults: 2-D NP 32,64,128 and 3-D n 10,14,20 (cubes of (n+1)^3 nodes), both methods.
  *   --newton-max N skips Newton above N particles (default 70000 in 2-D, 5000 in 3-D: the 3-D
  *   Cholesky factor grows as n^(4/3) and the netlib BLAS on this machine makes it slow).
- * Output: one line per run (see the header line); results are recorded in bench/README.md.
+ * Output: one line per run (see the header line): phase times (wall) from the solver's stats,
+ * total wall and process CPU time (all threads) from creation to solution, tangent (K) and factor
+ * (L) memory, nonzeros per tangent row, peak resident memory of the process so far, and the
+ * relative error of the probe against -T H / E. Results are recorded in bench/README.md.
  */
 #include <math.h>
 #include <stdio.h>
+#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,12 +39,21 @@
 
 typedef struct run_result {
   pdk_index n;
-  double wall, probe_error;
+  double wall, cpu, probe_error;
   pdk_static_stats st;
   size_t peak;
 } run_result;
 
-static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method) {
+/* Process CPU time (user + system, all threads) in seconds: less sensitive than wall time to other
+ * jobs on a shared machine. */
+static double cpu_seconds(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
+         1e-6 * (double)ru.ru_stime.tv_usec;
+}
+
+static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, pdk_adr_mass mass) {
   const double W = 10.0, E = 1000.0, T = 1.0, h = W / np, rf = 1.5;
   pdk_lattice_opts lo = pdk_lattice_opts_default();
   lo.type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
@@ -106,14 +120,16 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method) {
   pdk_static_opts so = pdk_static_opts_default(method);
   so.bcs = bcs;
   so.num_bcs = nb;
+  so.adr_mass = mass;
   run_result r;
   memset(&r, 0, sizeof r);
   r.n = pdk_particles_count(p);
-  const double w0 = pdk_wtime();
+  const double w0 = pdk_wtime(), c0 = cpu_seconds();
   pdk_static *s;
   CHECK(ctx, pdk_static_create(m, &so, &s));
   CHECK(ctx, pdk_static_solve(s));
   r.wall = pdk_wtime() - w0;
+  r.cpu = cpu_seconds() - c0;
   r.st = *pdk_static_stats_get(s);
   r.peak = pdk_peak_memory_bytes();
   /* probe: mean top displacement over the middle fifth, against -T H / E */
@@ -145,6 +161,7 @@ int main(int argc, char **argv) {
   int dims[2] = {2, 3}, num_dims = 2, threads = 0, sizes[16], num_sizes = 0;
   int methods[2] = {PDK_STATIC_ADR, PDK_STATIC_NEWTON}, num_methods = 2;
   long newton_max = -1;
+  pdk_adr_mass mass = PDK_ADR_MASS_AUTO;
   for (int a = 1; a < argc; ++a) {
     if (!strcmp(argv[a], "--dim") && a + 1 < argc) {
       dims[0] = atoi(argv[++a]);
@@ -163,11 +180,16 @@ int main(int argc, char **argv) {
       else num_methods = 2;
     } else if (!strcmp(argv[a], "--threads") && a + 1 < argc) {
       threads = atoi(argv[++a]);
+    } else if (!strcmp(argv[a], "--mass") && a + 1 < argc) {
+      const char *mm = argv[++a];
+      mass = !strcmp(mm, "rowsum") ? PDK_ADR_MASS_ROW_SUM
+                                   : !strcmp(mm, "lanczos") ? PDK_ADR_MASS_LANCZOS : PDK_ADR_MASS_AUTO;
     } else if (!strcmp(argv[a], "--newton-max") && a + 1 < argc) {
       newton_max = atol(argv[++a]);
     } else {
       fprintf(stderr, "usage: %s [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] "
-                      "[--threads t] [--newton-max particles]\n", argv[0]);
+                      "[--mass auto|rowsum|lanczos] [--threads t] [--newton-max particles]\n",
+              argv[0]);
       return 2;
     }
   }
@@ -181,9 +203,9 @@ int main(int argc, char **argv) {
   }
   printf("# threads %d; times in s, memory in MiB; passes = trial force passes\n",
          pdk_ctx_num_threads(ctx));
-  printf("%-3s %8s %-6s %8s %6s %7s %8s %6s %7s %7s %7s %7s %7s %8s %6s %8s %8s %9s\n", "dim",
+  printf("%-3s %8s %-6s %8s %6s %7s %8s %6s %7s %7s %7s %7s %7s %7s %8s %6s %8s %8s %9s\n", "dim",
          "particles", "method", "unknowns", "iters", "passes", "setup", "mass", "assem", "analys",
-         "factor", "solve", "total", "K_MiB", "nnz/r", "L_MiB", "peak", "err");
+         "factor", "solve", "total", "cpu", "K_MiB", "nnz/r", "L_MiB", "peak", "err");
   for (int d = 0; d < num_dims; ++d) {
     const int dim = dims[d];
     const int def2[3] = {32, 64, 128}, def3[3] = {10, 14, 20};
@@ -194,15 +216,15 @@ int main(int argc, char **argv) {
       for (int q = 0; q < num_methods; ++q) {
         const long particles = dim == 2 ? (long)(np + 1) * (np + 1) : (long)(np + 1) * (np + 1) * (np + 1);
         if (methods[q] == PDK_STATIC_NEWTON && particles > nmax) continue;
-        run_result r = run(ctx, dim, np, (pdk_static_method)methods[q]);
+        run_result r = run(ctx, dim, np, (pdk_static_method)methods[q], mass);
         const pdk_static_stats *st = &r.st;
         const double mib = 1.0 / 1048576.0;
-        printf("%-3d %8d %-6s %8ld %6ld %7ld %8.3f %6.3f %7.3f %7.3f %7.3f %7.3f %7.2f %8.1f %6.1f %8.1f "
-               "%8.1f %9.2e\n",
+        printf("%-3d %8d %-6s %8ld %6ld %7ld %8.3f %6.3f %7.3f %7.3f %7.3f %7.3f %7.2f %7.2f %8.1f "
+               "%6.1f %8.1f %8.1f %9.2e\n",
                dim, (int)r.n, pdk_static_method_name((pdk_static_method)methods[q]),
                methods[q] == PDK_STATIC_NEWTON ? st->num_unknowns : 0L, st->iterations,
                st->force_passes, st->time_setup, st->time_mass, st->time_assembly,
-               st->time_analysis, st->time_factorization, st->time_solve, r.wall,
+               st->time_analysis, st->time_factorization, st->time_solve, r.wall, r.cpu,
                (double)st->tangent_bytes * mib, st->tangent_nnz_per_row,
                (double)st->factor_bytes * mib, (double)r.peak * mib, r.probe_error);
         fflush(stdout);

@@ -38,15 +38,18 @@
  *   LANCZOS  M_ii = safety/4 * 1.1 lambda_max(V^-1 K) V_i: a uniform fictitious density from a
  *            40-step Lanczos estimate of the top of the spectrum (40 passes; Lanczos converges
  *            from below, hence the 1.1), for horizons where the coloring is expensive;
- *   AUTO     ROW_SUM when it costs at most 512 force passes, LANCZOS otherwise.
+ *   AUTO     ROW_SUM when it costs at most 128 force passes (2-D, small horizons), LANCZOS
+ *            otherwise (row sums save ~30% of the iterations but cost dim x colors passes).
  *
  * Newton: K dx = r on the free components, K = -d r/d x assembled in compressed-column form by
  * finite differences of trial forces. Particles i and k are coupled when k lies within h hops of
  * i in the family graph (h = 1 for the bond-based PMB, 2 for the state-based LPS and
- * correspondence: every particle within 2 delta). Columns whose particles are more than 2 h delta
+ * correspondence: every particle within 2 delta). Columns whose particles are more than 2 h hops
  * apart share no row, so they are perturbed together: a greedy distance-2 coloring of the coupling
- * graph (over a cell list) gives the groups, and one assembly costs 2 dim colors trial passes
- * (central differences) or dim colors (forward), independent of the number of unknowns.
+ * graph (a breadth-first search to depth 2 h over the families; by distance 2 h delta over a cell
+ * list when that search would be too costly) gives the groups, and one assembly costs 2 dim colors
+ * trial passes (central differences) or dim colors (forward), independent of the number of
+ * unknowns.
  * Prescribed components are eliminated (their rows and columns dropped), which keeps a symmetric
  * tangent symmetric. An analytic tangent for the linear models would be a later speed-up.
  *   - Symmetry: a hyperelastic model (PMB, LPS, correspondence with an elastic law and no or
@@ -187,6 +190,7 @@ typedef struct pdk_static_stats {
   /* coloring of the coupling graph (Newton, ADR row sums) */
   int num_colors;
   int coupling_hops;          /* 1 (bond-based) or 2 (state-based) */
+  int coloring_geometric;     /* 1: colored by distance (R = 2 hops delta), not by the graph */
   long passes_per_tangent;    /* trial passes of one difference tangent: 2 dim colors or dim colors + 1 */
   /* ADR */
   pdk_adr_mass adr_mass;      /* the mass actually used */
