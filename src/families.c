@@ -34,7 +34,6 @@
  */
 #define _DEFAULT_SOURCE /* sysconf(_SC_PHYS_PAGES) */
 #include <math.h>
-#include <omp.h>
 #include <string.h>
 #include <unistd.h>
 #if defined(__SSE2__)

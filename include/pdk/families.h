@@ -21,6 +21,11 @@
  * Exact rule: with r2max = (delta * delta) * (1 + PDK_HORIZON_RTOL) evaluated in double, j is a
  * neighbour of i when r2 <= r2max, where r2 = (dx*dx + dy*dy) + dz*dz, dx = X_j - X_i (x, y, z),
  * each operation rounded to double, no fused multiply-add.
+ * The tolerance covers the round-off of generated lattice coordinates (about 1e-16 |X| each) while
+ * |X| stays within a few thousand horizons of the origin (a square lattice at m = 2 kept every bond
+ * at 4000 horizons and lost some at 10^4 for a spacing of 1e-3): with a horizon that is an exact
+ * multiple of the spacing (m = 2, 3), generate lattices near the origin, or use a factor without
+ * exact ties such as m = 3.015.
  *
  * Speed: the build is fastest when the store was first reordered by the cells it uses:
  *   pdk_particles_reorder_morton(p, pdk_families_cell_edge(p, delta), NULL);
