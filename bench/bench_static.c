@@ -11,7 +11,7 @@
  * creation (coloring, fictitious mass, pattern) to the converged state.
  *
  * Usage: bench_static [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] [--threads t]
- *                     [--mass auto|rowsum|lanczos] (ADR fictitious mass)
+ *                     [--mass auto|rowsum|lanczos] (ADR fictitious mass) [--repeat r]
  *   defaults: 2-D NP 32,64,128 and 3-D n 10,14,20 (cubes of (n+1)^3 nodes), both methods.
  *   --newton-max N skips Newton above N particles (default 70000 in 2-D, 5000 in 3-D: the 3-D
  *   Cholesky factor grows as n^(4/3) and the netlib BLAS on this machine makes it slow).
@@ -28,13 +28,13 @@
 
 #include "pdk/pdk.h"
 
-#define CHECK(ctx, expr)                                                                          \
-  do {                                                                                            \
-    int err_ = (expr);                                                                            \
-    if (err_) {                                                                                   \
-      fprintf(stderr, "%s failed: %s\n", #expr, pdk_ctx_error_message(ctx));                      \
-      exit(1);                                                                                    \
-    }                                                                                             \
+#define CHECK(ctx, expr)                                                                           \
+  do {                                                                                             \
+    int err_ = (expr);                                                                             \
+    if (err_) {                                                                                    \
+      fprintf(stderr, "%s failed: %s\n", #expr, pdk_ctx_error_message(ctx));                       \
+      exit(1);                                                                                     \
+    }                                                                                              \
   } while (0)
 
 typedef struct run_result {
@@ -49,8 +49,8 @@ typedef struct run_result {
 static double cpu_seconds(void) {
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);
-  return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec + (double)ru.ru_stime.tv_sec +
-         1e-6 * (double)ru.ru_stime.tv_usec;
+  return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
+         (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
 static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, pdk_adr_mass mass) {
@@ -59,7 +59,8 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
   lo.type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
   lo.node_type = 1;
   lo.spacing = h;
-  for (int a = 0; a < 3; ++a) lo.hi[a] = W;
+  for (int a = 0; a < 3; ++a)
+    lo.hi[a] = W;
   pdk_particles *p;
   pdk_families *fam;
   pdk_model *m;
@@ -77,8 +78,10 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
     for (int hi = 0; hi < 2; ++hi) {
       double s0[3] = {-big, -big, -big}, s1[3] = {big, big, big};
       s0[up] = e;
-      if (hi) s0[a] = W - e;
-      else s1[a] = e;
+      if (hi)
+        s0[a] = W - e;
+      else
+        s1[a] = e;
       pdk_region side = pdk_region_box(s0, s1);
       CHECK(ctx, pdk_particles_set_define(p, side_names[a][hi], &side, NULL));
     }
@@ -157,11 +160,17 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
   return r;
 }
 
+static int cmp_double(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
 int main(int argc, char **argv) {
   int dims[2] = {2, 3}, num_dims = 2, threads = 0, sizes[16], num_sizes = 0;
   int methods[2] = {PDK_STATIC_ADR, PDK_STATIC_NEWTON}, num_methods = 2;
   long newton_max = -1;
   pdk_adr_mass mass = PDK_ADR_MASS_AUTO;
+  int repeat = 1;
   for (int a = 1; a < argc; ++a) {
     if (!strcmp(argv[a], "--dim") && a + 1 < argc) {
       dims[0] = atoi(argv[++a]);
@@ -175,20 +184,28 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[a], "--method") && a + 1 < argc) {
       const char *mth = argv[++a];
       num_methods = 1;
-      if (!strcmp(mth, "adr")) methods[0] = PDK_STATIC_ADR;
-      else if (!strcmp(mth, "newton")) methods[0] = PDK_STATIC_NEWTON;
-      else num_methods = 2;
+      if (!strcmp(mth, "adr"))
+        methods[0] = PDK_STATIC_ADR;
+      else if (!strcmp(mth, "newton"))
+        methods[0] = PDK_STATIC_NEWTON;
+      else
+        num_methods = 2;
+    } else if (!strcmp(argv[a], "--repeat") && a + 1 < argc) {
+      repeat = atoi(argv[++a]);
+      if (repeat < 1 || repeat > 15) repeat = 1;
     } else if (!strcmp(argv[a], "--threads") && a + 1 < argc) {
       threads = atoi(argv[++a]);
     } else if (!strcmp(argv[a], "--mass") && a + 1 < argc) {
       const char *mm = argv[++a];
-      mass = !strcmp(mm, "rowsum") ? PDK_ADR_MASS_ROW_SUM
-                                   : !strcmp(mm, "lanczos") ? PDK_ADR_MASS_LANCZOS : PDK_ADR_MASS_AUTO;
+      mass = !strcmp(mm, "rowsum")    ? PDK_ADR_MASS_ROW_SUM
+             : !strcmp(mm, "lanczos") ? PDK_ADR_MASS_LANCZOS
+                                      : PDK_ADR_MASS_AUTO;
     } else if (!strcmp(argv[a], "--newton-max") && a + 1 < argc) {
       newton_max = atol(argv[++a]);
     } else {
-      fprintf(stderr, "usage: %s [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] "
-                      "[--mass auto|rowsum|lanczos] [--threads t] [--newton-max particles]\n",
+      fprintf(stderr,
+              "usage: %s [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] "
+              "[--mass auto|rowsum|lanczos] [--threads t] [--newton-max particles]\n",
               argv[0]);
       return 2;
     }
@@ -201,8 +218,9 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s\n", why);
     return 1;
   }
-  printf("# threads %d; times in s, memory in MiB; passes = trial force passes\n",
-         pdk_ctx_num_threads(ctx));
+  printf("# threads %d, %d repeat(s) (total and cpu: medians; phases: last run); times in s, "
+         "memory in MiB; passes = trial force passes\n",
+         pdk_ctx_num_threads(ctx), repeat);
   printf("%-3s %8s %-6s %8s %6s %7s %8s %6s %7s %7s %7s %7s %7s %7s %8s %6s %8s %8s %9s\n", "dim",
          "particles", "method", "unknowns", "iters", "passes", "setup", "mass", "assem", "analys",
          "factor", "solve", "total", "cpu", "K_MiB", "nnz/r", "L_MiB", "peak", "err");
@@ -214,9 +232,21 @@ int main(int argc, char **argv) {
     for (int k = 0; k < ns; ++k) {
       const int np = num_sizes ? sizes[k] : (dim == 2 ? def2[k] : def3[k]);
       for (int q = 0; q < num_methods; ++q) {
-        const long particles = dim == 2 ? (long)(np + 1) * (np + 1) : (long)(np + 1) * (np + 1) * (np + 1);
+        const long particles =
+            dim == 2 ? (long)(np + 1) * (np + 1) : (long)(np + 1) * (np + 1) * (np + 1);
         if (methods[q] == PDK_STATIC_NEWTON && particles > nmax) continue;
-        run_result r = run(ctx, dim, np, (pdk_static_method)methods[q], mass);
+        /* median of the wall and CPU times over the repeats; stats from the last run */
+        double walls[15], cpus[15];
+        run_result r;
+        for (int t = 0; t < repeat; ++t) {
+          r = run(ctx, dim, np, (pdk_static_method)methods[q], mass);
+          walls[t] = r.wall;
+          cpus[t] = r.cpu;
+        }
+        qsort(walls, (size_t)repeat, sizeof(double), cmp_double);
+        qsort(cpus, (size_t)repeat, sizeof(double), cmp_double);
+        r.wall = walls[repeat / 2];
+        r.cpu = cpus[repeat / 2];
         const pdk_static_stats *st = &r.st;
         const double mib = 1.0 / 1048576.0;
         printf("%-3d %8d %-6s %8ld %6ld %7ld %8.3f %6.3f %7.3f %7.3f %7.3f %7.3f %7.2f %7.2f %8.1f "

@@ -23,9 +23,10 @@
  * Row sums cost dim x colors + 1 passes: 65 in 2-D at RF 1.5, ~470 in 3-D. They save about 30%
  * of the iterations against the Lanczos mass below (bench/README.md: 871 vs 1245 at 16641 particles
  * in 2-D, 330 vs 396 at 29791 in 3-D), which pays only when the passes are few; AUTO takes them up
- * to 128 passes. Otherwise (3-D, large horizons) a uniform density is used: M_ii = 1.1 lambda_max(V^-1 K) V_i / 4 from 40 Lanczos steps (V-inner product,
- * trial force differences, as the explicit solver's stable-step estimate); Lanczos approaches
- * lambda_max from below, hence the factor 1.1.
+ * to 128 passes. Otherwise (3-D, large horizons) a uniform density is used: M_ii = 1.1
+ * lambda_max(V^-1 K) V_i / 4 from 40 Lanczos steps (V-inner product, trial force differences, as
+ * the explicit solver's stable-step estimate); Lanczos approaches lambda_max from below, hence the
+ * factor 1.1.
  *
  * All vector updates run over fixed blocks (static schedule); the two sums of the Rayleigh
  * quotient are formed per block and added in block order: bitwise the same for any thread count.
@@ -68,7 +69,8 @@ static int mass_row_sum(pdk_static *s) {
   PDK_CHECK_GOTO(saved, ctx, PDK_ERR_MEMORY, "adr: out of memory for the mass estimate");
   PDK_CALL_GOTO(pdk_model_force_trial(s->m, NULL));
   s->stats.force_passes++;
-  for (int c = 0; c < dim; ++c) memcpy(f0[c], field(s->p, "f", c), (size_t)n * sizeof(double));
+  for (int c = 0; c < dim; ++c)
+    memcpy(f0[c], field(s->p, "f", c), (size_t)n * sizeof(double));
   for (int k = 0; k < s->num_colors; ++k)
     for (int d = 0; d < dim; ++d) {
       memcpy(saved, field(s->p, "x", d), (size_t)n * sizeof(double));
@@ -81,14 +83,18 @@ static int mass_row_sum(pdk_static *s) {
         double *mc = a->mass[c];
         const double *f0c = f0[c];
         const int nt = ctx->num_threads;
-#pragma omp parallel for default(none) shared(f, mc, f0c, vol, n, h) schedule(static) num_threads(nt)
-        for (pdk_index i = 0; i < n; ++i) mc[i] += fabs(vol[i] * (f[i] - f0c[i])) / h;
+#pragma omp parallel for default(none) shared(f, mc, f0c, vol, n, h) schedule(static)              \
+    num_threads(nt)
+        for (pdk_index i = 0; i < n; ++i)
+          mc[i] += fabs(vol[i] * (f[i] - f0c[i])) / h;
       }
     }
   /* restore "f" to the forces at the current state */
-  for (int c = 0; c < dim; ++c) memcpy(field(s->p, "f", c), f0[c], (size_t)n * sizeof(double));
+  for (int c = 0; c < dim; ++c)
+    memcpy(field(s->p, "f", c), f0[c], (size_t)n * sizeof(double));
 cleanup:
-  for (int c = 0; c < dim; ++c) free(f0[c]);
+  for (int c = 0; c < dim; ++c)
+    free(f0[c]);
   free(saved);
   return err;
 }
@@ -110,8 +116,10 @@ static double tridiag_max_eig(const double *alpha, const double *beta, int k) {
       if (d == 0.0) d = -1e-300;
       if (d < 0) count++;
     }
-    if (count == k) hi = mid;
-    else lo = mid;
+    if (count == k)
+      hi = mid;
+    else
+      lo = mid;
   }
   return hi;
 }
@@ -138,11 +146,13 @@ static int mass_lanczos(pdk_static *s, double *lambda_max) {
   }
   PDK_CALL_GOTO(pdk_model_force_trial(s->m, NULL));
   s->stats.force_passes++;
-  for (int c = 0; c < dim; ++c) memcpy(f0[c], field(s->p, "f", c), (size_t)n * sizeof(double));
+  for (int c = 0; c < dim; ++c)
+    memcpy(f0[c], field(s->p, "f", c), (size_t)n * sizeof(double));
   double norm2 = 0.0; /* start vector: pseudo-random from the particle id (order independent) */
   for (int c = 0; c < dim; ++c)
     for (pdk_index i = 0; i < n; ++i) {
-      uint64_t hsh = (uint64_t)id[i] * 0x9E3779B97F4A7C15ull + (uint64_t)c * 0xBF58476D1CE4E5B9ull + 7;
+      uint64_t hsh =
+          (uint64_t)id[i] * 0x9E3779B97F4A7C15ull + (uint64_t)c * 0xBF58476D1CE4E5B9ull + 7;
       hsh ^= hsh >> 31;
       hsh *= 0x94D049BB133111EBull;
       hsh ^= hsh >> 29;
@@ -150,17 +160,20 @@ static int mass_lanczos(pdk_static *s, double *lambda_max) {
       norm2 += vol[i] * q[c][i] * q[c][i];
     }
   for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i) q[c][i] /= sqrt(norm2);
+    for (pdk_index i = 0; i < n; ++i)
+      q[c][i] /= sqrt(norm2);
   int k;
   beta[0] = 0.0;
   for (k = 0; k < kmax; ++k) {
     double qmax = 0.0;
     for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) qmax = fmax(qmax, fabs(q[c][i]));
+      for (pdk_index i = 0; i < n; ++i)
+        qmax = fmax(qmax, fabs(q[c][i]));
     const double eps = 1e-7 * s->horizon / qmax;
     for (int c = 0; c < dim; ++c) {
       double *x = field(s->p, "x", c);
-      for (pdk_index i = 0; i < n; ++i) x[i] = x0[c][i] + eps * q[c][i];
+      for (pdk_index i = 0; i < n; ++i)
+        x[i] = x0[c][i] + eps * q[c][i];
     }
     PDK_CALL_GOTO(pdk_model_force_trial(s->m, NULL));
     s->stats.force_passes++;
@@ -191,10 +204,11 @@ static int mass_lanczos(pdk_static *s, double *lambda_max) {
       }
   }
   *lambda_max = tridiag_max_eig(alpha, beta, k);
-  PDK_CHECK_GOTO(isfinite(*lambda_max) && *lambda_max > 0, ctx, PDK_ERR_NUMERIC,
-                 "adr: the stiffness bound for the fictitious mass is %g; the body has no stiffness "
-                 "(no bonds?)",
-                 *lambda_max);
+  PDK_CHECK_GOTO(
+      isfinite(*lambda_max) && *lambda_max > 0, ctx, PDK_ERR_NUMERIC,
+      "adr: the stiffness bound for the fictitious mass is %g; the body has no stiffness "
+      "(no bonds?)",
+      *lambda_max);
 cleanup:
   for (int c = 0; c < dim; ++c) {
     if (x0[c]) memcpy(field(s->p, "x", c), x0[c], (size_t)n * sizeof(double));
@@ -227,7 +241,7 @@ int pdk_adr_setup(pdk_static *s) {
   if (kind != PDK_ADR_MASS_LANCZOS) PDK_CALL(pdk_static_color(s));
   if (kind == PDK_ADR_MASS_AUTO)
     kind = (long)dim * s->num_colors + 1 <= PDK_ADR_ROWSUM_MAX_PASSES ? PDK_ADR_MASS_ROW_SUM
-                                                                     : PDK_ADR_MASS_LANCZOS;
+                                                                      : PDK_ADR_MASS_LANCZOS;
   const double safety = s->opts.adr_safety;
   double mmin = HUGE_VAL, mmax = 0.0;
   if (kind == PDK_ADR_MASS_ROW_SUM) {
@@ -313,7 +327,7 @@ static void rayleigh_sums(pdk_static *s, double *num, double *den) {
   }
   double *part = s->block_part;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none) shared(x, X, r, rp, v, M, fixed, part, n, num_blocks, dim) \
+#pragma omp parallel for default(none) shared(x, X, r, rp, v, M, fixed, part, n, num_blocks, dim)  \
     schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_STATIC_BLOCK;
@@ -348,7 +362,7 @@ static void update(pdk_static *s, double cv, double cd) {
     double *x = field(s->p, "x", c), *v = a->v[c];
     const double *r = s->r[c], *M = a->mass[c];
     const uint8_t *fixed = s->fixed[c];
-#pragma omp parallel for default(none) shared(x, v, r, M, fixed, n, cv, cd) schedule(static) \
+#pragma omp parallel for default(none) shared(x, v, r, M, fixed, n, cv, cd) schedule(static)       \
     num_threads(nt)
     for (pdk_index i = 0; i < n; ++i) {
       if (fixed[i]) {

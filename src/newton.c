@@ -53,12 +53,12 @@ typedef struct newton_state {
   int *Ap, *Ai, *tpos, *diag_pos;
   double *Ax;
   int64_t nnz;
-  double *diag_full[3];          /* [n] diagonal of the full tangent, prescribed included */
-  double *fa[3];                 /* [n] forces of the + pass (central) or the base (forward) */
-  double *h_plus, *h_minus;      /* [n] */
-  double *saved;                 /* [n] */
-  double *x0[3];                 /* [n] line-search base */
-  double *rhs, *dx;              /* [nf] */
+  double *diag_full[3];           /* [n] diagonal of the full tangent, prescribed included */
+  double *fa[3];                  /* [n] forces of the + pass (central) or the base (forward) */
+  double *h_plus, *h_minus;       /* [n] */
+  double *saved;                  /* [n] */
+  double *x0[3];                  /* [n] line-search base */
+  double *rhs, *dx;               /* [nf] */
   pdk_index *ident_start, *ident; /* [n+1], [n]: one particle per group (reference tangent) */
   double k_ref;
   double kfro; /* ||K||_F of the last tangent */
@@ -71,7 +71,8 @@ typedef struct newton_state {
   double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
   int factor_kind; /* 1 CHOLMOD, 2 UMFPACK: which factor the solve uses */
   int have_null;   /* 1: ns->rhs holds the near-null vector of the current factor */
-  int checked_level, checked_round; /* last (level, round) whose tangent was checked by inverse iteration */
+  int checked_level,
+      checked_round; /* last (level, round) whose tangent was checked by inverse iteration */
 } newton_state;
 
 static double *field(pdk_particles *p, const char *name, int c) {
@@ -98,11 +99,13 @@ static int model_hyperelastic(const pdk_model *m) {
 /* Eigen-decomposition of a symmetric m x m matrix (m <= 6) by cyclic Jacobi rotations. */
 static void jacobi_eig(int m, double A[6][6], double w[6], double V[6][6]) {
   for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) V[i][j] = i == j;
+    for (int j = 0; j < m; ++j)
+      V[i][j] = i == j;
   for (int sweep = 0; sweep < 60; ++sweep) {
     double off = 0.0;
     for (int p = 0; p < m; ++p)
-      for (int q = p + 1; q < m; ++q) off += A[p][q] * A[p][q];
+      for (int q = p + 1; q < m; ++q)
+        off += A[p][q] * A[p][q];
     if (off == 0.0) break;
     for (int p = 0; p < m; ++p)
       for (int q = p + 1; q < m; ++q) {
@@ -127,7 +130,8 @@ static void jacobi_eig(int m, double A[6][6], double w[6], double V[6][6]) {
         }
       }
   }
-  for (int i = 0; i < m; ++i) w[i] = A[i][i];
+  for (int i = 0; i < m; ++i)
+    w[i] = A[i][i];
 }
 
 /* Gram matrix of the rigid modes restricted to the prescribed components; a (numerically) zero
@@ -144,24 +148,28 @@ static int check_held(pdk_static *s) {
                         dim == 3 ? pdk_particles_X(s->p, 2) : NULL};
   double centre[3] = {0, 0, 0}, lref = 0.0;
   for (int a = 0; a < dim; ++a) {
-    for (pdk_index i = 0; i < n; ++i) centre[a] += X[a][i];
+    for (pdk_index i = 0; i < n; ++i)
+      centre[a] += X[a][i];
     centre[a] /= (double)n;
   }
   for (pdk_index i = 0; i < n; ++i) {
     double r2 = 0.0;
-    for (int a = 0; a < dim; ++a) r2 += (X[a][i] - centre[a]) * (X[a][i] - centre[a]);
+    for (int a = 0; a < dim; ++a)
+      r2 += (X[a][i] - centre[a]) * (X[a][i] - centre[a]);
     lref = fmax(lref, sqrt(r2));
   }
   if (!(lref > 0)) lref = 1.0;
   double G[6][6] = {{0}}, w[6], V[6][6];
   for (pdk_index i = 0; i < n; ++i) {
     double r[3] = {0, 0, 0};
-    for (int a = 0; a < dim; ++a) r[a] = (X[a][i] - centre[a]) / lref;
+    for (int a = 0; a < dim; ++a)
+      r[a] = (X[a][i] - centre[a]) / lref;
     for (int c = 0; c < dim; ++c) {
       if (!s->fixed[c][i]) continue;
       double phi[6] = {0};
       phi[c] = 1.0; /* translation c */
-      if (dim == 2) phi[2] = c == 0 ? -r[1] : r[0];
+      if (dim == 2)
+        phi[2] = c == 0 ? -r[1] : r[0];
       else {
         /* rotation about axis a: (e_a x r)_c */
         phi[3] = c == 0 ? 0.0 : (c == 1 ? -r[2] : r[1]);
@@ -169,11 +177,13 @@ static int check_held(pdk_static *s) {
         phi[5] = c == 0 ? -r[1] : (c == 1 ? r[0] : 0.0);
       }
       for (int k = 0; k < m; ++k)
-        for (int l = 0; l < m; ++l) G[k][l] += phi[k] * phi[l];
+        for (int l = 0; l < m; ++l)
+          G[k][l] += phi[k] * phi[l];
     }
   }
   double trace = 0.0;
-  for (int k = 0; k < m; ++k) trace += G[k][k];
+  for (int k = 0; k < m; ++k)
+    trace += G[k][k];
   jacobi_eig(m, G, w, V);
   char free_modes[512] = "";
   int num_free = 0;
@@ -247,14 +257,16 @@ static int build_pattern(pdk_static *s) {
   int32_t *const *dof_of = ns->dof_of;
   const int nt = ctx->num_threads;
   int err = PDK_SUCCESS;
-  int64_t *rows_of = NULL; /* [n] free rows coupled to particle i */
+  int64_t *rows_of = NULL;   /* [n] free rows coupled to particle i */
   pdk_index *scratch = NULL; /* [nt][2n]: stamp and list per thread */
   rows_of = malloc((size_t)n * sizeof *rows_of);
   scratch = malloc((size_t)nt * 2 * (size_t)n * sizeof *scratch);
   PDK_CHECK_GOTO(rows_of && scratch, ctx, PDK_ERR_MEMORY,
                  "newton: out of memory building the tangent pattern (%d particles)", (int)n);
-  for (size_t k = 0; k < (size_t)nt * 2 * (size_t)n; ++k) scratch[k] = -1;
-#pragma omp parallel default(none) shared(bs, bj, hops, n, dim, dof_of, rows_of, scratch) num_threads(nt)
+  for (size_t k = 0; k < (size_t)nt * 2 * (size_t)n; ++k)
+    scratch[k] = -1;
+#pragma omp parallel default(none) shared(bs, bj, hops, n, dim, dof_of, rows_of, scratch)          \
+    num_threads(nt)
   {
     pdk_index *stamp = scratch + (size_t)2 * n * (size_t)omp_get_thread_num();
     pdk_index *list = stamp + n;
@@ -263,7 +275,8 @@ static int build_pattern(pdk_static *s) {
       const pdk_index cnt = coupled(bs, bj, hops, i, stamp, list);
       int64_t rows = 0;
       for (pdk_index q = 0; q < cnt; ++q)
-        for (int e = 0; e < dim; ++e) rows += dof_of[e][list[q]] >= 0;
+        for (int e = 0; e < dim; ++e)
+          rows += dof_of[e][list[q]] >= 0;
       rows_of[i] = rows;
     }
   }
@@ -282,8 +295,8 @@ static int build_pattern(pdk_static *s) {
   ns->tpos = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *ns->tpos);
   ns->diag_pos = malloc((size_t)(ns->nf > 0 ? ns->nf : 1) * sizeof *ns->diag_pos);
   PDK_CHECK_GOTO(ns->Ap && ns->Ai && ns->Ax && ns->tpos && ns->diag_pos, ctx, PDK_ERR_MEMORY,
-                 "newton: out of memory for a tangent of %lld nonzeros (%.1f MiB)",
-                 (long long)nnz, (double)nnz * 20.0 / 1048576.0);
+                 "newton: out of memory for a tangent of %lld nonzeros (%.1f MiB)", (long long)nnz,
+                 (double)nnz * 20.0 / 1048576.0);
   {
     int *Ap = ns->Ap;
     int64_t pos = 0;
@@ -295,7 +308,8 @@ static int build_pattern(pdk_static *s) {
           Ap[dof_of[c][i] + 1] = (int)pos;
         }
   }
-  for (size_t k = 0; k < (size_t)nt * 2 * (size_t)n; ++k) scratch[k] = -1;
+  for (size_t k = 0; k < (size_t)nt * 2 * (size_t)n; ++k)
+    scratch[k] = -1;
   int *Ap = ns->Ap, *Ai = ns->Ai, *diag_pos = ns->diag_pos;
 #pragma omp parallel default(none) shared(bs, bj, hops, n, dim, dof_of, scratch, Ap, Ai, diag_pos) \
     num_threads(nt)
@@ -324,8 +338,10 @@ static int build_pattern(pdk_static *s) {
     const long nf = ns->nf;
     int *tpos = ns->tpos;
     int bad = 0;
-#pragma omp parallel for default(none) shared(Ap, Ai, tpos, nf) reduction(| : bad) schedule(static) \
-    num_threads(nt)
+    /* clang-format off */
+#pragma omp parallel for default(none) shared(Ap, Ai, tpos, nf) reduction(| : bad) \
+    schedule(static) num_threads(nt)
+    /* clang-format on */
     for (long col = 0; col < nf; ++col)
       for (int k = Ap[col]; k < Ap[col + 1]; ++k) {
         const int r = Ai[k];
@@ -336,8 +352,10 @@ static int build_pattern(pdk_static *s) {
             found = mid;
             break;
           }
-          if (Ai[mid] < (int)col) lo = mid + 1;
-          else hi = mid - 1;
+          if (Ai[mid] < (int)col)
+            lo = mid + 1;
+          else
+            hi = mid - 1;
         }
         if (found < 0) bad = 1;
         tpos[k] = found < 0 ? k : found;
@@ -377,8 +395,10 @@ int pdk_newton_setup(pdk_static *s) {
             "newton: out of memory for %d particles", (int)n);
   long nf = 0;
   for (pdk_index i = 0; i < n; ++i)
-    for (int c = 0; c < dim; ++c) ns->dof_of[c][i] = s->fixed[c][i] ? -1 : (int32_t)nf++;
-  PDK_CHECK(nf <= INT_MAX - 1, ctx, PDK_ERR_MEMORY, "newton: %ld unknowns exceed 32-bit indices", nf);
+    for (int c = 0; c < dim; ++c)
+      ns->dof_of[c][i] = s->fixed[c][i] ? -1 : (int32_t)nf++;
+  PDK_CHECK(nf <= INT_MAX - 1, ctx, PDK_ERR_MEMORY, "newton: %ld unknowns exceed 32-bit indices",
+            nf);
   ns->nf = nf;
   ns->dof_particle = malloc((size_t)(nf > 0 ? nf : 1) * sizeof *ns->dof_particle);
   ns->dof_comp = malloc((size_t)(nf > 0 ? nf : 1));
@@ -406,10 +426,10 @@ int pdk_newton_setup(pdk_static *s) {
   ns->control[UMFPACK_SCALE] = UMFPACK_SCALE_NONE; /* pivots comparable with k_ref */
   s->stats.tangent_nnz = ns->nnz;
   s->stats.tangent_nnz_per_row = (double)ns->nnz / (double)nf;
-  s->stats.tangent_bytes = ((size_t)nf + 1) * sizeof(int) + (size_t)ns->nnz * (2 * sizeof(int) + sizeof(double));
-  s->stats.passes_per_tangent = s->opts.fd_scheme == PDK_FD_CENTRAL
-                                    ? 2L * dim * s->num_colors
-                                    : (long)dim * s->num_colors + 1;
+  s->stats.tangent_bytes =
+      ((size_t)nf + 1) * sizeof(int) + (size_t)ns->nnz * (2 * sizeof(int) + sizeof(double));
+  s->stats.passes_per_tangent = s->opts.fd_scheme == PDK_FD_CENTRAL ? 2L * dim * s->num_colors
+                                                                    : (long)dim * s->num_colors + 1;
   s->stats.time_setup += pdk_wtime() - t0;
   return PDK_SUCCESS;
 }
@@ -464,9 +484,9 @@ static void scatter(pdk_static *s, const pdk_index *members, pdk_index count, in
   double *diag_d = ns->diag_full[d];
   const double *hp = ns->h_plus, *hm = ns->h_minus;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none)                                                            \
-    shared(members, count, d, upper, lower, central, vol, Ap, Ai, Ax, dof_particle, dof_comp,     \
-               dof_d, diag_d, hp, hm) schedule(static) num_threads(nt)
+#pragma omp parallel for default(none)                                                             \
+    shared(members, count, d, upper, lower, central, vol, Ap, Ai, Ax, dof_particle, dof_comp,      \
+           dof_d, diag_d, hp, hm) schedule(static) num_threads(nt)
   for (pdk_index q = 0; q < count; ++q) {
     const pdk_index i = members[q];
     const double denom = central ? hp[i] + hm[i] : hp[i];
@@ -494,12 +514,16 @@ static int assemble(pdk_static *s, int num_groups, const pdk_index *group_start,
   const double t0 = pdk_wtime();
   double *f[3] = {NULL, NULL, NULL};
   double *fbase[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < dim; ++c) f[c] = field(s->p, "f", c);
+  for (int c = 0; c < dim; ++c)
+    f[c] = field(s->p, "f", c);
   /* "f" holds the forces at x (the last residual evaluation): keep them to put back */
-  for (int c = 0; c < dim; ++c) fbase[c] = ns->x0[c]; /* x0 is free until the line search */
-  for (int c = 0; c < dim; ++c) memcpy(fbase[c], f[c], (size_t)n * sizeof(double));
+  for (int c = 0; c < dim; ++c)
+    fbase[c] = ns->x0[c]; /* x0 is free until the line search */
+  for (int c = 0; c < dim; ++c)
+    memcpy(fbase[c], f[c], (size_t)n * sizeof(double));
   if (!central) /* base forces at x for forward differences */
-    for (int c = 0; c < dim; ++c) memcpy(ns->fa[c], f[c], (size_t)n * sizeof(double));
+    for (int c = 0; c < dim; ++c)
+      memcpy(ns->fa[c], f[c], (size_t)n * sizeof(double));
   for (int g = 0; g < num_groups; ++g) {
     const pdk_index *mem = members + group_start[g];
     const pdk_index count = group_start[g + 1] - group_start[g];
@@ -511,27 +535,34 @@ static int assemble(pdk_static *s, int num_groups, const pdk_index *group_start,
         x[i] = ns->saved[i] + h;
         ns->h_plus[i] = x[i] - ns->saved[i];
       }
-      PDK_CALL(pdk_model_force_trial(s->m, NULL));
+      int err = pdk_model_force_trial(s->m, NULL);
       s->stats.force_passes++;
-      if (central) {
-        for (int c = 0; c < dim; ++c) memcpy(ns->fa[c], f[c], (size_t)n * sizeof(double));
+      if (!err && central) {
+        for (int c = 0; c < dim; ++c)
+          memcpy(ns->fa[c], f[c], (size_t)n * sizeof(double));
         for (pdk_index q = 0; q < count; ++q) {
           const pdk_index i = mem[q];
           x[i] = ns->saved[i] - h;
           ns->h_minus[i] = ns->saved[i] - x[i];
         }
-        PDK_CALL(pdk_model_force_trial(s->m, NULL));
+        err = pdk_model_force_trial(s->m, NULL);
         s->stats.force_passes++;
       }
-      for (pdk_index q = 0; q < count; ++q) x[mem[q]] = ns->saved[mem[q]];
-      if (central) scatter(s, mem, count, d, ns->fa, f, 1);
-      else scatter(s, mem, count, d, f, ns->fa, 0);
+      for (pdk_index q = 0; q < count; ++q)
+        x[mem[q]] = ns->saved[mem[q]]; /* also on failure */
+      if (err) return err;
+      if (central)
+        scatter(s, mem, count, d, ns->fa, f, 1);
+      else
+        scatter(s, mem, count, d, f, ns->fa, 0);
     }
   }
-  for (int c = 0; c < dim; ++c) memcpy(f[c], fbase[c], (size_t)n * sizeof(double));
+  for (int c = 0; c < dim; ++c)
+    memcpy(f[c], fbase[c], (size_t)n * sizeof(double));
   double kmax = 0.0;
   for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i) kmax = fmax(kmax, fabs(ns->diag_full[c][i]));
+    for (pdk_index i = 0; i < n; ++i)
+      kmax = fmax(kmax, fabs(ns->diag_full[c][i]));
   ns->k_ref = kmax;
   s->stats.assemblies++;
   s->stats.time_assembly += pdk_wtime() - t0;
@@ -541,15 +572,19 @@ static int assemble(pdk_static *s, int num_groups, const pdk_index *group_start,
 int pdk_newton_tangent(pdk_static *s, int colored, int *num_cols, const int **col_start,
                        const int **row_index, const double **values) {
   newton_state *ns = s->newton;
-  PDK_CHECK(ns && ns->Ap, s->ctx, PDK_ERR_ARG, "newton: no tangent (not a Newton solver, or no unknowns)");
-  if (colored) PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
+  PDK_CHECK(ns && ns->Ap, s->ctx, PDK_ERR_ARG,
+            "newton: no tangent (not a Newton solver, or no unknowns)");
+  if (colored)
+    PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
   else {
     if (!ns->ident) {
       ns->ident_start = malloc(((size_t)s->n + 1) * sizeof *ns->ident_start);
       ns->ident = malloc((size_t)s->n * sizeof *ns->ident);
       PDK_CHECK(ns->ident_start && ns->ident, s->ctx, PDK_ERR_MEMORY, "newton: out of memory");
-      for (pdk_index i = 0; i <= s->n; ++i) ns->ident_start[i] = i;
-      for (pdk_index i = 0; i < s->n; ++i) ns->ident[i] = i;
+      for (pdk_index i = 0; i <= s->n; ++i)
+        ns->ident_start[i] = i;
+      for (pdk_index i = 0; i < s->n; ++i)
+        ns->ident[i] = i;
     }
     PDK_CALL(assemble(s, (int)s->n, ns->ident_start, ns->ident));
   }
@@ -560,7 +595,8 @@ int pdk_newton_tangent(pdk_static *s, int colored, int *num_cols, const int **co
   return PDK_SUCCESS;
 }
 
-/* ---- factorization and solve ------------------------------------------------------------------ */
+/* ---- factorization and solve ------------------------------------------------------------------
+ */
 
 static int solve_linear(pdk_static *s) {
   newton_state *ns = s->newton;
@@ -607,7 +643,8 @@ static double inverse_iteration(pdk_static *s) {
     ns->rhs[k] = (double)(h >> 11) / 9007199254740992.0 - 0.5;
     nrm += ns->rhs[k] * ns->rhs[k];
   }
-  for (long k = 0; k < ns->nf; ++k) ns->rhs[k] /= sqrt(nrm);
+  for (long k = 0; k < ns->nf; ++k)
+    ns->rhs[k] /= sqrt(nrm);
   double estimate = -1.0;
   for (int it = 0; it < 4; ++it) {
     if (solve_linear(s)) {
@@ -615,11 +652,13 @@ static double inverse_iteration(pdk_static *s) {
       return -1.0;
     }
     nrm = 0.0;
-    for (long k = 0; k < ns->nf; ++k) nrm += ns->dx[k] * ns->dx[k];
+    for (long k = 0; k < ns->nf; ++k)
+      nrm += ns->dx[k] * ns->dx[k];
     nrm = sqrt(nrm);
     if (!(nrm > 0) || !isfinite(nrm)) return -1.0;
     estimate = 1.0 / nrm;
-    for (long k = 0; k < ns->nf; ++k) ns->rhs[k] = ns->dx[k] / nrm;
+    for (long k = 0; k < ns->nf; ++k)
+      ns->rhs[k] = ns->dx[k] / nrm;
   }
   ns->have_null = 1;
   return estimate;
@@ -641,7 +680,8 @@ static double null_vector_rho(pdk_static *s, pdk_index *where) {
   for (int c = 0; c < dim; ++c) {
     u[c] = calloc((size_t)n, sizeof(double));
     if (!u[c]) {
-      for (int d = 0; d < c; ++d) free(u[d]);
+      for (int d = 0; d < c; ++d)
+        free(u[d]);
       return -1.0;
     }
   }
@@ -693,25 +733,29 @@ static double null_vector_rho(pdk_static *s, pdk_index *where) {
       det = A[0][0] * Ai[0][0] + A[0][1] * Ai[1][0] + A[0][2] * Ai[2][0];
       if (!(fabs(det) > 1e-12 * (A[0][0] * A[1][1] * A[2][2] + 1e-300))) continue;
       for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) Ai[a][c] /= det;
+        for (int c = 0; c < 3; ++c)
+          Ai[a][c] /= det;
     }
     double G[3][3] = {{0}};
     for (int a = 0; a < dim; ++a)
       for (int c = 0; c < dim; ++c)
-        for (int k = 0; k < dim; ++k) G[a][c] += B[a][k] * Ai[k][c];
+        for (int k = 0; k < dim; ++k)
+          G[a][c] += B[a][k] * Ai[k][c];
     for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
       if (alive && !alive[b]) continue;
       const pdk_index j = bj[b];
       for (int a = 0; a < dim; ++a) {
         const double du = u[a][j] - u[a][i];
         double fit = 0.0;
-        for (int c = 0; c < dim; ++c) fit += G[a][c] * (X[c][j] - X[c][i]);
+        for (int c = 0; c < dim; ++c)
+          fit += G[a][c] * (X[c][j] - X[c][i]);
         num += (du - fit) * (du - fit);
         den += du * du;
       }
     }
   }
-  for (int c = 0; c < dim; ++c) free(u[c]);
+  for (int c = 0; c < dim; ++c)
+    free(u[c]);
   return den > 0 ? num / den : -1.0;
 }
 
@@ -739,7 +783,8 @@ static int blame_singular(pdk_static *s, long dof, double ratio, int keep_prefix
     const pdk_bond_index *bs = pdk_families_bond_start(s->fam);
     const uint8_t *alive = pdk_model_bond_alive(s->m);
     intact = 0;
-    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) intact += alive ? alive[b] != 0 : 1;
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b)
+      intact += alive ? alive[b] != 0 : 1;
     const uint8_t *flag = pdk_particles_field_data(s->p, "flag", 0);
     flagged = flag && mo->kind == PDK_MODEL_CORRESPONDENCE ? flag[i] != 0 : 0;
   }
@@ -752,11 +797,13 @@ static int blame_singular(pdk_static *s, long dof, double ratio, int keep_prefix
   if (intact == 0)
     snprintf(cause, sizeof cause,
              "particle id %lld has no intact bonds (it came loose); Newton cannot place a free "
-             "particle: solve with ADR, or remove detached particles", id);
+             "particle: solve with ADR, or remove detached particles",
+             id);
   else if (flagged)
     snprintf(cause, sizeof cause,
              "the family of particle id %lld no longer spans the space, so its deformation "
-             "gradient (and stiffness) is undefined; solve with ADR or use semi-TL connectivity", id);
+             "gradient (and stiffness) is undefined; solve with ADR or use semi-TL connectivity",
+             id);
   else if (rho > 0.5)
     snprintf(cause, sizeof cause,
              "zero-energy modes: the near-null displacement (largest at particle id %lld) "
@@ -774,18 +821,18 @@ static int blame_singular(pdk_static *s, long dof, double ratio, int keep_prefix
              "conditions leave it free; constrain it, or solve with ADR",
              rho, peak_id);
   else
-    snprintf(cause, sizeof cause,
-             "%s; constrain the part that is not held, or solve with ADR",
+    snprintf(cause, sizeof cause, "%s; constrain the part that is not held, or solve with ADR",
              corr_unstab ? "zero-energy modes of correspondence without stabilization (V-Z), or "
                            "a part of the body that is not held"
                          : "a part of the body that is not held (not connected to the prescribed "
                            "particles through intact bonds)");
   return pdk_ctx_error_set(s->ctx, PDK_ERR_NUMERIC, "newton",
                            "%sthe tangent stiffness is singular at load level %d (load factor %g), "
-                           "round %d: smallest pivot or eigenvalue %.2e of the largest diagonal entry (singular_rtol %g)%s. "
+                           "round %d: smallest pivot or eigenvalue %.2e of the largest diagonal "
+                           "entry (singular_rtol %g)%s. "
                            "Likely cause: %s",
-                           prefix, s->level, s->lambda, s->round, ratio, s->opts.singular_rtol, where,
-                           cause);
+                           prefix, s->level, s->lambda, s->round, ratio, s->opts.singular_rtol,
+                           where, cause);
 }
 
 static double asymmetry(const newton_state *ns) {
@@ -900,16 +947,17 @@ static int factor_cholmod(pdk_static *s, int *not_posdef) {
   {
     const cholmod_factor *L = ns->L;
     s->stats.factor_nnz = (int64_t)cc->lnz;
-    s->stats.factor_bytes = L->is_super ? L->xsize * sizeof(double) + L->ssize * sizeof(int) +
-                                              (L->nsuper + 1) * 3 * sizeof(int)
-                                        : L->nzmax * (sizeof(double) + sizeof(int)) +
-                                              (L->n + 1) * 4 * sizeof(int);
+    s->stats.factor_bytes =
+        L->is_super
+            ? L->xsize * sizeof(double) + L->ssize * sizeof(int) + (L->nsuper + 1) * 3 * sizeof(int)
+            : L->nzmax * (sizeof(double) + sizeof(int)) + (L->n + 1) * 4 * sizeof(int);
     s->stats.factor_bytes += L->n * 2 * sizeof(int); /* Perm, ColCount */
   }
   ns->factor_kind = 1;
   if (min_pivot < s->opts.singular_rtol * ns->k_ref) {
     const int *perm = ns->L->Perm;
-    err = blame_singular(s, min_col >= 0 && perm ? perm[min_col] : min_col, min_pivot / ns->k_ref, 0);
+    err =
+        blame_singular(s, min_col >= 0 && perm ? perm[min_col] : min_col, min_pivot / ns->k_ref, 0);
     goto cleanup;
   }
   ns->factor_kind = 1;
@@ -1006,7 +1054,8 @@ static int factor_and_solve(pdk_static *s) {
     double xmax = 4.0 * s->horizon;
     for (int c = 0; c < s->dim; ++c) {
       const double *x = field(s->p, "x", c);
-      for (pdk_index i = 0; i < s->n; ++i) xmax = fmax(xmax, fabs(x[i]));
+      for (pdk_index i = 0; i < s->n; ++i)
+        xmax = fmax(xmax, fabs(x[i]));
     }
     s->floor = DBL_EPSILON * xmax * ns->kfro;
   }
@@ -1039,7 +1088,8 @@ static int factor_and_solve(pdk_static *s) {
   if (!done) PDK_CALL(factor_umfpack(s));
   /* Nearly singular tangents have tiny eigenvalues but not always tiny pivots: estimate the
    * smallest eigenvalue once per level and round (4 solves). */
-  if (s->opts.singular_rtol > 0 && (ns->checked_level != s->level || ns->checked_round != s->round)) {
+  if (s->opts.singular_rtol > 0 &&
+      (ns->checked_level != s->level || ns->checked_round != s->round)) {
     ns->checked_level = s->level;
     ns->checked_round = s->round;
     const double lmin = inverse_iteration(s);
@@ -1086,7 +1136,8 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
           it, s->level, s->lambda, s->round, s->rnorm, s->opts.rtol * s->fnorm + s->opts.atol,
           s->opts.rtol, s->fnorm, s->opts.atol);
     if (reuse) { /* the last full step contracted ||r|| by >= 1000: keep the factorized tangent */
-      for (long k = 0; k < ns->nf; ++k) ns->rhs[k] = s->r[ns->dof_comp[k]][ns->dof_particle[k]];
+      for (long k = 0; k < ns->nf; ++k)
+        ns->rhs[k] = s->r[ns->dof_comp[k]][ns->dof_particle[k]];
       PDK_CALL(solve_linear(s));
       s->stats.tangent_reuses++;
     } else {
@@ -1095,7 +1146,8 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
     }
     /* Backtracking line search on ||r||. */
     const double phi0 = s->rnorm;
-    for (int c = 0; c < dim; ++c) memcpy(ns->x0[c], field(s->p, "x", c), (size_t)n * sizeof(double));
+    for (int c = 0; c < dim; ++c)
+      memcpy(ns->x0[c], field(s->p, "x", c), (size_t)n * sizeof(double));
     double alpha = 1.0;
     int accepted = 0;
     for (int bt = 0; bt <= s->opts.max_backtracks; ++bt) {
@@ -1116,7 +1168,8 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
     *iterations = it + 1;
     reuse = s->opts.reuse_tangent && accepted && alpha == 1.0 && s->rnorm <= 1e-3 * phi0;
     if (!accepted) {
-      for (int c = 0; c < dim; ++c) memcpy(field(s->p, "x", c), ns->x0[c], (size_t)n * sizeof(double));
+      for (int c = 0; c < dim; ++c)
+        memcpy(field(s->p, "x", c), ns->x0[c], (size_t)n * sizeof(double));
       const double tried = s->rnorm;
       PDK_CALL(pdk_static_residual(s));
       return pdk_ctx_error_set(

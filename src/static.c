@@ -41,8 +41,6 @@ const char *pdk_static_method_name(pdk_static_method method) {
   return "?";
 }
 
-double pdk_static_wtime(void) { return pdk_wtime(); }
-
 static double *field(pdk_particles *p, const char *name, int c) {
   return pdk_particles_field_data(p, name, c);
 }
@@ -55,14 +53,14 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
             "%s: at most %d boundary conditions, got %d", name, PDK_STATIC_MAX_BCS, o->num_bcs);
   PDK_CHECK(o->num_bcs == 0 || o->bcs, ctx, PDK_ERR_ARG, "%s: %d conditions but bcs is NULL", name,
             o->num_bcs);
-  PDK_CHECK(o->num_levels >= 1, ctx, PDK_ERR_ARG, "%s: the number of load levels must be >= 1, got %d",
-            name, o->num_levels);
+  PDK_CHECK(o->num_levels >= 1, ctx, PDK_ERR_ARG,
+            "%s: the number of load levels must be >= 1, got %d", name, o->num_levels);
   PDK_CHECK(isfinite(o->rtol) && o->rtol >= 0 && isfinite(o->atol) && o->atol >= 0 &&
                 o->rtol + o->atol > 0,
-            ctx, PDK_ERR_ARG,
-            "%s: tolerances must be >= 0 and not both 0, got rtol %g, atol %g", name, o->rtol, o->atol);
-  PDK_CHECK(o->max_iterations > 0, ctx, PDK_ERR_ARG, "%s: max_iterations must be > 0, got %ld", name,
-            o->max_iterations);
+            ctx, PDK_ERR_ARG, "%s: tolerances must be >= 0 and not both 0, got rtol %g, atol %g",
+            name, o->rtol, o->atol);
+  PDK_CHECK(o->max_iterations > 0, ctx, PDK_ERR_ARG, "%s: max_iterations must be > 0, got %ld",
+            name, o->max_iterations);
   PDK_CHECK(o->max_break_rounds >= 0, ctx, PDK_ERR_ARG, "%s: max_break_rounds must be >= 0, got %d",
             name, o->max_break_rounds);
   PDK_CHECK((unsigned)o->adr_mass <= PDK_ADR_MASS_LANCZOS, ctx, PDK_ERR_ARG,
@@ -78,8 +76,8 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
             (int)o->linear_solver);
   PDK_CHECK(isfinite(o->sym_rtol) && o->sym_rtol >= 0, ctx, PDK_ERR_ARG,
             "%s: sym_rtol must be >= 0, got %g", name, o->sym_rtol);
-  PDK_CHECK(isfinite(o->singular_rtol) && o->singular_rtol >= 0 && o->singular_rtol < 1, ctx, PDK_ERR_ARG,
-            "%s: singular_rtol must be in [0, 1), got %g", name, o->singular_rtol);
+  PDK_CHECK(isfinite(o->singular_rtol) && o->singular_rtol >= 0 && o->singular_rtol < 1, ctx,
+            PDK_ERR_ARG, "%s: singular_rtol must be in [0, 1), got %g", name, o->singular_rtol);
   PDK_CHECK(o->max_backtracks >= 0 && o->max_backtracks <= 60, ctx, PDK_ERR_ARG,
             "%s: max_backtracks must be in 0..60, got %d", name, o->max_backtracks);
   PDK_CHECK(o->num_reaction_sets >= 0 && o->num_reaction_sets <= PDK_STATIC_MAX_REACTION_SETS, ctx,
@@ -107,17 +105,19 @@ static int setup_conditions(pdk_static *s) {
   owner = malloc((size_t)n * sizeof *owner);
   PDK_CHECK_GOTO(owner, ctx, PDK_ERR_MEMORY, "static solver: out of memory for condition maps");
   for (int c = 0; c < dim; ++c) {
-    for (pdk_index i = 0; i < n; ++i) owner[i] = -1;
+    for (pdk_index i = 0; i < n; ++i)
+      owner[i] = -1;
     for (int k = 0; k < s->opts.num_bcs; ++k) {
       const pdk_bc *bc = &s->bcs[k];
-      PDK_CHECK_GOTO(bc->kind == PDK_BC_DISPLACEMENT || bc->kind == PDK_BC_BODY_FORCE, ctx,
-                     PDK_ERR_ARG,
-                     "boundary condition %d is a %s condition; static solvers take displacement and "
-                     "body-force conditions only (prescribe the displacement instead)",
-                     k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
-      PDK_CHECK_GOTO(bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
-                     "boundary condition %d: component mask %u must select some of the %d components",
-                     k, bc->components, dim);
+      PDK_CHECK_GOTO(
+          bc->kind == PDK_BC_DISPLACEMENT || bc->kind == PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
+          "boundary condition %d is a %s condition; static solvers take displacement and "
+          "body-force conditions only (prescribe the displacement instead)",
+          k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
+      PDK_CHECK_GOTO(
+          bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
+          "boundary condition %d: component mask %u must select some of the %d components", k,
+          bc->components, dim);
       const uint8_t *mem = NULL;
       if (bc->set) {
         mem = pdk_particles_field_data(s->p, bc->set, 0);
@@ -128,14 +128,15 @@ static int setup_conditions(pdk_static *s) {
       }
       if (!(bc->components & (1u << c))) continue;
       const pdk_tfun *tf = &bc->value[c];
-      PDK_CHECK_GOTO((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
-                         ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
-                           tf->kind != PDK_TFUN_SINE) ||
-                          tf->b > 0),
-                     ctx, PDK_ERR_ARG,
-                     "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
-                     "ramp, smooth and sine need a positive duration b",
-                     k, c, (int)tf->kind, tf->a, tf->b);
+      PDK_CHECK_GOTO(
+          (unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
+              ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
+                tf->kind != PDK_TFUN_SINE) ||
+               tf->b > 0),
+          ctx, PDK_ERR_ARG,
+          "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
+          "ramp, smooth and sine need a positive duration b",
+          k, c, (int)tf->kind, tf->a, tf->b);
       const double value = pdk_tfun_value(tf, 1.0); /* static: the value at t = 1 */
       for (pdk_index i = 0; i < n; ++i) {
         if (mem && !mem[i]) continue;
@@ -165,8 +166,9 @@ int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static *
   int err = PDK_SUCCESS;
   pdk_static *s = NULL;
   *out = NULL;
-  PDK_CHECK(opts_in, ctx, PDK_ERR_ARG, "static solver: options are NULL; start from "
-                                       "pdk_static_opts_default(method)");
+  PDK_CHECK(opts_in, ctx, PDK_ERR_ARG,
+            "static solver: options are NULL; start from "
+            "pdk_static_opts_default(method)");
   PDK_CALL(check_opts(ctx, opts_in));
   s = calloc(1, sizeof *s);
   PDK_CHECK(s, ctx, PDK_ERR_MEMORY, "out of memory creating the static solver");
@@ -212,8 +214,10 @@ int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static *
   }
   s->num_reaction = s->opts.num_reaction_sets;
   s->opts.reaction_sets = NULL; /* not kept: the caller's strings may go away */
-  if (s->opts.method == PDK_STATIC_ADR) PDK_CALL_GOTO(pdk_adr_setup(s));
-  else PDK_CALL_GOTO(pdk_newton_setup(s));
+  if (s->opts.method == PDK_STATIC_ADR)
+    PDK_CALL_GOTO(pdk_adr_setup(s));
+  else
+    PDK_CALL_GOTO(pdk_newton_setup(s));
   *out = s;
   return PDK_SUCCESS;
 cleanup:
@@ -274,8 +278,8 @@ int pdk_static_residual(pdk_static *s) {
   }
   double *part = s->block_part;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none) shared(f, b, fixed, r, vol, part, n, num_blocks, dim, lambda) \
-    schedule(static) num_threads(nt)
+#pragma omp parallel for default(none)                                                             \
+    shared(f, b, fixed, r, vol, part, n, num_blocks, dim, lambda) schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_STATIC_BLOCK;
     const pdk_index i1 = i0 + PDK_STATIC_BLOCK < n ? i0 + PDK_STATIC_BLOCK : n;
@@ -285,7 +289,8 @@ int pdk_static_residual(pdk_static *s) {
         const double load = vol[i] * lambda * b[c][i];
         const double ri = vol[i] * f[c][i] + load;
         r[c][i] = ri;
-        if (fixed[c][i]) fs += ri * ri;
+        if (fixed[c][i])
+          fs += ri * ri;
         else {
           rs += ri * ri;
           fs += load * load;
@@ -327,11 +332,11 @@ int pdk_static_nonfinite(pdk_static *s, const char *method, long iteration, cons
 
 /* Coloring of the coupling graph for difference tangents.
  *
- * Particles i and k are coupled (K_ik != 0 possible) when k is within `hops` hops of i in the family
- * graph: P(i) = B_hops(i). Two columns can be perturbed together when no row sees both, i.e. when
- * B_hops(i) and B_hops(k) are disjoint, i.e. when the hop distance d(i, k) > 2 hops (a path through a
- * shared row has length <= 2 hops, and conversely). So a proper coloring is a distance-2 coloring
- * of the coupling graph = a coloring where particles within 2 hops family hops differ.
+ * Particles i and k are coupled (K_ik != 0 possible) when k is within `hops` hops of i in the
+ * family graph: P(i) = B_hops(i). Two columns can be perturbed together when no row sees both, i.e.
+ * when B_hops(i) and B_hops(k) are disjoint, i.e. when the hop distance d(i, k) > 2 hops (a path
+ * through a shared row has length <= 2 hops, and conversely). So a proper coloring is a distance-2
+ * coloring of the coupling graph = a coloring where particles within 2 hops family hops differ.
  *
  * Greedy, in index order (Morton order after the usual reordering): particle i takes the smallest
  * color not used by an earlier particle within 2 hops hops, found by a breadth-first search over
@@ -345,7 +350,7 @@ static int color_greedy(pdk_static *s, pdk_index *stamp, int *num_colors_out) {
   const int depth = 2 * s->hops;
   const pdk_bond_index *bs = pdk_families_bond_start(s->fam);
   const pdk_index *bj = pdk_families_bond_j(s->fam);
-  pdk_index *seen = malloc((size_t)n * sizeof *seen);  /* BFS visit mark: particle being colored */
+  pdk_index *seen = malloc((size_t)n * sizeof *seen); /* BFS visit mark: particle being colored */
   pdk_index *queue = malloc((size_t)n * sizeof *queue);
   if (!seen || !queue) {
     free(seen);
@@ -353,7 +358,8 @@ static int color_greedy(pdk_static *s, pdk_index *stamp, int *num_colors_out) {
     return pdk_ctx_error_set(s->ctx, PDK_ERR_MEMORY, __func__,
                              "static solver: out of memory coloring %d particles", (int)n);
   }
-  for (pdk_index k = 0; k < n; ++k) seen[k] = -1;
+  for (pdk_index k = 0; k < n; ++k)
+    seen[k] = -1;
   int num_colors = 0;
   for (pdk_index i = 0; i < n; ++i) {
     pdk_index head = 0, tail = 0;
@@ -373,7 +379,8 @@ static int color_greedy(pdk_static *s, pdk_index *stamp, int *num_colors_out) {
       }
     }
     int col = 0;
-    while (stamp[col] == i) ++col;
+    while (stamp[col] == i)
+      ++col;
     s->color_of[i] = col;
     if (col + 1 > num_colors) num_colors = col + 1;
   }
@@ -411,7 +418,8 @@ static int color_geometric(pdk_static *s, pdk_index *stamp, int *num_colors_out)
       }
     }
     int col = 0;
-    while (stamp[col] == i) ++col;
+    while (stamp[col] == i)
+      ++col;
     s->color_of[i] = col;
     if (col + 1 > num_colors) num_colors = col + 1;
   }
@@ -432,20 +440,27 @@ int pdk_static_color(pdk_static *s) {
   stamp = malloc((size_t)(n + 1) * sizeof *stamp);
   PDK_CHECK_GOTO(s->color_of && s->color_members && stamp, ctx, PDK_ERR_MEMORY,
                  "static solver: out of memory coloring %d particles", (int)n);
-  for (pdk_index k = 0; k <= n; ++k) stamp[k] = -1;
+  for (pdk_index k = 0; k <= n; ++k)
+    stamp[k] = -1;
   /* cost estimate of the graph search: n f^2 (2 hops)^dim */
   const double f = (double)pdk_families_num_bonds(s->fam) / (double)n;
   const double cost = (double)n * f * f * pow(2.0 * s->hops, s->dim);
   int num_colors = 0;
   s->stats.coloring_geometric = cost > 4e9;
-  if (cost > 4e9) PDK_CALL_GOTO(color_geometric(s, stamp, &num_colors));
-  else PDK_CALL_GOTO(color_greedy(s, stamp, &num_colors));
+  if (cost > 4e9)
+    PDK_CALL_GOTO(color_geometric(s, stamp, &num_colors));
+  else
+    PDK_CALL_GOTO(color_greedy(s, stamp, &num_colors));
   s->color_start = calloc((size_t)num_colors + 1, sizeof *s->color_start);
   PDK_CHECK_GOTO(s->color_start, ctx, PDK_ERR_MEMORY, "static solver: out of memory for colors");
-  for (pdk_index i = 0; i < n; ++i) s->color_start[s->color_of[i] + 1]++;
-  for (int k = 0; k < num_colors; ++k) s->color_start[k + 1] += s->color_start[k];
-  for (int k = 0; k <= num_colors; ++k) stamp[k] = s->color_start[k];
-  for (pdk_index i = 0; i < n; ++i) s->color_members[stamp[s->color_of[i]]++] = i;
+  for (pdk_index i = 0; i < n; ++i)
+    s->color_start[s->color_of[i] + 1]++;
+  for (int k = 0; k < num_colors; ++k)
+    s->color_start[k + 1] += s->color_start[k];
+  for (int k = 0; k <= num_colors; ++k)
+    stamp[k] = s->color_start[k];
+  for (pdk_index i = 0; i < n; ++i)
+    s->color_members[stamp[s->color_of[i]]++] = i;
   s->num_colors = num_colors;
   s->stats.num_colors = num_colors;
   s->stats.time_setup += pdk_wtime() - t0;
@@ -483,7 +498,8 @@ static void reactions(pdk_static *s, double out[][3]) {
   const double *vol = pdk_particles_volume(s->p);
   for (int k = 0; k < s->num_reaction; ++k) {
     const uint8_t *mem = s->reaction_member[k];
-    for (int c = 0; c < 3; ++c) out[k][c] = 0.0;
+    for (int c = 0; c < 3; ++c)
+      out[k][c] = 0.0;
     for (int c = 0; c < s->dim; ++c) {
       const double *f = field(s->p, "f", c);
       double sum = 0.0;
@@ -538,8 +554,10 @@ int pdk_static_solve(pdk_static *s) {
     for (int round = 0;; ++round) {
       s->round = round;
       long iterations = 0;
-      if (s->opts.method == PDK_STATIC_ADR) PDK_CALL_GOTO(pdk_adr_relax(s, &iterations));
-      else PDK_CALL_GOTO(pdk_newton_solve_level(s, &iterations));
+      if (s->opts.method == PDK_STATIC_ADR)
+        PDK_CALL_GOTO(pdk_adr_relax(s, &iterations));
+      else
+        PDK_CALL_GOTO(pdk_newton_solve_level(s, &iterations));
       s->stats.iterations += iterations;
       emit(s, PDK_STATIC_CONVERGED, iterations, 0.0, 0);
       /* History advances here, and only here: one committing pass at the equilibrium. */
@@ -594,7 +612,6 @@ void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
           "time [s]: setup %.3f, mass %.3f, assembly %.3f (%d, %d reuses), analysis %.3f (%d), "
           "factorization %.3f (%d), solve %.3f (%d), total %.3f\n",
           st->time_setup, st->time_mass, st->time_assembly, st->assemblies, st->tangent_reuses,
-          st->time_analysis,
-          st->analyses, st->time_factorization, st->factorizations, st->time_solve, st->solves,
-          st->time_total);
+          st->time_analysis, st->analyses, st->time_factorization, st->factorizations,
+          st->time_solve, st->solves, st->time_total);
 }

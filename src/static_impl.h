@@ -20,7 +20,8 @@
 #include "model_impl.h"
 #include "pdk/static.h"
 
-#define PDK_STATIC_BLOCK 4096 /* particles per reduction block: fixed, so sums are thread-independent */
+#define PDK_STATIC_BLOCK                                                                           \
+  4096 /* particles per reduction block: fixed, so sums are thread-independent */
 #define PDK_STATIC_MAX_BCS 64
 #define PDK_STATIC_MAX_REACTION_SETS 8
 
@@ -30,25 +31,25 @@ struct pdk_static {
   pdk_particles *p;
   pdk_families *fam;
   pdk_static_opts opts;
-  pdk_bc *bcs;     /* [num_bcs], copied */
-  double *levels;  /* [num_levels], copied or generated */
+  pdk_bc *bcs;    /* [num_bcs], copied */
+  double *levels; /* [num_levels], copied or generated */
   int num_levels;
   int dim;
   pdk_index n;
-  int hops;        /* coupling radius in family hops: 1 (PMB) or 2 */
+  int hops; /* coupling radius in family hops: 1 (PMB) or 2 */
   double horizon;
   uint8_t *fixed[3];
   double *u_presc[3];
   double *b_unit[3];
   double *r[3];
   int has_body_force;
-  int num_fixed;   /* prescribed components */
+  int num_fixed;                                          /* prescribed components */
   uint8_t *reaction_member[PDK_STATIC_MAX_REACTION_SETS]; /* borrowed set fields */
   int num_reaction;
-  double lambda;   /* load factor of the current level (0 before the first) */
-  double rnorm;    /* ||r||_free of the last evaluation [force] */
-  double fnorm;    /* ||F_ext|| of the last evaluation [force] */
-  double floor;    /* round-off floor of ||r|| [force] (0 until known), see static.h */
+  double lambda; /* load factor of the current level (0 before the first) */
+  double rnorm;  /* ||r||_free of the last evaluation [force] */
+  double fnorm;  /* ||F_ext|| of the last evaluation [force] */
+  double floor;  /* round-off floor of ||r|| [force] (0 until known), see static.h */
   int level, round;
   /* coloring of the coupling graph, built on first use */
   int num_colors;
@@ -63,7 +64,6 @@ struct pdk_static {
 };
 
 /* static.c */
-double pdk_static_wtime(void);
 /* Trial force pass at the current x, then r and the norms (rnorm, fnorm). */
 int pdk_static_residual(pdk_static *s);
 /* 1 if the last residual meets the tolerance or lies at the round-off floor. */

@@ -17,8 +17,8 @@
  * - Uniaxial displacement. Correspondence with the small-strain linear law is exactly linear; with
  *   nu = 0 the continuum solution of a bar held at x = 0 and pulled by a traction T at x = L is
  *   u_x = T x / E (no lateral contraction). The discrete solution differs through the one-horizon
- *   surface layers, where families are one-sided: there K^-1, hence A = sigma K^-1, is larger and the
- *   uniform stress is no longer an equilibrium (correspondence surface stiffening), plus the end
+ *   surface layers, where families are one-sided: there K^-1, hence A = sigma K^-1, is larger and
+ * the uniform stress is no longer an equilibrium (correspondence surface stiffening), plus the end
  *   rows (traction applied as a body force on one row). In this thin bar the free lateral surfaces
  *   dominate: their layers hold a fraction 2 delta / H of the section, carrying a stress error of
  *   order one, so |u(L) / (T L / E) - 1| <= delta / H (half that share). At fixed RF = delta/h
@@ -80,8 +80,8 @@ static void destroy(body *b) {
  * traction T (body force T A / (N V) on the end row, A = H^(dim-1)). Returns the solver's stats
  * and the displacement [dim][n] in u (malloc'ed); *residual and *floor from an independent check
  * when newton_check. */
-static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method method,
-                  double u_end, double traction, double **u, double *rel_residual, double *floor) {
+static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method method, double u_end,
+                  double traction, double **u, double *rel_residual, double *floor) {
   pdk_bc bcs[2];
   memset(bcs, 0, sizeof bcs);
   bcs[0].kind = PDK_BC_DISPLACEMENT;
@@ -92,7 +92,8 @@ static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method me
   if (traction != 0.0) {
     const double area = dim == 3 ? H * H : H; /* 2-D: thickness 1 */
     bcs[1].kind = PDK_BC_BODY_FORCE;
-    bcs[1].value[0] = pdk_tfun_constant(traction * area / (b->n_right * pdk_particles_volume(b->p)[0]));
+    bcs[1].value[0] =
+        pdk_tfun_constant(traction * area / (b->n_right * pdk_particles_volume(b->p)[0]));
   } else {
     bcs[1].kind = PDK_BC_DISPLACEMENT;
     bcs[1].value[0] = pdk_tfun_constant(u_end);
@@ -110,7 +111,8 @@ static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method me
   *u = malloc((size_t)dim * (size_t)n * sizeof(double));
   for (int c = 0; c < dim; ++c) {
     const double *x = pdk_particles_field_data(b->p, "x", c), *X = pdk_particles_X(b->p, c);
-    for (pdk_index i = 0; i < n; ++i) (*u)[(size_t)c * n + i] = x[i] - X[i];
+    for (pdk_index i = 0; i < n; ++i)
+      (*u)[(size_t)c * n + i] = x[i] - X[i];
   }
   if (method == PDK_STATIC_NEWTON) {
     /* Independent residual: trial forces at the solution, r = V (f + b) on free components. */
@@ -127,7 +129,8 @@ static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method me
         const double load = c == 0 && right[i] ? bcs[1].value[0].a : 0.0;
         const int fixed = left[i] || (c == 0 && right[i] && bcs[1].kind == PDK_BC_DISPLACEMENT);
         const double ri = vol[i] * (f[i] + (bcs[1].kind == PDK_BC_BODY_FORCE ? load : 0.0));
-        if (fixed) F2 += ri * ri;
+        if (fixed)
+          F2 += ri * ri;
         else {
           r2 += ri * ri;
           F2 += (vol[i] * load) * (vol[i] * load) * (bcs[1].kind == PDK_BC_BODY_FORCE);
@@ -139,12 +142,14 @@ static void solve(pdk_ctx *ctx, body *b, int dim, double H, pdk_static_method me
     const double *Ax;
     T_OK(ctx, pdk_newton_tangent(s, 1, &ncol, &Ap, &Ai, &Ax));
     double kf = 0.0;
-    for (int k = 0; k < Ap[ncol]; ++k) kf += Ax[k] * Ax[k];
+    for (int k = 0; k < Ap[ncol]; ++k)
+      kf += Ax[k] * Ax[k];
     *floor = 2.220446049250313e-16 * xmax * sqrt(kf);
     *rel_residual = sqrt(r2) / sqrt(F2);
-    T_ASSERT(sqrt(r2) <= *floor, "Newton residual %.3e is above the round-off floor %.3e",
-             sqrt(r2), *floor);
-    T_ASSERT(st->iterations <= 4, "a near-linear problem took %ld Newton iterations", st->iterations);
+    T_ASSERT(sqrt(r2) <= *floor, "Newton residual %.3e is above the round-off floor %.3e", sqrt(r2),
+             *floor);
+    T_ASSERT(st->iterations <= 4, "a near-linear problem took %ld Newton iterations",
+             st->iterations);
   }
   pdk_static_destroy(&s);
 }
@@ -171,7 +176,8 @@ static void compare(pdk_ctx *ctx, int dim, double L, double H, double dx, double
   T_ASSERT(umax > 0, "no displacement");
   T_ASSERT(dmax <= 1e-5 * umax, "%dD %s: ADR and Newton differ by %.3e (max |u| %.3e)", dim,
            pdk_model_kind_name(kind), dmax, umax);
-  T_ASSERT(rel <= 1e-9, "%dD %s: Newton residual %.3e of the load", dim, pdk_model_kind_name(kind), rel);
+  T_ASSERT(rel <= 1e-9, "%dD %s: Newton residual %.3e of the load", dim, pdk_model_kind_name(kind),
+           rel);
   free(u[0]);
   free(u[1]);
 }
@@ -210,11 +216,12 @@ int main(void) {
   const double e1 = end_displacement(ctx, L, H, dx, rf, T) / exact - 1.0;
   const double e2 = end_displacement(ctx, L, H, 0.5 * dx, rf, T) / exact - 1.0;
   if (getenv("PDK_TEST_VERBOSE"))
-    printf("uniaxial: error %.4e (h = %g), %.4e (h = %g), ratio %.3f\n", e1, dx, e2, 0.5 * dx, e1 / e2);
-  T_ASSERT(fabs(e1) <= rf * dx / H, "uniaxial end displacement off by %.3e (allowed delta/H = %.3e)",
-           e1, rf * dx / H);
-  T_ASSERT(fabs(e2) <= rf * 0.5 * dx / H, "uniaxial end displacement off by %.3e at h/2 (allowed %.3e)",
-           e2, rf * 0.5 * dx / H);
+    printf("uniaxial: error %.4e (h = %g), %.4e (h = %g), ratio %.3f\n", e1, dx, e2, 0.5 * dx,
+           e1 / e2);
+  T_ASSERT(fabs(e1) <= rf * dx / H,
+           "uniaxial end displacement off by %.3e (allowed delta/H = %.3e)", e1, rf * dx / H);
+  T_ASSERT(fabs(e2) <= rf * 0.5 * dx / H,
+           "uniaxial end displacement off by %.3e at h/2 (allowed %.3e)", e2, rf * 0.5 * dx / H);
   T_ASSERT(e1 / e2 >= 1.6 && e1 / e2 <= 2.4, "error ratio %.3f on halving h is not first order",
            e1 / e2);
   pdk_ctx_destroy(&ctx);

@@ -30,7 +30,8 @@ static body build(pdk_ctx *ctx, int dim, double a, double b, double c, double rf
   double l0[3] = {-1, -1, -1}, l1[3] = {e, b + 1, c + 1};
   double i0[3] = {e, e, dim == 3 ? e : -1}, i1[3] = {a - e, b - e, dim == 3 ? c - e : 1};
   double o0[3] = {-1, -1, -1}, o1[3] = {e, e, e};
-  pdk_region left = pdk_region_box(l0, l1), ring = pdk_region_box(i0, i1), corner = pdk_region_box(o0, o1);
+  pdk_region left = pdk_region_box(l0, l1), ring = pdk_region_box(i0, i1),
+             corner = pdk_region_box(o0, o1);
   ring.invert = 1;
   T_OK(ctx, pdk_particles_set_define(bd.p, "left", &left, NULL));
   T_OK(ctx, pdk_particles_set_define(bd.p, "ring", &ring, NULL));
@@ -75,7 +76,8 @@ static pdk_bc pulled(unsigned components) { /* unit body force on every particle
   memset(&bc, 0, sizeof bc);
   bc.kind = PDK_BC_BODY_FORCE;
   bc.components = components;
-  for (int c = 0; c < 3; ++c) bc.value[c] = pdk_tfun_constant(1.0);
+  for (int c = 0; c < 3; ++c)
+    bc.value[c] = pdk_tfun_constant(1.0);
   return bc;
 }
 
@@ -95,7 +97,8 @@ int main(void) {
   so.bcs = bcs;
   so.num_bcs = 1;
   T_FAILS(ctx, pdk_static_create(b.m, &so, &s), PDK_ERR_ARG, "the body is not held");
-  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "constrain at least"), "%s", pdk_ctx_error_message(ctx));
+  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "constrain at least"), "%s",
+           pdk_ctx_error_message(ctx));
   T_ASSERT(strstr(pdk_ctx_error_message(ctx), "translation in x") &&
                strstr(pdk_ctx_error_message(ctx), "translation in y") &&
                strstr(pdk_ctx_error_message(ctx), "rotation about z"),
@@ -104,7 +107,8 @@ int main(void) {
   bcs[1] = held("set:left", 1);
   so.num_bcs = 2;
   /* u_x on a whole edge stops x and rotation: only the y translation is left */
-  T_FAILS(ctx, pdk_static_create(b.m, &so, &s), PDK_ERR_ARG, "1 rigid motion free (translation in y)");
+  T_FAILS(ctx, pdk_static_create(b.m, &so, &s), PDK_ERR_ARG,
+          "1 rigid motion free (translation in y)");
   bcs[1] = held("set:left", 3);
   T_OK(ctx, pdk_static_create(b.m, &so, &s)); /* held: fine */
   pdk_static_destroy(&s);
@@ -120,8 +124,8 @@ int main(void) {
   /* 2. Zero-energy modes. A bounded lattice has no exact ones besides rigid motions (one-sided
    * surface families break the periodic patterns), so the "periodic-like" block is the closest
    * thing: the outer layer clamped, every free particle with a full, point-symmetric family as on
-   * a periodic lattice, and omega = 1/r^2 at RF 1.5, whose periodic-lattice gradient vanishes on the
-   * whole lines q_x = pi and q_y = pi (V-Z: 32 zero eigenvalues at n = 8). Unstabilized, the
+   * a periodic lattice, and omega = 1/r^2 at RF 1.5, whose periodic-lattice gradient vanishes on
+   * the whole lines q_x = pi and q_y = pi (V-Z: 32 zero eigenvalues at n = 8). Unstabilized, the
    * smallest eigenvalue of this 28 x 28 block is ~1e-6 of the largest diagonal (stabilized: ~1e-2);
    * with singular_rtol = 1e-5 (between the two) Newton must call it singular and blame zero-energy
    * modes, from the shape of the near-null vector; with Silling stabilization it solves. */
@@ -178,7 +182,8 @@ int main(void) {
    * largest), at 2 dim colors trial passes. 2-D LPS and 3-D correspondence. */
   for (int dim = 2; dim <= 3; ++dim) {
     mo = model(dim == 2 ? PDK_MODEL_LPS : PDK_MODEL_CORRESPONDENCE);
-    b = dim == 2 ? build(ctx, 2, 12, 6, 0, 2.015, &mo, NULL) : build(ctx, 3, 5, 3, 3, 1.515, &mo, NULL);
+    b = dim == 2 ? build(ctx, 2, 12, 6, 0, 2.015, &mo, NULL)
+                 : build(ctx, 3, 5, 3, 3, 1.515, &mo, NULL);
     bcs[0] = held("set:left", dim == 2 ? 3 : 7);
     so = pdk_static_opts_default(PDK_STATIC_NEWTON);
     so.bcs = bcs;
@@ -200,7 +205,8 @@ int main(void) {
     T_OK(ctx, pdk_newton_tangent(s, 0, &ncol, &Ap, &Ai, &Ax));
     T_ASSERT(st->force_passes - before == 2L * dim * pdk_particles_count(b.p),
              "reference tangent: one pair of passes per particle and component");
-    for (int64_t k = 0; k < nnz; ++k) kmax = fmax(kmax, fabs(Ax[k]));
+    for (int64_t k = 0; k < nnz; ++k)
+      kmax = fmax(kmax, fabs(Ax[k]));
     for (int64_t k = 0; k < nnz; ++k)
       T_NEAR(colored[k], Ax[k], 0.0, 1e-9 * kmax, "%dD tangent entry %lld", dim, (long long)k);
     free(colored);

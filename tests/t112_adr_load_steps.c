@@ -64,7 +64,8 @@ static result run(int threads, pdk_static_method method) {
   T_OK(ctx, pdk_lattice_create(ctx, &lo, &p));
   const double delta = 3.015 * 0.5;
   T_OK(ctx, pdk_particles_reorder_morton(p, delta, NULL));
-  double a0[3] = {-1, -1, -1}, a1[3] = {0.1, 5, 1}, c0[3] = {lo.hi[0] - 0.1, -1, -1}, c1[3] = {lo.hi[0] + 1, 5, 1};
+  double a0[3] = {-1, -1, -1}, a1[3] = {0.1, 5, 1}, c0[3] = {lo.hi[0] - 0.1, -1, -1},
+         c1[3] = {lo.hi[0] + 1, 5, 1};
   pdk_region left = pdk_region_box(a0, a1), right = pdk_region_box(c0, c1);
   T_OK(ctx, pdk_particles_set_define(p, "left", &left, NULL));
   T_OK(ctx, pdk_particles_set_define(p, "right", &right, NULL));
@@ -117,7 +118,8 @@ static result run(int threads, pdk_static_method method) {
   res.n = pdk_particles_count(p);
   res.x = malloc(2 * (size_t)res.n * sizeof(double));
   for (int c = 0; c < 2; ++c)
-    memcpy(res.x + (size_t)c * res.n, pdk_particles_field_data(p, "x", c), (size_t)res.n * sizeof(double));
+    memcpy(res.x + (size_t)c * res.n, pdk_particles_field_data(p, "x", c),
+           (size_t)res.n * sizeof(double));
   res.broken = pdk_model_num_broken(m);
   res.break_rounds = pdk_static_stats_get(s)->break_rounds;
   res.rec = rec;
@@ -142,7 +144,8 @@ static void check_history(const result *res, const char *what) {
       T_ASSERT(e->residual <= e->tolerance &&
                    e->tolerance <= fmax(r->tol_rtol, 1e-9) * e->load_norm,
                "%s: level %d round %d reported converged at residual %.3e (tolerance %.3e, load "
-               "%.3e)", what, e->level, e->round, e->residual, e->tolerance, e->load_norm);
+               "%.3e)",
+               what, e->level, e->round, e->residual, e->tolerance, e->load_norm);
       /* rounds of a level are numbered 0, 1, ... and follow a commit that broke bonds */
       if (e->round > 0) {
         const pdk_static_event *prev = &r->ev[k - 1];
@@ -168,11 +171,13 @@ static void check_history(const result *res, const char *what) {
   T_ASSERT(levels_seen == 4, "%s: %d levels completed", what, levels_seen);
   T_ASSERT(first_break_level > 0, "%s: bonds broke already at the first level", what);
   /* broken bonds soften the bar: the secant stiffness R / u drops below the intact one */
-  T_ASSERT(secant_last < secant_before * (1 - 1e-3), "%s: secant stiffness %.6g after breaking vs %.6g intact",
-           what, secant_last, secant_before);
+  T_ASSERT(secant_last < secant_before * (1 - 1e-3),
+           "%s: secant stiffness %.6g after breaking vs %.6g intact", what, secant_last,
+           secant_before);
   if (getenv("PDK_TEST_VERBOSE"))
     printf("%s: %lld bonds broken, first at level %d, %d re-solves, secant %.5g -> %.5g\n", what,
-           (long long)res->broken, first_break_level, res->break_rounds, secant_before, secant_last);
+           (long long)res->broken, first_break_level, res->break_rounds, secant_before,
+           secant_last);
 }
 
 static void free_result(result *r) {
@@ -188,9 +193,10 @@ int main(void) {
   check_history(&a2, "ADR, 2 threads");
   T_ASSERT(a1.broken == a2.broken && !memcmp(a1.x, a2.x, 2 * (size_t)a1.n * sizeof(double)),
            "ADR: 1 and 2 threads differ");
-  T_ASSERT(a1.rec->num_events == a2.rec->num_events &&
-               !memcmp(a1.rec->ev, a2.rec->ev, (size_t)a1.rec->num_events * sizeof(pdk_static_event)),
-           "ADR: the event histories differ between 1 and 2 threads");
+  T_ASSERT(
+      a1.rec->num_events == a2.rec->num_events &&
+          !memcmp(a1.rec->ev, a2.rec->ev, (size_t)a1.rec->num_events * sizeof(pdk_static_event)),
+      "ADR: the event histories differ between 1 and 2 threads");
 
   /* Newton: same levels, same history rules, same bonds broken (the equilibria agree to ~1e-8, far
    * from any stretch that sits that close to s0 here), and 1 vs 2 threads bitwise. */
@@ -203,7 +209,8 @@ int main(void) {
            (long long)a1.broken);
   /* end states: ADR stops at 1e-8 of the load (see t110 for why 1e-5 of the displacement) */
   double dmax = 0.0;
-  for (size_t k = 0; k < 2 * (size_t)a1.n; ++k) dmax = fmax(dmax, fabs(n1.x[k] - a1.x[k]));
+  for (size_t k = 0; k < 2 * (size_t)a1.n; ++k)
+    dmax = fmax(dmax, fabs(n1.x[k] - a1.x[k]));
   T_ASSERT(dmax <= 1e-5 * 0.007, "ADR and Newton end states differ by %.3e", dmax);
   free_result(&a1);
   free_result(&a2);

@@ -13,8 +13,9 @@
  * Expected: the paper's order for this case is 0.9999 (Table 3/4, a fit over NP > 99); V-Q3 allows
  * 0.92-1.04 over the influence functions and problems. Between NP = 40 and 80 we measure 0.985; the
  * test accepts [0.9, 1.1] (pre-asymptotic at these sizes, where the 1/NP boundary-layer error still
- * carries a few per cent of higher-order terms). Errors: 3.7% and 1.9%; the test requires them below
- * 5% and 2.5% (first order with a constant of ~1.5 h / H, as the paper's Fig. 8 shows for RF 1.5).
+ * carries a few per cent of higher-order terms). Errors: 3.7% and 1.9%; the test requires them
+ * below 5% and 2.5% (first order with a constant of ~1.5 h / H, as the paper's Fig. 8 shows for
+ * RF 1.5).
  */
 #include "test_util.h"
 
@@ -32,9 +33,9 @@ static double probe(pdk_ctx *ctx, int np) {
   T_OK(ctx, pdk_lattice_create(ctx, &lo, &p));
   T_OK(ctx, pdk_particles_reorder_morton(p, rf * h, NULL));
   const double e = 0.25 * h;
-  double b0[3] = {-1, -1, -1}, b1[3] = {W + 1, e, 1};     /* bottom row */
-  double l0[3] = {-1, e, -1}, l1[3] = {e, H + 1, 1};      /* left column above it */
-  double r0[3] = {W - e, e, -1}, r1[3] = {W + 1, H + 1, 1}; /* right column above it */
+  double b0[3] = {-1, -1, -1}, b1[3] = {W + 1, e, 1};        /* bottom row */
+  double l0[3] = {-1, e, -1}, l1[3] = {e, H + 1, 1};         /* left column above it */
+  double r0[3] = {W - e, e, -1}, r1[3] = {W + 1, H + 1, 1};  /* right column above it */
   double t0[3] = {-1, H - e, -1}, t1[3] = {W + 1, H + 1, 1}; /* top row */
   pdk_region bottom = pdk_region_box(b0, b1), left = pdk_region_box(l0, l1);
   pdk_region right = pdk_region_box(r0, r1), top = pdk_region_box(t0, t1);
@@ -104,7 +105,8 @@ int main(void) {
     const double u = probe(ctx, np[k]);
     T_ASSERT(u < 0, "NP = %d: the top moved up (u_y = %g) under compression", np[k], u);
     err[k] = fabs(u - exact) / fabs(exact);
-    if (getenv("PDK_TEST_VERBOSE")) printf("NP %d: u_y %.10e, relative error %.4e\n", np[k], u, err[k]);
+    if (getenv("PDK_TEST_VERBOSE"))
+      printf("NP %d: u_y %.10e, relative error %.4e\n", np[k], u, err[k]);
   }
   const double order = log(err[0] / err[1]) / log(2.0);
   if (getenv("PDK_TEST_VERBOSE")) printf("order %.4f\n", order);

@@ -126,19 +126,19 @@ typedef enum pdk_static_phase {
 
 typedef struct pdk_static_event {
   pdk_static_phase phase;
-  int level;                  /* 0-based index of the load level */
-  double load_factor;         /* lambda of the level */
-  int round;                  /* 0 for the first solve of the level, then one per re-solve */
-  long iterations;            /* ADR iterations or Newton iterations of this round */
-  double residual;            /* ||r||_free [force] at the equilibrium */
-  double load_norm;           /* ||F_ext|| [force] */
-  double tolerance;           /* the residual bound that was met: max(rtol ||F_ext|| + atol, round-off
-                                 floor) [force] */
-  double strain;              /* strain energy (COMMITTED only) */
-  pdk_bond_index broken;      /* directed bonds broken so far (model total) */
-  pdk_bond_index broken_now;  /* bonds this commit broke (COMMITTED only) */
-  double reaction[8][3];      /* on opts.reaction_sets: -sum_{i in set} V_i f_i (as the explicit
-                                 solver: the force the supports or loads exert on the set) */
+  int level;             /* 0-based index of the load level */
+  double load_factor;    /* lambda of the level */
+  int round;             /* 0 for the first solve of the level, then one per re-solve */
+  long iterations;       /* ADR iterations or Newton iterations of this round */
+  double residual;       /* ||r||_free [force] at the equilibrium */
+  double load_norm;      /* ||F_ext|| [force] */
+  double tolerance;      /* the residual bound that was met: max(rtol ||F_ext|| + atol, round-off
+                            floor) [force] */
+  double strain;         /* strain energy (COMMITTED only) */
+  pdk_bond_index broken; /* directed bonds broken so far (model total) */
+  pdk_bond_index broken_now; /* bonds this commit broke (COMMITTED only) */
+  double reaction[8][3];     /* on opts.reaction_sets: -sum_{i in set} V_i f_i (as the explicit
+                                solver: the force the supports or loads exert on the set) */
 } pdk_static_event;
 
 typedef struct pdk_static_opts {
@@ -159,16 +159,16 @@ typedef struct pdk_static_opts {
   double adr_safety; /* multiplies the fictitious mass (default 1; > 1 is safer, slower) */
   /* Newton */
   pdk_fd_scheme fd_scheme;
-  double fd_step;    /* perturbation relative to the horizon; 0: 1e-5 central, 1e-7 forward */
+  double fd_step; /* perturbation relative to the horizon; 0: 1e-5 central, 1e-7 forward */
   pdk_linear_solver linear_solver;
-  double sym_rtol;   /* asymmetry accepted as difference error (default 1e-6) */
+  double sym_rtol;      /* asymmetry accepted as difference error (default 1e-6) */
   double singular_rtol; /* singular when a pivot or the smallest eigenvalue is below this times the
                            largest diagonal (default 1e-8, above the difference error; 0: off) */
-  int max_backtracks; /* line-search halvings (default 10) */
-  int reuse_tangent;  /* 1 (default): within a round, keep the factorized tangent for the next
-                         iteration when the last full step reduced ||r|| by at least 1000 (the
-                         problem behaves linearly: a linear problem costs one assembly; a looser
-                         rule turns Newton into a slow chord method); 0: assemble every iteration */
+  int max_backtracks;   /* line-search halvings (default 10) */
+  int reuse_tangent;    /* 1 (default): within a round, keep the factorized tangent for the next
+                           iteration when the last full step reduced ||r|| by at least 1000 (the
+                           problem behaves linearly: a linear problem costs one assembly; a looser
+                           rule turns Newton into a slow chord method); 0: assemble every iteration */
   /* Output */
   const char *const *reaction_sets; /* set fields ("set:<name>"), at most 8 */
   int num_reaction_sets;
@@ -182,37 +182,38 @@ pdk_static_opts pdk_static_opts_default(pdk_static_method method);
 /* Work and memory of a solve, accumulated over pdk_static_solve calls. Times are wall seconds. */
 typedef struct pdk_static_stats {
   int levels_done;
-  long iterations;            /* ADR iterations or Newton iterations, all levels and rounds */
-  long force_passes;          /* trial force passes, everything included */
+  long iterations;   /* ADR iterations or Newton iterations, all levels and rounds */
+  long force_passes; /* trial force passes, everything included */
   long commit_passes;
   int break_rounds;           /* re-solves caused by broken bonds */
   double residual, load_norm; /* of the last converged state [force] */
   /* coloring of the coupling graph (Newton, ADR row sums) */
   int num_colors;
-  int coupling_hops;          /* 1 (bond-based) or 2 (state-based) */
-  int coloring_geometric;     /* 1: colored by distance (R = 2 hops delta), not by the graph */
-  long passes_per_tangent;    /* trial passes of one difference tangent: 2 dim colors or dim colors + 1 */
+  int coupling_hops;       /* 1 (bond-based) or 2 (state-based) */
+  int coloring_geometric;  /* 1: colored by distance (R = 2 hops delta), not by the graph */
+  long passes_per_tangent; /* trial passes of one difference tangent: 2 dim colors or dim colors + 1
+                            */
   /* ADR */
-  pdk_adr_mass adr_mass;      /* the mass actually used */
-  double mass_min, mass_max;  /* fictitious mass range [force / length] (unit pseudo time step) */
+  pdk_adr_mass adr_mass;     /* the mass actually used */
+  double mass_min, mass_max; /* fictitious mass range [force / length] (unit pseudo time step) */
   /* Newton: tangent and factor */
   long num_unknowns;
   int64_t tangent_nnz;
   double tangent_nnz_per_row;
-  size_t tangent_bytes;       /* column pointers, row indices and values */
-  int64_t factor_nnz;         /* CHOLMOD: nnz(L); UMFPACK: nnz(L) + nnz(U) */
+  size_t tangent_bytes; /* column pointers, row indices and values */
+  int64_t factor_nnz;   /* CHOLMOD: nnz(L); UMFPACK: nnz(L) + nnz(U) */
   size_t factor_bytes;
   int cholmod_factorizations, umfpack_factorizations;
-  int symmetric;              /* 1 if the last tangent was symmetrized and passed to CHOLMOD */
-  double asymmetry;           /* ||K - K^T||_F / ||K||_F of the last difference tangent */
-  double min_pivot_ratio;     /* smallest pivot / largest diagonal of the last factorization */
-  double min_eig_ratio;       /* inverse-iteration estimate of lambda_min / largest diagonal */
-  double residual_floor;      /* round-off floor of ||r||: eps |x|_max ||K||_F [force] */
-  double null_nonaffine;      /* singular tangent: non-affine fraction of its near-null vector
-                                 (~1 zero-energy mode, ~0 rigid motion of a loose part; -1 n/a) */
+  int symmetric;          /* 1 if the last tangent was symmetrized and passed to CHOLMOD */
+  double asymmetry;       /* ||K - K^T||_F / ||K||_F of the last difference tangent */
+  double min_pivot_ratio; /* smallest pivot / largest diagonal of the last factorization */
+  double min_eig_ratio;   /* inverse-iteration estimate of lambda_min / largest diagonal */
+  double residual_floor;  /* round-off floor of ||r||: eps |x|_max ||K||_F [force] */
+  double null_nonaffine;  /* singular tangent: non-affine fraction of its near-null vector
+                             (~1 zero-energy mode, ~0 rigid motion of a loose part; -1 n/a) */
   int assemblies, analyses, factorizations, solves, line_search_cuts, tangent_reuses;
-  double time_setup;          /* coloring, pattern, transpose map */
-  double time_mass;           /* ADR fictitious mass */
+  double time_setup; /* coloring, pattern, transpose map */
+  double time_mass;  /* ADR fictitious mass */
   double time_assembly, time_analysis, time_factorization, time_solve;
   double time_total;
 } pdk_static_stats;
