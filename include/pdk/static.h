@@ -11,6 +11,10 @@
  *               + sum over prescribed components of (V_i (f_ic + lambda b_ic))^2,
  * i.e. the residual is measured against every external force on the body: applied body forces
  * and support reactions (so a purely displacement-driven problem has a load scale too).
+ * Round-off floor: positions are absolute, so a one-ulp change of the coordinates changes r by
+ * about eps |x|_max ||K||_F (K = -dr/dx); no iteration gets below that. A level is also converged
+ * when ||r|| reaches this floor (stats.residual_floor; Newton measures ||K||_F on its tangent, ADR
+ * bounds it by the row sums of its mass): at small strains (1e-6) it can lie above rtol ||F_ext||.
  *
  * Load stepping. The levels lambda_1 < lambda_2 < ... (default: num_levels equal steps up to 1)
  * multiply the prescribed displacements and body forces: a static solve ignores time, and the
@@ -64,10 +68,6 @@
  *     when that full step reduced ||r|| by at least 1000 (opts.reuse_tangent).
  *   - Each iteration does a backtracking line search on ||r||: step lengths 1, 1/2, 1/4, ...
  *     until ||r(x + a dx)|| <= (1 - 1e-4 a) ||r(x)||.
- *   - Round-off floor. Positions are absolute, so a one-ulp change of the coordinates changes r
- *     by about eps |x|_max ||K||_F; no iteration gets below that. Newton also stops when the
- *     residual reaches this floor (stats.residual_floor): at small strains (1e-6) it can lie
- *     above rtol ||F_ext||.
  *   - Before the first factorization the solver checks that the displacement conditions stop every
  *     rigid motion ("the body is not held: ..."). A singular or nearly singular tangent stops the
  *     solve with a message naming the particle and the likely cause. Singular means a pivot, or
@@ -148,7 +148,7 @@ typedef struct pdk_static_opts {
   const double *load_levels; /* [num_levels] increasing, > 0; NULL: k / num_levels, k = 1..num */
   int num_levels;            /* default 1 */
   double rtol;               /* residual tolerance relative to ||F_ext|| (ADR 1e-6, Newton 1e-10;
-                                Newton stops at the round-off floor if that is higher) */
+                                the round-off floor applies when it is higher) */
   double atol;               /* absolute floor [force] (default 0) */
   long max_iterations;       /* per solve round: ADR iterations (default 200000) or Newton
                                 iterations (default 50) */
