@@ -242,5 +242,32 @@ pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_
  * range, in index order. */
 double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                    pdk_index i0, pdk_index i1);
+/* The elastic laws of pass 1 at one F (d x d block of 3 x 3, row-major): P and W; returns 0 where
+ * the law is undefined (Neo-Hooke with J <= 0). Not for law JC. */
+int pdk_kernel_corr_law_ref(const pdk_corr_consts *k, const double F[3][3], double P[3][3],
+                            double *W);
+
+/* ---- Correspondence, updated Lagrangian (kernels/ref/corr_ul.c; formulas in its header) ------
+ * The arrays of the TL kernels with these meanings changed: bond_* the families of the last
+ * rebuild (bond_alive NULL: UL breaks no bonds), X the positions at the last rebuild, volume the
+ * volumes there, A = tau_r M^-1, F the total deformation gradient F^ F_ref, m the weighted volume
+ * at the rebuild; Kinv, num_alive, s0*, changed, detach, w_broken unused. */
+typedef struct pdk_corr_ul_arrays {
+  pdk_corr_arrays base;
+  const double *J_ref;    /* [n_pad] det F_ref [-] */
+  double *F_ref[9];       /* deformation gradient at the last rebuild [-] (read only) */
+  double *F_inc[9];       /* F^ = M N^-T relative to the rebuild; NULL without stabilization */
+} pdk_corr_ul_arrays;
+
+/* Rebuild shape: m, flag bit SPAN (K of the rebuild configuration, TL's criterion); returns how
+ * many do not span. */
+pdk_index pdk_kernel_corr_ul_shape_ref(const pdk_corr_consts *k, const pdk_corr_ul_arrays *a,
+                                       pdk_index i0, pdk_index i1);
+/* Pass 1: N, M, F^, F, the law, A = tau_r M^-1, W. */
+void pdk_kernel_corr_ul_pass1_ref(const pdk_corr_consts *k, const pdk_corr_ul_arrays *a,
+                                  pdk_index i0, pdk_index i1);
+/* Pass 2: f (and W += Silling energy); reads A, F_inc of neighbours from pass 1. */
+void pdk_kernel_corr_ul_pass2_ref(const pdk_corr_consts *k, const pdk_corr_ul_arrays *a,
+                                  pdk_index i0, pdk_index i1);
 
 #endif

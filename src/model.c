@@ -18,6 +18,7 @@ pdk_model_opts pdk_model_opts_default(void) {
   o.failed_keeps_bonds = 0;
   o.connectivity = PDK_CONNECTIVITY_TL;
   o.compact_fraction = 0.02;
+  o.ul_skin = 0.25;
   return o;
 }
 
@@ -79,12 +80,17 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "stabilization coefficient must be >= 0, got %g", o->stab_coefficient);
   PDK_CHECK((unsigned)o->law <= PDK_LAW_JC, ctx, PDK_ERR_ARG,
             "material law %d unknown; use linear_elastic, svk, neo_hooke or jc", (int)o->law);
-  PDK_CHECK((unsigned)o->connectivity <= PDK_CONNECTIVITY_SEMI_TL, ctx, PDK_ERR_ARG,
-            "connectivity mode %d unknown; use tl (0) or semi_tl (1)", (int)o->connectivity);
+  PDK_CHECK((unsigned)o->connectivity <= PDK_CONNECTIVITY_UL, ctx, PDK_ERR_ARG,
+            "connectivity mode %d unknown; use tl (0), semi_tl (1) or ul (2)",
+            (int)o->connectivity);
   PDK_CHECK(o->connectivity == PDK_CONNECTIVITY_TL || o->kind == PDK_MODEL_CORRESPONDENCE, ctx,
             PDK_ERR_UNSUPPORTED,
-            "semi_tl connectivity is implemented for the correspondence model only (model kind is "
-            "%s); use tl", name);
+            "%s connectivity is implemented for the correspondence model only (model kind is "
+            "%s); use tl",
+            o->connectivity == PDK_CONNECTIVITY_UL ? "ul" : "semi_tl", name);
+  PDK_CHECK(isfinite(o->ul_skin) && o->ul_skin >= 0 && o->ul_skin <= 1, ctx, PDK_ERR_ARG,
+            "ul_skin must lie in [0, 1] (a fraction of the horizon; 0: never rebuild), got %g",
+            o->ul_skin);
   PDK_CHECK(isfinite(o->compact_fraction) && o->compact_fraction >= 0 && o->compact_fraction <= 1,
             ctx, PDK_ERR_ARG, "compact_fraction must lie in [0, 1], got %g", o->compact_fraction);
   PDK_CHECK(o->failed_keeps_bonds == 0 || o->failed_keeps_bonds == 1, ctx, PDK_ERR_ARG,
@@ -154,7 +160,10 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   switch (opts->kind) {
   case PDK_MODEL_PMB: m->ops = &pdk_model_ops_pmb; break;
   case PDK_MODEL_LPS: m->ops = &pdk_model_ops_lps; break;
-  case PDK_MODEL_CORRESPONDENCE: m->ops = &pdk_model_ops_corr; break;
+  case PDK_MODEL_CORRESPONDENCE:
+    m->ops = opts->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul
+                                                       : &pdk_model_ops_corr;
+    break;
   }
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,
                  "model kind '%s' is not part of this build", pdk_model_kind_name(opts->kind));
@@ -209,6 +218,20 @@ pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; 
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
 long pdk_model_num_compactions(const pdk_model *m) { return m->num_compactions; }
+long pdk_model_num_rebuilds(const pdk_model *m) { return m->num_rebuilds; }
+
+int pdk_model_rebuild(pdk_model *m) {
+  PDK_CHECK(m->ops == &pdk_model_ops_corr_ul, m->ctx, PDK_ERR_ARG,
+            "pdk_model_rebuild: only the ul connectivity rebuilds its families (this %s model "
+            "uses %s)",
+            pdk_model_kind_name(m->opts.kind),
+            m->opts.connectivity == PDK_CONNECTIVITY_SEMI_TL ? "semi_tl" : "tl");
+  return pdk_model_corr_ul_rebuild(m);
+}
+
+pdk_families *pdk_model_current_families(const pdk_model *m) {
+  return m->ops == &pdk_model_ops_corr_ul ? pdk_model_corr_ul_families(m) : m->fam;
+}
 
 int pdk_model_set_dt(pdk_model *m, double dt) {
   PDK_CHECK(isfinite(dt) && dt > 0, m->ctx, PDK_ERR_ARG, "model time step must be > 0 and finite, got %g",

@@ -32,12 +32,18 @@ struct pdk_model {
   pdk_index num_flagged;
   pdk_index num_failed;  /* Johnson-Cook: failed particles after the last pass */
   long num_compactions;  /* semi-TL bond-list compactions */
+  long num_rebuilds;     /* UL family rebuilds */
   double dt;             /* time step for history updates; 0 until pdk_model_set_dt */
 };
 
 extern const pdk_model_ops pdk_model_ops_pmb;
 extern const pdk_model_ops pdk_model_ops_lps;
 extern const pdk_model_ops pdk_model_ops_corr;
+extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connectivity */
+/* UL only (m->ops == &pdk_model_ops_corr_ul): rebuild the families at the current x now; the
+ * families the passes walk now. */
+int pdk_model_corr_ul_rebuild(pdk_model *m);
+pdk_families *pdk_model_corr_ul_families(const pdk_model *m);
 
 /* Influence function omega(r) for r <= delta (see pdk_influence). */
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);

@@ -67,6 +67,13 @@ typedef struct pdk_families pdk_families;
  * allocated), bad pre-crack geometry (PDK_ERR_ARG: wrong vertex count, non-finite, zero length or
  * area, not planar). */
 int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts, pdk_families **out);
+/* The same families over explicit coordinates: coords[a] [n] for a < dim (coords[2] unused in
+ * 2-D), ids [n] (may be NULL: messages then name indices) for error messages. Gives the bonds
+ * pdk_families_build gives on a store whose "X" holds these coordinates, bit for bit; used to
+ * rebuild families in the current configuration (updated-Lagrangian connectivity). Same errors. */
+int pdk_families_build_coords(pdk_ctx *ctx, int dim, pdk_index n, const double *const coords[3],
+                              const int64_t *ids, const pdk_families_opts *opts,
+                              pdk_families **out);
 void pdk_families_destroy(pdk_families **f);
 
 pdk_index pdk_families_num_particles(const pdk_families *f);

@@ -81,15 +81,24 @@ typedef enum pdk_law {
  * configuration from its intact bonds, in the commit pass where they broke, so TL and semi-TL give
  * the same bits until semi-TL detaches a particle. */
 typedef enum pdk_connectivity {
-  PDK_CONNECTIVITY_TL = 0,     /* total Lagrangian: families fixed, broken bonds carry weight 0; a
-                                  particle whose intact bonds no longer span the space is flagged
-                                  (no stress of its own) but stays attached by its neighbours' */
-  PDK_CONNECTIVITY_SEMI_TL = 1 /* semi-total Lagrangian: the model keeps its own CSR of intact
-                                  bonds, compacted in batches (compact_fraction), so passes walk
-                                  intact bonds only; a particle whose family no longer spans is
-                                  detached: all its bonds break, it moves freely, carries no
-                                  stress and counts in num_flagged (a cascade to neighbours that
-                                  become degenerate in turn is followed in the same pass) */
+  PDK_CONNECTIVITY_TL = 0,      /* total Lagrangian: families fixed, broken bonds carry weight 0; a
+                                   particle whose intact bonds no longer span the space is flagged
+                                   (no stress of its own) but stays attached by its neighbours' */
+  PDK_CONNECTIVITY_SEMI_TL = 1, /* semi-total Lagrangian: the model keeps its own CSR of intact
+                                   bonds, compacted in batches (compact_fraction), so passes walk
+                                   intact bonds only; a particle whose family no longer spans is
+                                   detached: all its bonds break, it moves freely, carries no
+                                   stress and counts in num_flagged (a cascade to neighbours that
+                                   become degenerate in turn is followed in the same pass) */
+  PDK_CONNECTIVITY_UL = 2 /* updated Lagrangian (Bergel & Li 2016), src/model_corr_ul.c: spatial
+                             shape tensor M = sum omega V Y (x) Y, F^ = M N^-T relative to the
+                             configuration of the last rebuild (times the F stored there), Cauchy
+                             (Kirchhoff) stress force states sigma M^-1 Y; the families are rebuilt
+                             in the current configuration by a committing pass when particles
+                             moved more than ul_skin delta / 2 since the last rebuild, and the
+                             reference data (positions, volumes, F) are updated there. No bond
+                             breaking, no pre-cracks across rebuilds, no float storage yet.
+                             docs/connectivity.md */
 } pdk_connectivity;
 
 typedef enum pdk_precision {
@@ -127,6 +136,14 @@ typedef struct pdk_model_opts {
   /* semi-TL: compact the bond list when the broken bonds still in it exceed this fraction of its
    * length (0: in every commit pass that broke bonds; default 0.02). Never when nothing broke. */
   double compact_fraction;
+  /* UL: the skin, as a fraction of the horizon (default 0.25). A committing pass rebuilds the
+   * families in the current configuration when max_i |u_i - c| > ul_skin delta / 2, u_i the
+   * displacement since the last rebuild and c the centre of the displacements' bounding box (a
+   * common translation never triggers), so no pair's distance changed by more than ul_skin delta
+   * since: every pair now closer than delta (1 - ul_skin) is in the family, every family pair is
+   * closer than delta (1 + ul_skin). 0: never rebuild (Bergel & Li's UL on the initial families).
+   */
+  double ul_skin;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
@@ -159,6 +176,15 @@ pdk_index pdk_model_num_flagged(const pdk_model *m);
 pdk_index pdk_model_num_failed(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */
 long pdk_model_num_compactions(const pdk_model *m);
+/* UL: how many times the families were rebuilt in the current configuration (0 in TL, semi-TL). */
+long pdk_model_num_rebuilds(const pdk_model *m);
+/* UL: rebuilds the families at the current "x" now (a trial pass at x first gives the F to store
+ * as the new reference deformation), whatever the displacement since the last rebuild. Refused
+ * (PDK_ERR_ARG) for other connectivity modes. */
+int pdk_model_rebuild(pdk_model *m);
+/* UL: the families the passes walk now (the ones given to pdk_model_create until the first
+ * rebuild); for other modes the model's families. Valid until the next committing pass. */
+pdk_families *pdk_model_current_families(const pdk_model *m);
 /* Time step [time] the history update uses (rate terms and "eps_p_rate"); dt > 0. The explicit
  * solver sets it. Until it is set, a commit pass of a law with rate terms is refused and trial
  * passes take the quasi-static limit (dt = infinity: no rate hardening). */

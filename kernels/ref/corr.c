@@ -646,3 +646,8 @@ double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arra
     }
   return sum;
 }
+
+int pdk_kernel_corr_law_ref(const pdk_corr_consts *k, const double F[3][3], double P[3][3],
+                            double *W) {
+  return law_eval(k, F, P, W);
+}
