@@ -30,6 +30,9 @@
  * every pair now closer than delta (1 - s) is bonded, and every bonded pair is closer than
  * delta (1 + s). The check costs one read of x and X_r per committing pass (min/max reductions,
  * exact in any order). Rigid rotations do count (they trigger harmless rebuilds).
+ * Stability: a run that rebuilds under tension clumps and blows up within 15-20% stretch unless
+ * strongly stabilized (tests/t133_ul_tensile_instability.c, docs/connectivity.md); the cause is the
+ * reference update, which accepts the current disorder as undeformed.
  * A rebuild, at the positions x of the committing pass that just ran:
  *   1. families from x (pdk_families_build_coords, the same horizon, no pre-cracks), omega per
  *      bond from the new reference lengths;

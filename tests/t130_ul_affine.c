@@ -189,7 +189,10 @@ static void check_case(pdk_ctx *ctx, int dim, int law, int infl, int stab) {
     add_noise(p, 0.05, 8);
     double e1 = 0.0;
     T_OK(ctx, pdk_model_force(ul, &e1));
-    const pdk_bond_index nb1 = pdk_families_num_bonds(pdk_model_current_families(ul));
+    const pdk_families *fam1 = pdk_model_current_families(ul);
+    const pdk_bond_index nb1 = pdk_families_num_bonds(fam1);
+    pdk_index *bj1 = malloc((size_t)(nb1 > 0 ? nb1 : 1) * sizeof *bj1);
+    memcpy(bj1, pdk_families_bond_j(fam1), (size_t)nb1 * sizeof *bj1);
     double *f1[3], *F1[9], *A1[9];
     for (int a = 0; a < dim; ++a) {
       f1[a] = malloc((size_t)n * sizeof(double));
@@ -239,8 +242,11 @@ static void check_case(pdk_ctx *ctx, int dim, int law, int infl, int stab) {
     add_noise(p, 0.05, 8);
     double e2 = 0.0;
     T_OK(ctx, pdk_model_force(ul, &e2));
-    T_ASSERT(pdk_families_num_bonds(pdk_model_current_families(ul)) == nb1,
+    const pdk_families *fam2 = pdk_model_current_families(ul);
+    T_ASSERT(pdk_families_num_bonds(fam2) == nb1 &&
+                 !memcmp(pdk_families_bond_j(fam2), bj1, (size_t)nb1 * sizeof *bj1),
              "%s: rebuilt families differ between 1 and 2 threads", what);
+    free(bj1);
     T_ASSERT(memcmp(&e1, &e2, sizeof e1) == 0, "%s: energy %.17g (1 thread) vs %.17g (2)", what, e1,
              e2);
     for (int a = 0; a < dim; ++a)
@@ -288,6 +294,19 @@ int main(void) {
     o = cu_opts(PDK_LAW_SVK, 0, 0, 0.0);
     T_OK(ctx, pdk_model_create(p, fam, &o, &m));
     T_FAILS(ctx, pdk_model_rebuild(m), PDK_ERR_ARG, "only the ul connectivity");
+    /* pdk_families_build_coords over "X" gives the families of pdk_families_build. */
+    const double *X[3] = {pdk_particles_X(p, 0), pdk_particles_X(p, 1), NULL};
+    pdk_families_opts fo = pdk_families_opts_default();
+    fo.horizon = 1.5;
+    pdk_families *f2 = NULL;
+    T_OK(ctx, pdk_families_build_coords(ctx, 2, pdk_particles_count(p), X, NULL, &fo, &f2));
+    T_ASSERT(pdk_families_num_bonds(f2) == pdk_families_num_bonds(fam) &&
+                 !memcmp(pdk_families_bond_start(f2), pdk_families_bond_start(fam),
+                         (size_t)(pdk_particles_count(p) + 1) * sizeof(pdk_bond_index)) &&
+                 !memcmp(pdk_families_bond_j(f2), pdk_families_bond_j(fam),
+                         (size_t)pdk_families_num_bonds(fam) * sizeof(pdk_index)),
+             "pdk_families_build_coords differs from pdk_families_build");
+    pdk_families_destroy(&f2);
     T_ASSERT(pdk_model_current_families(m) == fam, "TL: current families are the given ones");
     pdk_model_destroy(&m);
     pdk_families_destroy(&fam);
