@@ -8,7 +8,8 @@
  * and the same independence of the thread count.
  *
  * Cost of the copy: (dim + 2) x 8 bytes per particle written once, against a build that scans
- * tens to hundreds of candidates per particle; measured below 2% of the build (bench/bench_ul.c).
+ * tens to hundreds of candidates per particle (not measured separately; bench/bench_ul.c times
+ * the whole call).
  * Why not thread the coordinates through the cell list and the scan instead: those are another
  * concept's files (src/cells.c, src/families.c) and the copy is cheap.
  */
