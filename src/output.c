@@ -41,7 +41,7 @@ enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_NUM_FILES };
  * uncompressed, for files 44% smaller; that is not cheap next to a force pass. */
 #define OUT_STATIC_DEFLATE 1
 #define OUT_MAX_REACTION 8 /* = the size of pdk_history.reaction */
-#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3)
+#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 3)
 #define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
 #define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
 
@@ -74,6 +74,7 @@ struct pdk_output {
   char reaction_field[OUT_MAX_REACTION][OUT_NAME_MAX]; /* "set:<name>" as given */
   int reaction_col[OUT_MAX_REACTION];                  /* first reaction column of set k */
   int disp_col[OUT_MAX_REACTION];                      /* first displacement column, or -1 */
+  int work_col; /* plastic_work; damage_work and breaking_work follow */
   int num_sets;
   char (*set_name)[OUT_NAME_MAX];  /* [num_sets] sanitized names of the "set:*" fields at open */
   char (*set_field)[OUT_NAME_MAX]; /* [num_sets] their field names, "set:<name>" */
@@ -523,6 +524,11 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
       add_column(o, buf, o->unit_length);
     }
   }
+  /* Dissipated energy last, so the columns before keep their places. */
+  o->work_col = o->num_cols;
+  add_column(o, "plastic_work", o->unit_energy);
+  add_column(o, "damage_work", o->unit_energy);
+  add_column(o, "breaking_work", o->unit_energy);
   return PDK_SUCCESS;
 }
 
@@ -817,6 +823,9 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
     for (int c = 0; c < o->dim; ++c)
       row[o->disp_col[k] + c] = u[c];
   }
+  row[o->work_col] = h->plastic_work;
+  row[o->work_col + 1] = h->damage_work;
+  row[o->work_col + 2] = h->breaking_work;
 
   o->failed = 1; /* until the row is complete */
   hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};
@@ -917,9 +926,24 @@ static int write_plot_script(pdk_output *o) {
   }
   fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'energy [%s]'\n", o->unit_time, o->unit_energy);
   fprintf(f, "plot data skip 1 using 2:3 with lines title 'kinetic', \\\n"
-             "     data skip 1 using 2:4 with lines title 'strain', \\\n"
-             "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n"
-             "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
+             "     data skip 1 using 2:4 with lines title 'strain', \\\n");
+  /* Dissipation curves only when the run dissipated: plastic, damage, bond breaking. */
+  const char *work_title[3] = {"plastic work", "damage", "bond breaking"};
+  int any_work = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (!(o->col_absmax[o->work_col + k] > 0)) continue;
+    fprintf(f, "     data skip 1 using 2:%d with lines title '%s', \\\n", o->work_col + k + 1,
+            work_title[k]);
+    any_work = 1;
+  }
+  if (any_work)
+    fprintf(f,
+            "     data skip 1 using 2:($3+$4+$%d+$%d+$%d) with lines title 'kinetic + strain + "
+            "dissipated', \\\n",
+            o->work_col + 1, o->work_col + 2, o->work_col + 3);
+  else
+    fprintf(f, "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n");
+  fprintf(f, "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
   fprintf(f, "unset multiplot\nset output\n");
   PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
                  o->part[OUT_GP], strerror(errno));

@@ -27,7 +27,7 @@
 #include "ext.h"
 #include "scene_impl.h"
 
-#define SC_MAX_FIELDS 16
+#define SC_MAX_FIELDS 32    /* keys per mapping, + 1 terminator (johnson_cook has 23) */
 #define MAX_REACTION_SETS 8 /* pdk_history.reaction holds 8 */
 #define SC_NAME_MAX (PDK_FIELD_NAME_MAX - 8)
 #define KEY_MAX 256
@@ -75,13 +75,23 @@ typedef struct sc_geometry {
   sc_precrack *precracks;
   unsigned precracks_count;
 } sc_geometry;
+/* material.johnson_cook: numbers as in pdk_jc_params, booleans and words as in the scene. */
+typedef struct sc_jc {
+  double A, B, n, C, reference_strain_rate;
+  bool thermal;
+  double m, T_room, T_melt, T_initial, beta, heat_capacity;
+  bool damage;
+  double D1, D2, D3, D4, D5, D_c;
+  int coupling, failed_mode;
+} sc_jc;
 typedef struct sc_material {
   double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
+  sc_jc *johnson_cook;
 } sc_material;
 typedef struct sc_model {
-  int kind, influence, stabilization, law, precision;
-  double gaussian_width, stabilization_coefficient, critical_stretch, alpha;
-  bool partial_volume;
+  int kind, influence, stabilization, law, precision, connectivity;
+  double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction;
+  bool partial_volume, failed_keeps_bonds;
 } sc_model;
 typedef struct sc_bc {
   char *set;
@@ -134,7 +144,14 @@ static const cyaml_strval_t stab_names[] = {
     {"none", PDK_STAB_NONE}, {"silling", PDK_STAB_SILLING}, {"hourglass", PDK_STAB_HOURGLASS}};
 static const cyaml_strval_t law_names[] = {{"linear_elastic", PDK_LAW_LINEAR_ELASTIC},
                                            {"svk", PDK_LAW_SVK},
-                                           {"neo_hooke", PDK_LAW_NEO_HOOKE}};
+                                           {"neo_hooke", PDK_LAW_NEO_HOOKE},
+                                           {"jc", PDK_LAW_JC}};
+static const cyaml_strval_t connectivity_names[] = {{"tl", PDK_CONNECTIVITY_TL},
+                                                    {"semi_tl", PDK_CONNECTIVITY_SEMI_TL}};
+static const cyaml_strval_t coupling_names[] = {{"none", PDK_JC_COUPLING_NONE},
+                                                {"effective", PDK_JC_COUPLING_EFFECTIVE}};
+static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
+                                                   {"compression", PDK_JC_FAILED_COMPRESSION}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
@@ -158,7 +175,7 @@ typedef struct scene_schema {
       bc_entry, top;
   cyaml_schema_field_t box[SC_MAX_FIELDS], ball[SC_MAX_FIELDS], halfspace[SC_MAX_FIELDS],
       polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
-      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
+      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS], jc[SC_MAX_FIELDS],
       model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS], initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS],
       output[SC_MAX_FIELDS], scene[SC_MAX_FIELDS];
 } scene_schema;
@@ -247,6 +264,31 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(material, CYAML_FIELD_FLOAT("poisson_ratio", OPT, sc_material, poisson_ratio));
   ADD(material, CYAML_FIELD_FLOAT("bulk_modulus", OPT, sc_material, bulk_modulus));
   ADD(material, CYAML_FIELD_FLOAT("shear_modulus", OPT, sc_material, shear_modulus));
+  ADD(material,
+      CYAML_FIELD_MAPPING_PTR("johnson_cook", OPT_PTR, sc_material, johnson_cook, sc->jc));
+  ADD(jc, CYAML_FIELD_FLOAT("A", 0, sc_jc, A));
+  ADD(jc, CYAML_FIELD_FLOAT("B", 0, sc_jc, B));
+  ADD(jc, CYAML_FIELD_FLOAT("n", 0, sc_jc, n));
+  ADD(jc, CYAML_FIELD_FLOAT("C", OPT, sc_jc, C));
+  ADD(jc, CYAML_FIELD_FLOAT("reference_strain_rate", OPT, sc_jc, reference_strain_rate));
+  ADD(jc, CYAML_FIELD_BOOL("thermal", OPT, sc_jc, thermal));
+  ADD(jc, CYAML_FIELD_FLOAT("m", OPT, sc_jc, m));
+  ADD(jc, CYAML_FIELD_FLOAT("T_room", OPT, sc_jc, T_room));
+  ADD(jc, CYAML_FIELD_FLOAT("T_melt", OPT, sc_jc, T_melt));
+  ADD(jc, CYAML_FIELD_FLOAT("T_initial", OPT, sc_jc, T_initial));
+  ADD(jc, CYAML_FIELD_FLOAT("beta", OPT, sc_jc, beta));
+  ADD(jc, CYAML_FIELD_FLOAT("heat_capacity", OPT, sc_jc, heat_capacity));
+  ADD(jc, CYAML_FIELD_BOOL("damage", OPT, sc_jc, damage));
+  ADD(jc, CYAML_FIELD_FLOAT("D1", OPT, sc_jc, D1));
+  ADD(jc, CYAML_FIELD_FLOAT("D2", OPT, sc_jc, D2));
+  ADD(jc, CYAML_FIELD_FLOAT("D3", OPT, sc_jc, D3));
+  ADD(jc, CYAML_FIELD_FLOAT("D4", OPT, sc_jc, D4));
+  ADD(jc, CYAML_FIELD_FLOAT("D5", OPT, sc_jc, D5));
+  ADD(jc, CYAML_FIELD_FLOAT("D_c", OPT, sc_jc, D_c));
+  ADD(jc, CYAML_FIELD_ENUM("coupling", ENUM_FLAGS, sc_jc, coupling, coupling_names,
+                           N_OF(coupling_names)));
+  ADD(jc, CYAML_FIELD_ENUM("failed_mode", ENUM_FLAGS, sc_jc, failed_mode, failed_mode_names,
+                           N_OF(failed_mode_names)));
 
   ADD(model, CYAML_FIELD_ENUM("kind", ENUM_FLAGS, sc_model, kind, kind_names, N_OF(kind_names)));
   ADD(model, CYAML_FIELD_ENUM("influence", ENUM_FLAGS, sc_model, influence, influence_names,
@@ -262,6 +304,10 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(model, CYAML_FIELD_FLOAT("critical_stretch", OPT, sc_model, critical_stretch));
   ADD(model, CYAML_FIELD_FLOAT("alpha", OPT, sc_model, alpha));
   ADD(model, CYAML_FIELD_BOOL("partial_volume", OPT, sc_model, partial_volume));
+  ADD(model, CYAML_FIELD_ENUM("connectivity", ENUM_FLAGS, sc_model, connectivity,
+                              connectivity_names, N_OF(connectivity_names)));
+  ADD(model, CYAML_FIELD_FLOAT("compact_fraction", OPT, sc_model, compact_fraction));
+  ADD(model, CYAML_FIELD_BOOL("failed_keeps_bonds", OPT, sc_model, failed_keeps_bonds));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
   ADD(bc,
@@ -890,6 +936,184 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   return PDK_SUCCESS;
 }
 
+/* A Johnson-Cook key that the chosen options do not use is an error naming what would use it. */
+static int jc_unused(loader *ld, const char *const *keys, int num, const char *why) {
+  char key[KEY_MAX];
+  for (int k = 0; k < num; ++k) {
+    snprintf(key, sizeof key, "material.johnson_cook.%s", keys[k]);
+    REQUIRE(ld, !has(ld, key), key, "%s", why);
+  }
+  return PDK_SUCCESS;
+}
+
+/* A required Johnson-Cook number: present and finite. */
+static int jc_needed(loader *ld, const char *name, double v, const char *why) {
+  char key[KEY_MAX];
+  snprintf(key, sizeof key, "material.johnson_cook.%s", name);
+  REQUIRE(ld, has(ld, key), key, "is missing; %s", why);
+  REQUIRE(ld, isfinite(v), key, "must be a finite number, got %g", v);
+  return PDK_SUCCESS;
+}
+
+/* material.johnson_cook -> model.jc, for model.law: jc. The elastic constants and the density come
+ * from `material` (the model checks they agree with jc to 1e-9, which they do by construction).
+ * Every key is checked here against its own scene key; pdk_jc_params_check runs last as a
+ * backstop. */
+static int resolve_johnson_cook(loader *ld, const sc_material *mat, const sc_model *mo) {
+  pdk_scene *s = ld->s;
+  pdk_model_opts *m = &s->model;
+  const int hjc = has(ld, "material.johnson_cook") && mat->johnson_cook;
+  if (m->law != PDK_LAW_JC) {
+    REQUIRE(ld, !has(ld, "material.johnson_cook"), "material.johnson_cook",
+            "only the jc law uses it (model.law is %s); remove it or set model.law: jc",
+            law_names[m->law].str);
+    REQUIRE(ld, !has(ld, "model.failed_keeps_bonds"), "model.failed_keeps_bonds",
+            "only the jc law with damage has failed particles (model.law is %s); remove it",
+            law_names[m->law].str);
+    return PDK_SUCCESS;
+  }
+  REQUIRE(ld, hjc, "material.johnson_cook",
+          "is missing; model.law is jc, so give the Johnson-Cook parameters as a mapping "
+          "material.johnson_cook with at least A, B, n (and D1, D2, D3, D_c for damage; see "
+          "docs/scenes.md)");
+  const sc_jc *j = mat->johnson_cook;
+  pdk_jc_params jc = pdk_jc_params_default();
+  jc.density = m->density;
+  jc.young_modulus =
+      9 * m->bulk_modulus * m->shear_modulus / (3 * m->bulk_modulus + m->shear_modulus);
+  jc.poisson_ratio =
+      (3 * m->bulk_modulus - 2 * m->shear_modulus) / (2 * (3 * m->bulk_modulus + m->shear_modulus));
+  if (has(ld, "material.youngs_modulus")) { /* as given, not through K and G */
+    jc.young_modulus = mat->youngs_modulus;
+    jc.poisson_ratio = mat->poisson_ratio;
+  }
+  /* hardening */
+  REQUIRE(ld, isfinite(j->A) && j->A >= 0, "material.johnson_cook.A",
+          "must be >= 0, got %g (the initial yield stress, a pressure)", j->A);
+  REQUIRE(ld, isfinite(j->B) && j->B >= 0, "material.johnson_cook.B",
+          "must be >= 0, got %g (the hardening modulus, a pressure)", j->B);
+  REQUIRE(ld, j->A + j->B > 0, "material.johnson_cook.B",
+          "A and B are both 0, a material with no strength; give A + B > 0");
+  REQUIRE(ld, isfinite(j->n) && j->n > 0, "material.johnson_cook.n",
+          "must be > 0, got %g (the hardening exponent)", j->n);
+  jc.A = j->A;
+  jc.B = j->B;
+  jc.n = j->n;
+  jc.C = has(ld, "material.johnson_cook.C") ? j->C : 0.0;
+  REQUIRE(ld, isfinite(jc.C) && jc.C >= 0, "material.johnson_cook.C",
+          "must be >= 0, got %g (the strain-rate sensitivity; 0 turns the rate term off)", jc.C);
+  /* damage (read first: D4 also uses the reference rate) */
+  jc.damage = has(ld, "material.johnson_cook.damage") ? (j->damage ? 1 : 0) : 1;
+  const char *damage_keys[] = {"D1", "D2", "D3", "D4", "D5", "D_c", "coupling", "failed_mode"};
+  if (!jc.damage) {
+    PDK_CALL(jc_unused(ld, damage_keys, 8, "only used with damage (damage is false); remove it"));
+    REQUIRE(ld, !has(ld, "model.failed_keeps_bonds"), "model.failed_keeps_bonds",
+            "only used with Johnson-Cook damage (material.johnson_cook.damage is false); remove "
+            "it");
+  } else {
+    const char *why = "damage is on (damage: true, the default), so the Johnson-Cook failure "
+                      "strain D1 + D2 exp(D3 eta) and the critical damage D_c are needed; give "
+                      "them, or set damage: false";
+    PDK_CALL(jc_needed(ld, "D1", j->D1, why));
+    PDK_CALL(jc_needed(ld, "D2", j->D2, why));
+    PDK_CALL(jc_needed(ld, "D3", j->D3, why));
+    PDK_CALL(jc_needed(ld, "D_c", j->D_c, why));
+    REQUIRE(ld, j->D1 + j->D2 > 0, "material.johnson_cook.D2",
+            "D1 + D2 = %g: the failure strain at zero triaxiality must be > 0", j->D1 + j->D2);
+    REQUIRE(ld, j->D_c > 0 && j->D_c <= 1, "material.johnson_cook.D_c",
+            "must lie in (0, 1], got %g (the point fails when D >= D_c; 1 is plain Johnson-Cook "
+            "1985, the thesis uses 0.3)",
+            j->D_c);
+    jc.D1 = j->D1;
+    jc.D2 = j->D2;
+    jc.D3 = j->D3;
+    jc.D_c = j->D_c;
+    jc.D4 = has(ld, "material.johnson_cook.D4") ? j->D4 : 0.0;
+    REQUIRE(ld, isfinite(jc.D4) && jc.D4 >= 0, "material.johnson_cook.D4",
+            "must be >= 0, got %g (the rate term of the failure strain; 0 turns it off)", jc.D4);
+    jc.D5 = has(ld, "material.johnson_cook.D5") ? j->D5 : 0.0;
+    REQUIRE(ld, isfinite(jc.D5) && jc.D5 >= -1, "material.johnson_cook.D5",
+            "must be >= -1, got %g (so that 1 + D5 T* >= 0)", jc.D5);
+    REQUIRE(ld, jc.D5 == 0 || j->thermal, "material.johnson_cook.D5",
+            "the temperature term of the failure strain needs thermal: true (temperature is not "
+            "tracked otherwise); set thermal: true or remove D5");
+    if (has(ld, "material.johnson_cook.coupling")) jc.coupling = (pdk_jc_coupling)j->coupling;
+    if (has(ld, "material.johnson_cook.failed_mode"))
+      jc.failed_mode = (pdk_jc_failed)j->failed_mode;
+  }
+  /* rate */
+  if (jc.C > 0 || jc.D4 > 0) {
+    jc.ref_rate =
+        has(ld, "material.johnson_cook.reference_strain_rate") ? j->reference_strain_rate : 1.0;
+    REQUIRE(ld, isfinite(jc.ref_rate) && jc.ref_rate > 0,
+            "material.johnson_cook.reference_strain_rate",
+            "must be > 0, got %g (1/s; plastic strain rates below it give no rate effect)",
+            jc.ref_rate);
+  } else {
+    const char *rate_keys[] = {"reference_strain_rate"};
+    PDK_CALL(jc_unused(ld, rate_keys, 1,
+                       "only the rate terms use it (C and D4 are 0); set C > 0 or D4 > 0, or "
+                       "remove it"));
+  }
+  /* temperature */
+  jc.thermal = j->thermal ? 1 : 0;
+  const char *thermal_keys[] = {"m", "T_room", "T_melt", "T_initial", "beta", "heat_capacity"};
+  if (!jc.thermal) {
+    PDK_CALL(jc_unused(ld, thermal_keys, 6,
+                       "only used with thermal softening (thermal is false); set thermal: true "
+                       "or remove it"));
+  } else {
+    const char *why = "thermal is true, so the softening exponent m, the temperatures T_room "
+                      "and T_melt and the heat capacity are needed";
+    PDK_CALL(jc_needed(ld, "m", j->m, why));
+    PDK_CALL(jc_needed(ld, "T_room", j->T_room, why));
+    PDK_CALL(jc_needed(ld, "T_melt", j->T_melt, why));
+    PDK_CALL(jc_needed(ld, "heat_capacity", j->heat_capacity, why));
+    REQUIRE(ld, j->m > 0, "material.johnson_cook.m", "must be > 0, got %g", j->m);
+    REQUIRE(ld, j->T_melt > j->T_room, "material.johnson_cook.T_melt",
+            "must exceed T_room (%g), got %g (temperatures in K)", j->T_room, j->T_melt);
+    REQUIRE(ld, j->heat_capacity > 0, "material.johnson_cook.heat_capacity",
+            "must be > 0, got %g (J/(kg K) in SI)", j->heat_capacity);
+    jc.m = j->m;
+    jc.T_room = j->T_room;
+    jc.T_melt = j->T_melt;
+    jc.heat_capacity = j->heat_capacity;
+    jc.T_initial = has(ld, "material.johnson_cook.T_initial") ? j->T_initial : j->T_room;
+    REQUIRE(ld, isfinite(jc.T_initial), "material.johnson_cook.T_initial",
+            "must be a finite temperature, got %g", jc.T_initial);
+    jc.beta = has(ld, "material.johnson_cook.beta") ? j->beta : 0.9;
+    REQUIRE(ld, isfinite(jc.beta) && jc.beta >= 0 && jc.beta <= 1, "material.johnson_cook.beta",
+            "must lie in [0, 1], got %g (the Taylor-Quinney fraction of plastic work turned into "
+            "heat)",
+            jc.beta);
+  }
+  int err = pdk_jc_params_check(ld->ctx, &jc);
+  if (err) return pdk_scene_blame(s, ld->ctx, err, "material.johnson_cook");
+  m->jc = jc;
+  m->failed_keeps_bonds = mo->failed_keeps_bonds ? 1 : 0;
+  return PDK_SUCCESS;
+}
+
+/* model.connectivity and model.compact_fraction (correspondence; checked as such by the caller). */
+static int resolve_connectivity(loader *ld, const sc_model *mo) {
+  pdk_model_opts *m = &ld->s->model;
+  if (has(ld, "model.connectivity")) m->connectivity = (pdk_connectivity)mo->connectivity;
+  if (has(ld, "model.compact_fraction")) {
+    REQUIRE(ld, m->connectivity == PDK_CONNECTIVITY_SEMI_TL, "model.compact_fraction",
+            "only semi_tl connectivity compacts its bond list (connectivity is tl); set "
+            "model.connectivity: semi_tl or remove it");
+    REQUIRE(ld,
+            isfinite(mo->compact_fraction) && mo->compact_fraction >= 0 &&
+                mo->compact_fraction <= 1,
+            "model.compact_fraction",
+            "must lie in [0, 1], got %g (the fraction of broken entries in the bond list that "
+            "triggers a compaction; 0: whenever bonds broke)",
+            mo->compact_fraction);
+    m->compact_fraction = mo->compact_fraction;
+  }
+  return PDK_SUCCESS;
+}
+
 static int resolve_material_model(loader *ld, const sc_material *mat, const sc_model *mo) {
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
@@ -942,9 +1166,10 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   }
 
   const int corr = m->kind == PDK_MODEL_CORRESPONDENCE;
-  const char *corr_only[] = {"model.influence", "model.gaussian_width", "model.stabilization",
-                             "model.stabilization_coefficient", "model.law"};
-  for (int k = 0; k < 5; ++k)
+  const char *corr_only[] = {"model.influence",     "model.gaussian_width",
+                             "model.stabilization", "model.stabilization_coefficient",
+                             "model.law",           "model.connectivity"};
+  for (int k = 0; k < (int)(sizeof corr_only / sizeof corr_only[0]); ++k)
     REQUIRE(ld, corr || !has(ld, corr_only[k]), corr_only[k],
             "only the correspondence model uses it (model.kind is %s); remove it or set "
             "model.kind: correspondence",
@@ -978,6 +1203,8 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
           "only acts with bond breaking; set model.critical_stretch > 0 or remove alpha");
   m->alpha = mo->alpha;
   m->lattice_constant = mo->partial_volume ? s->lattice.spacing : 0;
+  PDK_CALL(resolve_johnson_cook(ld, mat, mo));
+  PDK_CALL(resolve_connectivity(ld, mo));
   return PDK_SUCCESS;
 }
 

@@ -24,6 +24,8 @@
  *                             reaction_<set>_<x|y|z>  for every reaction set (dim components),
  *                             disp_<set>_<x|y|z>      mean displacement x - X of the set's
  *                                                     particles, when "set:<set>" and "x" exist
+ *                             plastic_work, damage_work, breaking_work   energy dissipated so far
+ *                                                     (pdk_history; 0 for models without it)
  * Dataset names are the field names with every character outside [A-Za-z0-9_-] replaced by '_'.
  *
  * <dir>/<name>.xmf: XDMF 2 (ParaView: "Xdmf Reader"), a temporal collection with one polyvertex
@@ -34,8 +36,9 @@
  *   relative, so the directory can be moved. Checked with ParaView 5.11: the Xdmf reader and
  *   both Xdmf3 readers load every step.
  * <dir>/<name>_history.csv: one row per history record; the header names the columns with units.
- * <dir>/<name>_history.png: reaction vs time, reaction vs displacement and energies vs time,
- *   made by gnuplot from <dir>/<name>_history.gp (kept, so the plot can be redone or edited).
+ * <dir>/<name>_history.png: reaction vs time, reaction vs displacement and energies vs time (with
+ *   the dissipated energies and their sum with kinetic and strain when a run dissipated), made by
+ *   gnuplot from <dir>/<name>_history.gp (kept, so the plot can be redone or edited).
  *
  * Crash safety: every file is written under a temporary name (<file>.part) and flushed as it
  * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its

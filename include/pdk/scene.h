@@ -70,7 +70,8 @@ pdk_model *pdk_sim_model(pdk_sim *sim);
 pdk_explicit *pdk_sim_explicit(pdk_sim *sim);
 long pdk_sim_num_steps(const pdk_sim *sim); /* solver.steps, or ceil(end_time / dt) */
 
-/* Refreshes derived output fields (displacement "u" = x - X) before a field output. */
+/* Refreshes derived output fields before a field output: displacement "u" = x - X, and
+ * "von_mises" (the von Mises Cauchy stress of a correspondence model; see src/sim.c). */
 int pdk_sim_update_output_fields(pdk_sim *sim);
 
 #ifdef __cplusplus

@@ -1,0 +1,364 @@
+/* Scenes with the Johnson-Cook law: every key of material.johnson_cook and the model's
+ * connectivity keys map onto pdk_model_opts; defaults fill in; E, nu and rho come from
+ * `material` (also when it gives K and G); the shipped ductile scenes load and build; the derived
+ * output field von_mises equals the von Mises stress of the law at an affine deformation for every
+ * correspondence law; the history files carry the plastic, damage and breaking work.
+ * labels: unit */
+#include "pdk/output.h"
+#include "pdk/scene.h"
+#include "scene_impl.h"
+#include "test_util.h"
+
+#include <sys/stat.h>
+
+static const char *full_scene = "dimension: 2\n"
+                                "geometry:\n"
+                                "  spacing: 1.0e-3\n"
+                                "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
+                                "material:\n"
+                                "  density: 7830\n"
+                                "  youngs_modulus: 200e9\n"
+                                "  poisson_ratio: 0.29\n"
+                                "  johnson_cook:\n"
+                                "    A: 792e6\n"
+                                "    B: 510e6\n"
+                                "    n: 0.26\n"
+                                "    C: 0.014\n"
+                                "    reference_strain_rate: 2.0\n"
+                                "    thermal: true\n"
+                                "    m: 1.03\n"
+                                "    T_room: 293\n"
+                                "    T_melt: 1793\n"
+                                "    T_initial: 300\n"
+                                "    beta: 0.8\n"
+                                "    heat_capacity: 477\n"
+                                "    damage: true\n"
+                                "    D1: 0.05\n"
+                                "    D2: 3.44\n"
+                                "    D3: -2.12\n"
+                                "    D4: 0.002\n"
+                                "    D5: 0.61\n"
+                                "    D_c: 0.3\n"
+                                "    coupling: effective\n"
+                                "    failed_mode: compression\n"
+                                "model:\n"
+                                "  kind: correspondence\n"
+                                "  law: jc\n"
+                                "  connectivity: semi_tl\n"
+                                "  compact_fraction: 0.05\n"
+                                "  failed_keeps_bonds: true\n"
+                                "solver:\n"
+                                "  steps: 3\n"
+                                "output:\n"
+                                "  fields: [u, eps_p, damage, failed, von_mises]\n";
+
+static const char *minimal_jc =
+    "dimension: 2\n"
+    "geometry:\n"
+    "  spacing: 1.0e-3\n"
+    "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
+    "material:\n"
+    "  density: 7830\n"
+    "  bulk_modulus: 150e9\n"
+    "  shear_modulus: 80e9\n"
+    "  johnson_cook: {A: 792e6, B: 510e6, n: 0.26, D1: 0.05, D2: 3.44, D3: -2.12, D_c: 0.3}\n"
+    "model: {kind: correspondence, law: jc}\n"
+    "solver:\n"
+    "  steps: 3\n";
+
+static void write_file(const char *path, const char *text) {
+  FILE *f = fopen(path, "wb");
+  T_ASSERT(f && fputs(text, f) >= 0 && !fclose(f), "writing %s", path);
+}
+
+static char *slurp(const char *path) {
+  FILE *f = fopen(path, "rb");
+  T_ASSERT(f, "cannot open %s", path);
+  fseek(f, 0, SEEK_END);
+  long n = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *b = malloc((size_t)n + 1);
+  T_ASSERT(b && fread(b, 1, (size_t)n, f) == (size_t)n, "short read of %s", path);
+  b[n] = '\0';
+  fclose(f);
+  return b;
+}
+
+static void check_full(pdk_ctx *ctx) {
+  write_file("t062_full.yaml", full_scene);
+  pdk_scene *s = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, "t062_full.yaml", NULL, 0, &s));
+  const pdk_model_opts *m = &s->model;
+  const pdk_jc_params *jc = &m->jc;
+  T_ASSERT(m->kind == PDK_MODEL_CORRESPONDENCE && m->law == PDK_LAW_JC, "law jc");
+  T_ASSERT(jc->density == 7830 && jc->young_modulus == 200e9 && jc->poisson_ratio == 0.29,
+           "E, nu, rho from material: %g %g %g", jc->young_modulus, jc->poisson_ratio, jc->density);
+  T_ASSERT(jc->A == 792e6 && jc->B == 510e6 && jc->n == 0.26 && jc->C == 0.014 &&
+               jc->ref_rate == 2.0,
+           "hardening and rate");
+  T_ASSERT(jc->thermal == 1 && jc->m == 1.03 && jc->T_room == 293 && jc->T_melt == 1793 &&
+               jc->T_initial == 300 && jc->beta == 0.8 && jc->heat_capacity == 477,
+           "thermal terms");
+  T_ASSERT(jc->damage == 1 && jc->D1 == 0.05 && jc->D2 == 3.44 && jc->D3 == -2.12 &&
+               jc->D4 == 0.002 && jc->D5 == 0.61 && jc->D_c == 0.3,
+           "damage constants");
+  T_ASSERT(jc->coupling == PDK_JC_COUPLING_EFFECTIVE &&
+               jc->failed_mode == PDK_JC_FAILED_COMPRESSION,
+           "coupling %d, failed mode %d", (int)jc->coupling, (int)jc->failed_mode);
+  T_ASSERT(m->connectivity == PDK_CONNECTIVITY_SEMI_TL && m->compact_fraction == 0.05 &&
+               m->failed_keeps_bonds == 1,
+           "connectivity %d, compact_fraction %g, failed_keeps_bonds %d", (int)m->connectivity,
+           m->compact_fraction, m->failed_keeps_bonds);
+  /* It builds: the model accepts the constants (K, G, rho agree with jc) and declares the
+   * history fields the output asks for. */
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  pdk_particles *p = pdk_sim_particles(sim);
+  const char *fields[] = {"u", "eps_p", "damage", "failed", "von_mises", "temp_rise"};
+  for (int k = 0; k < 6; ++k)
+    T_ASSERT(pdk_particles_field_exists(p, fields[k]), "field %s exists", fields[k]);
+  T_OK(ctx, pdk_explicit_run(pdk_sim_explicit(sim), 3, NULL));
+  T_OK(ctx, pdk_sim_update_output_fields(sim));
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
+  remove("t062_full.yaml");
+}
+
+static void check_defaults(pdk_ctx *ctx) {
+  write_file("t062_min.yaml", minimal_jc);
+  pdk_scene *s = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", NULL, 0, &s));
+  const pdk_model_opts *m = &s->model;
+  const pdk_jc_params *jc = &m->jc;
+  /* E = 9KG / (3K + G), nu = (3K - 2G) / (2 (3K + G)) */
+  const double K = 150e9, G = 80e9;
+  T_NEAR(jc->young_modulus, 9 * K * G / (3 * K + G), 1e-15, 0, "E from K, G");
+  T_NEAR(jc->poisson_ratio, (3 * K - 2 * G) / (2 * (3 * K + G)), 1e-15, 0, "nu from K, G");
+  T_ASSERT(jc->C == 0 && jc->D4 == 0 && jc->D5 == 0 && jc->thermal == 0 && jc->damage == 1,
+           "rate and thermal terms off, damage on by default");
+  T_ASSERT(jc->coupling == PDK_JC_COUPLING_NONE && jc->failed_mode == PDK_JC_FAILED_ZERO,
+           "coupling none, failed mode zero by default");
+  T_ASSERT(m->connectivity == PDK_CONNECTIVITY_TL && m->compact_fraction == 0.02 &&
+               m->failed_keeps_bonds == 0,
+           "connectivity defaults");
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  T_NEAR(pdk_model_opts_get(pdk_sim_model(sim))->bulk_modulus, K, 1e-12, 0, "K round trip");
+  T_ASSERT(pdk_model_bond_alive(pdk_sim_model(sim)), "JC damage breaks bonds by default");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
+  /* damage: false switches damage off and with it bond breaking */
+  const char *ov[] = {"material.johnson_cook={A: 792e6, B: 510e6, n: 0.26, damage: false}"};
+  T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ov, 1, &s));
+  T_ASSERT(s->model.jc.damage == 0, "damage off");
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  T_ASSERT(!pdk_model_bond_alive(pdk_sim_model(sim)), "no bond state without damage");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
+  remove("t062_min.yaml");
+}
+
+/* The shipped ductile scenes load and build (not run). */
+static void check_shipped(pdk_ctx *ctx) {
+  const char *src = getenv("PDK_SOURCE_DIR");
+  T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
+  const char *names[] = {"plate_two_holes", "plate_two_holes_fine", "plate_one_hole_ductile"};
+  for (int k = 0; k < 3; ++k) {
+    char path[2048];
+    snprintf(path, sizeof path, "%s/scenes/%s.yaml", src, names[k]);
+    pdk_scene *s = NULL;
+    pdk_sim *sim = NULL;
+    /* a coarse spacing so that building is quick; the keys are what is checked */
+    const char *ov[] = {"geometry.spacing=2.5e-3"};
+    T_OK(ctx, pdk_scene_load(ctx, path, ov, 1, &s));
+    T_ASSERT(s->model.law == PDK_LAW_JC && s->model.jc.A == 792e6 && s->model.jc.D_c == 0.3,
+             "%s: V-JC steel", names[k]);
+    T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+    pdk_sim_destroy(&sim);
+    pdk_scene_destroy(&s);
+  }
+}
+
+/* Cauchy stress of each law at a homogeneous plane-strain F (F33 = 1), computed here from the
+ * formulas of kernels/ref/corr.c, and its von Mises value. */
+static double law_von_mises(pdk_law law, const pdk_model_opts *mo, const double F[3][3]) {
+  const double mu = mo->shear_modulus, lambda = mo->bulk_modulus - 2.0 * mu / 3.0;
+  double S[3][3] = {{0}};
+  const double J = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+  if (law == PDK_LAW_JC) {
+    pdk_jc_state in = pdk_jc_state_initial(), out;
+    double P[3][3];
+    pdk_jc_result res;
+    T_ASSERT(!pdk_jc_update(&mo->jc, 2, F, 1e-7, &in, &out, P, &res), "jc update");
+    T_ASSERT(!out.failed && (F[0][0] < 1.01 || res.plastic), "jc point: yields, does not fail");
+    return res.sigma_vm;
+  }
+  if (law == PDK_LAW_LINEAR_ELASTIC) {
+    double eps[3][3] = {{0}};
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c)
+        eps[a][c] = 0.5 * (F[a][c] + F[c][a]) - (a == c);
+    const double tr = eps[0][0] + eps[1][1];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c)
+        S[a][c] = 2 * mu * eps[a][c] + (a == c ? lambda * tr : 0.0);
+  } else if (law == PDK_LAW_SVK) {
+    double E[3][3] = {{0}}, Sp[3][3] = {{0}};
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        double C = 0;
+        for (int e = 0; e < 3; ++e)
+          C += F[e][a] * F[e][c];
+        E[a][c] = 0.5 * (C - (a == c));
+      }
+    const double tr = E[0][0] + E[1][1] + E[2][2];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c)
+        Sp[a][c] = 2 * mu * E[a][c] + (a == c ? lambda * tr : 0.0);
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        double v = 0;
+        for (int e = 0; e < 3; ++e)
+          for (int g = 0; g < 3; ++g)
+            v += F[a][e] * Sp[e][g] * F[c][g];
+        S[a][c] = v / J;
+      }
+  } else {
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        double b = 0;
+        for (int e = 0; e < 3; ++e)
+          b += F[a][e] * F[c][e];
+        S[a][c] = (mu * (b - (a == c)) + (a == c ? lambda * log(J) : 0.0)) / J;
+      }
+  }
+  const double d1 = S[0][0] - S[1][1], d2 = S[1][1] - S[2][2], d3 = S[2][2] - S[0][0];
+  return sqrt(0.5 * (d1 * d1 + d2 * d2 + d3 * d3) +
+              3 * (S[0][1] * S[0][1] + S[1][2] * S[1][2] + S[0][2] * S[0][2]));
+}
+
+/* von_mises at an affine deformation x = F X: a trial force pass makes F and A, then
+ * pdk_sim_update_output_fields; every particle whose family spans must give the law's value. */
+static void check_von_mises(pdk_ctx *ctx) {
+  write_file("t062_min.yaml", minimal_jc);
+  { /* the same scene without the Johnson-Cook mapping, for the elastic laws */
+    char *el = strdup(minimal_jc);
+    char *at = strstr(el, "  johnson_cook:"), *end = strchr(at, '\n') + 1;
+    memmove(at, end, strlen(end) + 1);
+    write_file("t062_el.yaml", el);
+    free(el);
+  }
+  const char *laws[] = {"linear_elastic", "svk", "neo_hooke", "jc"};
+  const pdk_law law_of[] = {PDK_LAW_LINEAR_ELASTIC, PDK_LAW_SVK, PDK_LAW_NEO_HOOKE, PDK_LAW_JC};
+  /* for JC 1e-3 stays elastic and 3e-2 yields */
+  const double amp[] = {1e-3, 3e-2};
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < (law_of[k] == PDK_LAW_JC ? 2 : 1); ++a) {
+      char law[64];
+      snprintf(law, sizeof law, "model.law=%s", laws[k]);
+      const char *ov_jc[] = {"output.fields=[von_mises]"};
+      const char *ov_el[] = {"output.fields=[von_mises]", law};
+      pdk_scene *s = NULL;
+      pdk_sim *sim = NULL;
+      if (law_of[k] == PDK_LAW_JC)
+        T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ov_jc, 1, &s));
+      else
+        T_OK(ctx, pdk_scene_load(ctx, "t062_el.yaml", ov_el, 2, &s));
+      T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+      pdk_particles *p = pdk_sim_particles(sim);
+      const double e = amp[a];
+      /* a = 0: stretch, shear and a volume change; a = 1: the same isochoric (J = 1), so that
+       * the yielding JC point keeps a low triaxiality and does not fail */
+      const double F22 = a == 0 ? 1 - 0.3 * e : (1 - 0.1 * e * e) / (1 + e);
+      const double F[3][3] = {{1 + e, 0.5 * e, 0}, {-0.2 * e, F22, 0}, {0, 0, 1}};
+      double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
+      const pdk_index n = pdk_particles_count(p);
+      for (pdk_index i = 0; i < n; ++i) {
+        const double X = pdk_particles_X(p, 0)[i], Y = pdk_particles_X(p, 1)[i];
+        x[i] = F[0][0] * X + F[0][1] * Y;
+        y[i] = F[1][0] * X + F[1][1] * Y;
+      }
+      pdk_model *m = pdk_sim_model(sim);
+      T_OK(ctx, pdk_model_force_trial(m, NULL));
+      T_OK(ctx, pdk_sim_update_output_fields(sim));
+      const double want = law_von_mises(law_of[k], pdk_model_opts_get(m), F);
+      T_ASSERT(want > 1e6, "%s: the test deformation makes a stress (%g)", laws[k], want);
+      const double *vm = pdk_particles_field_data(p, "von_mises", 0);
+      const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
+      for (pdk_index i = 0; i < n; ++i) {
+        if (flag[i]) continue;
+        /* F is exact to round-off for affine motion (t100); P = A K and the law add a few ulps
+         * per operation on stresses of order E e: 1e-9 relative is far above that */
+        T_NEAR(vm[i], want, 1e-9, 0, "%s (amplitude %g): von_mises of particle %d", laws[k], e,
+               (int)i);
+      }
+      pdk_sim_destroy(&sim);
+      pdk_scene_destroy(&s);
+    }
+  remove("t062_min.yaml");
+  remove("t062_el.yaml");
+}
+
+/* The history files end with plastic_work, damage_work, breaking_work, written as given. */
+static void check_history_columns(pdk_ctx *ctx) {
+  write_file("t062_min.yaml", minimal_jc);
+  pdk_scene *s = NULL;
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", NULL, 0, &s));
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  mkdir("t062_out", 0777);
+  pdk_output_opts oo = pdk_output_opts_default();
+  oo.dir = "t062_out";
+  oo.name = "hist";
+  oo.plot = 0;
+  oo.units = "SI";
+  pdk_output *o = NULL;
+  T_OK(ctx, pdk_output_open(ctx, &oo, pdk_sim_particles(sim), &o));
+  pdk_history h;
+  memset(&h, 0, sizeof h);
+  h.plastic_work = 1.25;
+  h.damage_work = 0.5;
+  h.breaking_work = 0.0625;
+  T_OK(ctx, pdk_output_write_history(o, &h));
+  T_OK(ctx, pdk_output_close(&o, 1));
+  char *csv = slurp("t062_out/hist_history.csv");
+  char *eol = strchr(csv, '\n');
+  T_ASSERT(eol, "CSV has a header line");
+  *eol = '\0';
+  const char *tail = "plastic_work [J],damage_work [J],breaking_work [J]";
+  T_ASSERT(strlen(csv) >= strlen(tail) && !strcmp(csv + strlen(csv) - strlen(tail), tail),
+           "CSV header ends with the work columns: %s", csv);
+  const char *row = eol + 1;
+  /* last three numbers of the row */
+  double v[3];
+  const char *q = row + strlen(row);
+  while (q > row && (q[-1] == '\n'))
+    --q;
+  int found = 0;
+  for (const char *r = q; r > row && found < 3; --r)
+    if (r[-1] == ',') {
+      v[2 - found] = strtod(r, NULL);
+      ++found;
+    }
+  T_ASSERT(found == 3 && v[0] == 1.25 && v[1] == 0.5 && v[2] == 0.0625,
+           "work columns written as given: %g %g %g", v[0], v[1], v[2]);
+  free(csv);
+  remove("t062_out/hist_history.csv");
+  remove("t062_out/hist.h5");
+  remove("t062_out/hist.xmf");
+  remove("t062_out");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
+  remove("t062_min.yaml");
+}
+
+int main(void) {
+  pdk_ctx *ctx = t_ctx(1);
+  check_full(ctx);
+  check_defaults(ctx);
+  check_shipped(ctx);
+  check_von_mises(ctx);
+  check_history_columns(ctx);
+  pdk_ctx_destroy(&ctx);
+  return 0;
+}
