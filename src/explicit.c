@@ -169,26 +169,62 @@ static int check_state(pdk_explicit *e) {
   pdk_index bad = n;
   int bad_c = 0;
   for (int c = 0; c < e->dim; ++c) {
-    const double *x = field(e->p, "x", c), *v = field(e->p, "v", c);
+    const double *x = field(e->p, "x", c), *v = field(e->p, "v", c), *f = field(e->p, "f", c);
     pdk_index first = n;
     int nthreads = e->ctx->num_threads;
-#pragma omp parallel for default(none) shared(x, v, n) reduction(min : first) schedule(static) num_threads(nthreads)
+#pragma omp parallel for default(none) shared(x, v, f, n) reduction(min : first) schedule(static) num_threads(nthreads)
     for (pdk_index i = 0; i < n; ++i)
-      if (!isfinite(x[i]) || !isfinite(v[i])) first = i < first ? i : first;
+      if (!isfinite(x[i]) || !isfinite(v[i]) || !isfinite(f[i])) first = i < first ? i : first;
     if (first < bad) {
       bad = first;
       bad_c = c;
     }
   }
-  if (bad == n) return PDK_SUCCESS;
+  if (bad == n) {
+    PDK_CHECK(isfinite(e->strain), e->ctx, PDK_ERR_NUMERIC,
+              "the strain energy became non-finite (%g) at step %ld (time %g); the time step %g may "
+              "exceed the stable limit %g, or a particle's deformation left the law's domain",
+              e->strain, e->step, e->time, e->dt, e->dt_stable);
+    return PDK_SUCCESS;
+  }
   const int64_t *id = pdk_particles_id(e->p);
   return pdk_ctx_error_set(e->ctx, PDK_ERR_NUMERIC, __func__,
                            "the state became non-finite at step %ld (time %g): particle %d (id %lld) "
-                           "has x[%d] = %g, v[%d] = %g; the time step %g may exceed the stable limit "
-                           "%g, or a load or material parameter is too large",
+                           "has x[%d] = %g, v[%d] = %g, f[%d] = %g; the time step %g may exceed the "
+                           "stable limit %g, or a load or material parameter is too large",
                            e->step, e->time, (int)bad, (long long)id[bad], bad_c,
-                           field(e->p, "x", bad_c)[bad], bad_c, field(e->p, "v", bad_c)[bad], e->dt,
-                           e->dt_stable);
+                           field(e->p, "x", bad_c)[bad], bad_c, field(e->p, "v", bad_c)[bad], bad_c,
+                           field(e->p, "f", bad_c)[bad], e->dt, e->dt_stable);
+}
+
+static double kinetic_energy(pdk_explicit *e);
+
+/* Blow-up: an elastic or dissipative body never holds more energy than it started with plus the
+ * work done on it. Kinetic + strain energy above 100 times that budget (and above a round-off
+ * floor) means the integration is unstable; the run stops naming the fastest particle. */
+static int check_blowup(pdk_explicit *e) {
+  double energy = kinetic_energy(e) + e->strain;
+  double budget = e->energy0 + fabs(e->external_work);
+  if (!(energy > 100.0 * budget && energy > e->energy_floor)) return PDK_SUCCESS;
+  pdk_index fastest = 0;
+  double vmax = -1.0;
+  for (pdk_index i = 0; i < e->n; ++i) {
+    double s = 0.0;
+    for (int c = 0; c < e->dim; ++c) s += field(e->p, "v", c)[i] * field(e->p, "v", c)[i];
+    if (s > vmax) {
+      vmax = s;
+      fastest = i;
+    }
+  }
+  return pdk_ctx_error_set(e->ctx, PDK_ERR_NUMERIC, __func__,
+                           "the run is blowing up at step %ld (time %g): kinetic + strain energy %g "
+                           "is %.3g times the initial energy plus the work done (%g); fastest "
+                           "particle %d (id %lld), |v| = %g; the time step %g may exceed the stable "
+                           "limit %g (estimated at the start; stiffening under large deformation "
+                           "lowers it): reduce solver.safety or solver.dt",
+                           e->step, e->time, energy, budget > 0 ? energy / budget : INFINITY,
+                           budget, (int)fastest, (long long)pdk_particles_id(e->p)[fastest],
+                           sqrt(vmax), e->dt, e->dt_stable);
 }
 
 /* Sum over particles of g(i) through fixed blocks: the same bits for any thread count. */
@@ -482,6 +518,14 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
   PDK_CALL_GOTO(pdk_model_set_dt(m, e->dt)); /* history updates (rate terms) use the step */
   apply_kinematic_bcs(e, 0.0, 0);
   PDK_CALL_GOTO(pdk_model_force(m, &e->strain));
+  e->energy0 = kinetic_energy(e) + e->strain;
+  {
+    /* round-off floor: the energy of a uniform strain of 1e-6 in the whole body */
+    double vol = 0.0;
+    const double *V = pdk_particles_volume(e->p);
+    for (pdk_index i = 0; i < e->n; ++i) vol += V[i];
+    e->energy_floor = 0.5 * m->opts.bulk_modulus * 1e-12 * vol;
+  }
   *out = e;
   return PDK_SUCCESS;
 cleanup:
@@ -521,6 +565,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     /* work of the constraints: the trapezoid of their power against the internal forces, plus
      * the change of the prescribed particles' kinetic energy (their inertia) */
     e->external_work += 0.5 * e->dt * (p0 + external_power(e, t1)) + constrained_kinetic(e) - k0;
+    if (e->step % 8 == 0) PDK_CALL(check_blowup(e));
   }
   if (hist) {
     memset(hist, 0, sizeof *hist);

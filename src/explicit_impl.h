@@ -25,7 +25,8 @@ struct pdk_explicit {
   int num_reaction;
   double strain;            /* strain energy of the last force pass */
   double external_work;
-  double *fprev_work;       /* [num_bcs*3] previous-step power terms for trapezoidal work */
+  double energy0;           /* kinetic + strain energy at creation, for the blow-up check */
+  double energy_floor;      /* energies below this are round-off for the blow-up check */
 };
 
 #endif

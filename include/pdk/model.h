@@ -70,7 +70,9 @@ typedef enum pdk_stabilization {
 } pdk_stabilization;
 
 typedef enum pdk_law {
-  PDK_LAW_LINEAR_ELASTIC = 0, /* small strain: sigma = lambda tr(eps) I + 2 mu eps, P = sigma */
+  PDK_LAW_LINEAR_ELASTIC = 0, /* small strain: sigma = lambda tr(eps) I + 2 mu eps, P = sigma;
+                                 not objective: rotations beyond a few degrees create strain
+                                 energy (use svk or neo_hooke for large rotations) */
   PDK_LAW_SVK = 1,            /* St Venant-Kirchhoff: S = lambda tr(E) I + 2 mu E, P = F S */
   PDK_LAW_NEO_HOOKE = 2,      /* compressible: P = mu (F - F^-T) + lambda ln(J) F^-T */
   PDK_LAW_JC = 3 /* finite J2 plasticity, Johnson-Cook hardening and damage (opts.jc) */
