@@ -10,8 +10,8 @@
  *   - failure starts between the holes: those particles lie in the inner ligament, and the outer
  *     ligaments fail later. CAUTION: this holds at this spacing (1 mm: inner 0.870 ms, outer
  *     0.910 ms) but is a near tie that flips with the resolution and the influence function: at
- *     0.625 and 0.5 mm, and with the cubic influence at 1 and 1.25 mm, the hole edges facing
- *     the outer ligaments fail first (t121 records the order per spacing; the report in
+ *     0.625, 0.5 and 0.25 mm, and with the cubic influence at 1 and 1.25 mm, the hole edges
+ *     facing the outer ligaments fail first (t121 records the order per spacing;
  *     docs/validation/plate_two_holes.md says why: the triaxiality of hole-edge particles);
  *   - the bottom force rises, peaks and falls: the peak comes before separation, and the mean
  *     force over the last half of the time run after separation is below 10% of the peak in
