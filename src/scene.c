@@ -90,7 +90,8 @@ typedef struct sc_material {
 } sc_material;
 typedef struct sc_model {
   int kind, influence, stabilization, law, precision, connectivity;
-  double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction;
+  double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
+      ul_skin;
   bool partial_volume, failed_keeps_bonds;
 } sc_model;
 typedef struct sc_bc {
@@ -147,7 +148,8 @@ static const cyaml_strval_t law_names[] = {{"linear_elastic", PDK_LAW_LINEAR_ELA
                                            {"neo_hooke", PDK_LAW_NEO_HOOKE},
                                            {"jc", PDK_LAW_JC}};
 static const cyaml_strval_t connectivity_names[] = {{"tl", PDK_CONNECTIVITY_TL},
-                                                    {"semi_tl", PDK_CONNECTIVITY_SEMI_TL}};
+                                                    {"semi_tl", PDK_CONNECTIVITY_SEMI_TL},
+                                                    {"ul", PDK_CONNECTIVITY_UL}};
 static const cyaml_strval_t coupling_names[] = {{"none", PDK_JC_COUPLING_NONE},
                                                 {"effective", PDK_JC_COUPLING_EFFECTIVE}};
 static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
@@ -307,6 +309,7 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(model, CYAML_FIELD_ENUM("connectivity", ENUM_FLAGS, sc_model, connectivity,
                               connectivity_names, N_OF(connectivity_names)));
   ADD(model, CYAML_FIELD_FLOAT("compact_fraction", OPT, sc_model, compact_fraction));
+  ADD(model, CYAML_FIELD_FLOAT("ul_skin", OPT, sc_model, ul_skin));
   ADD(model, CYAML_FIELD_BOOL("failed_keeps_bonds", OPT, sc_model, failed_keeps_bonds));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
@@ -1110,6 +1113,26 @@ static int resolve_connectivity(loader *ld, const sc_model *mo) {
             "triggers a compaction; 0: whenever bonds broke)",
             mo->compact_fraction);
     m->compact_fraction = mo->compact_fraction;
+  }
+  if (has(ld, "model.ul_skin")) {
+    REQUIRE(ld, m->connectivity == PDK_CONNECTIVITY_UL, "model.ul_skin",
+            "only ul connectivity rebuilds its families (connectivity is %s); set "
+            "model.connectivity: ul or remove it",
+            connectivity_names[m->connectivity].str);
+    REQUIRE(ld, isfinite(mo->ul_skin) && mo->ul_skin >= 0 && mo->ul_skin <= 1, "model.ul_skin",
+            "must lie in [0, 1], got %g (a fraction of the horizon; 0: never rebuild)",
+            mo->ul_skin);
+    m->ul_skin = mo->ul_skin;
+  }
+  if (m->connectivity == PDK_CONNECTIVITY_UL) {
+    const int jc_breaks = m->law == PDK_LAW_JC && m->jc.damage && !m->failed_keeps_bonds;
+    REQUIRE(ld, m->critical_stretch == 0 && !jc_breaks, "model.connectivity",
+            "ul cannot break bonds (a rebuild in the current configuration would bond broken "
+            "pairs again), but %s; use tl or semi_tl, or %s",
+            jc_breaks ? "failed Johnson-Cook particles break theirs" : "critical_stretch is set",
+            jc_breaks ? "set model.failed_keeps_bonds: true (failed particles then carry no stress "
+                        "but keep their bonds)"
+                      : "remove model.critical_stretch");
   }
   return PDK_SUCCESS;
 }

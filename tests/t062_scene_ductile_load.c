@@ -155,6 +155,17 @@ static void check_defaults(pdk_ctx *ctx) {
   T_ASSERT(!pdk_model_bond_alive(pdk_sim_model(sim)), "no bond state without damage");
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&s);
+  /* ul with failed particles that keep their bonds, and its skin */
+  const char *ul[] = {"model.connectivity=ul", "model.ul_skin=0.5",
+                      "model.failed_keeps_bonds=true"};
+  T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ul, 3, &s));
+  T_ASSERT(s->model.connectivity == PDK_CONNECTIVITY_UL && s->model.ul_skin == 0.5 &&
+               s->model.failed_keeps_bonds == 1,
+           "ul keys");
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  T_OK(ctx, pdk_explicit_run(pdk_sim_explicit(sim), 3, NULL));
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
   remove("t062_min.yaml");
 }
 

@@ -102,8 +102,8 @@ static const error_case cases[] = {
      AT_LOAD, PDK_ERR_ARG, "material.johnson_cook.coupling", "allowed: none, effective"},
     {"unknown failed mode", "    D_c: 0.3\n", "    D_c: 0.3\n    failed_mode: gone #<\n", NULL,
      AT_LOAD, PDK_ERR_ARG, "material.johnson_cook.failed_mode", "allowed: zero, compression"},
-    {"unknown connectivity", "  law: jc\n", "  law: jc\n  connectivity: ul #<\n", NULL, AT_LOAD,
-     PDK_ERR_ARG, "model.connectivity", "allowed: tl, semi_tl"},
+    {"unknown connectivity", "  law: jc\n", "  law: jc\n  connectivity: eulerian #<\n", NULL,
+     AT_LOAD, PDK_ERR_ARG, "model.connectivity", "allowed: tl, semi_tl, ul"},
     /* model keys */
     {"connectivity with lps", "  kind: correspondence\n  law: jc\n",
      "  kind: lps\n  connectivity: tl #<\n", NULL, AT_LOAD, PDK_ERR_ARG, "model.connectivity",
@@ -117,6 +117,10 @@ static const error_case cases[] = {
      "model.failed_keeps_bonds", "only the jc law"},
     {"failed_keeps_bonds without damage", NULL, NULL, NULL, AT_LOAD, PDK_ERR_ARG,
      "model.failed_keeps_bonds", "damage is false"},
+    {"ul with failed particles breaking bonds", "  law: jc\n", "  law: jc\n  connectivity: ul\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.connectivity", "failed_keeps_bonds: true"},
+    {"ul_skin in TL", "  law: jc\n", "  law: jc\n  ul_skin: 0.5 #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
+     "model.ul_skin", "only ul connectivity"},
     /* output fields */
     {"von_mises with pmb", NULL, NULL, NULL, AT_BUILD, PDK_ERR_ARG, "output.fields[0]",
      "correspondence"},
@@ -126,7 +130,7 @@ static const error_case cases[] = {
     {"override of D_c", NULL, NULL, "material.johnson_cook.D_c=0", AT_LOAD, PDK_ERR_ARG,
      "material.johnson_cook.D_c", "(0, 1]"},
     {"override of connectivity", NULL, NULL, "model.connectivity=semi", AT_LOAD, PDK_ERR_ARG,
-     "model.connectivity", "allowed: tl, semi_tl"},
+     "model.connectivity", "allowed: tl, semi_tl, ul"},
 };
 
 /* Scenes of the cases that need more than one edit. */
