@@ -36,7 +36,10 @@ mkdir -p "$work"
 cd "$work"
 
 echo "# pdk vs LAMMPS $(lmp -h | awk '/^Large-scale/ {print $(NF-5), $(NF-4), $(NF-3), $(NF-2), $(NF-1), $NF; exit}'), $steps steps from rest, $(date -u +%Y-%m-%dT%H:%MZ)"
-echo "# pdk: $(cd "$here" && git rev-parse --short HEAD 2>/dev/null || echo '?'), $bench"
+src=$(awk -F= '/^CMAKE_HOME_DIRECTORY/ {print $2}' "$build/CMakeCache.txt" 2>/dev/null || true)
+commit=$(git -C "${src:-$here}" rev-parse --short HEAD 2>/dev/null || echo '?')
+git -C "${src:-$here}" diff --quiet HEAD 2>/dev/null || commit="$commit+local changes"
+echo "# pdk: source ${src:-?} at $commit, $bench"
 printf "# %-5s %8s %10s %3s %11s %11s %11s %9s %9s %8s\n" style n bonds P lmp_s/step lmp_pair_s pdk_s/step \
   lmp_ns/b/c pdk_ns/b/c lmp/pdk
 for L in $sides; do

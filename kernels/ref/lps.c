@@ -42,7 +42,7 @@
  * remainder, so both ends of a bond see the same s and break it together. min/max are written as
  * comparisons: fmin/fmax are library calls and stop vectorization. sqrt vectorizes only when the
  * build has -fno-math-errno (GCC honours it from the command line only, not from a pragma); without
- * it these loops run scalar, about 2.4 times slower. */
+ * it these loops run scalar, about 3 times slower. */
 PDK_KERNEL_FP_EXACT
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 /* 256-bit vectors: with 512 bits the gathers cost more than they give on this machine class
