@@ -2,10 +2,10 @@
 # Force-for-force check of pdk's pmb and lps against LAMMPS peri/pmb and peri/lps on a small
 # randomly displaced lattice (in.peri_forces), then the energy bookkeeping of both codes.
 #
-#   bench/lammps/check_forces.sh [BUILD_DIR] [L]      (default build-pmb, L = 12)
+#   bench/lammps/check_forces.sh [BUILD_DIR] [L]      (default build, L = 12)
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-build=${1:-$here/../../build-pmb}
+build=${1:-$here/../../build}
 L=${2:-12}
 check=$build/bench/bench_lammps_check
 [ -x "$check" ] || { echo "check_forces.sh: build $check first (cmake --build $build --target bench_lammps_check)" >&2; exit 1; }

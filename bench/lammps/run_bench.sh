@@ -8,11 +8,12 @@
 #   bench/lammps/run_bench.sh [-b BUILD_DIR] [-s "46 100"] [-n STEPS] [-m "pmb lps"] [-r "1 2"]
 #
 # -s: cube sides (46 -> 97 336 particles, 100 -> 10^6; the 10^6 LAMMPS runs take minutes);
-# -n: steps per run (default 10); BUILD_DIR defaults to build-pmb-native (configure it with
-# -DPDK_NATIVE=ON, the way a benchmark should be built). Logs stay in $PDK_BENCH_LOGS if set.
+# -n: steps per run (default 10); BUILD_DIR defaults to build-native (configure it with
+# -DPDK_NATIVE=ON -DCMAKE_C_FLAGS=-fno-math-errno, see bench/README.md "Force loops"). Logs stay in
+# $PDK_BENCH_LOGS if set.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-build=$here/../../build-pmb-native
+build=$here/../../build-native
 sides="46 100"
 steps=10
 styles="pmb lps"
