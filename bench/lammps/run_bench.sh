@@ -9,8 +9,7 @@
 #
 # -s: cube sides (46 -> 97 336 particles, 100 -> 10^6; the 10^6 LAMMPS runs take minutes);
 # -n: steps per run (default 10); BUILD_DIR defaults to build-native (configure it with
-# -DPDK_NATIVE=ON -DCMAKE_C_FLAGS=-fno-math-errno, see bench/README.md "Force loops"). Logs stay in
-# $PDK_BENCH_LOGS if set.
+# -DPDK_NATIVE=ON, see bench/README.md "Force loops"). Logs stay in $PDK_BENCH_LOGS if set.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=$here/../../build-native
