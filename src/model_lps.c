@@ -188,18 +188,7 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
     }
   }
 
-  if (s0_next) { /* the pass's s0 becomes the next pass's "previous" s0 */
-    double *t = m->s0;
-    m->s0 = im->s0_next;
-    im->s0_next = t;
-    m->num_broken += broken;
-  }
-  if (energy) {
-    double e = 0.0;
-    for (int64_t blk = 0; blk < num_blocks; ++blk)
-      e += block_energy[blk];
-    *energy = e;
-  }
+  pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, block_energy, num_blocks, energy);
   return PDK_SUCCESS;
 }
 
