@@ -550,9 +550,12 @@ long pdk_explicit_step(const pdk_explicit *e) { return e->step; }
 int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
   PDK_CHECK(num_steps >= 0, e->ctx, PDK_ERR_ARG, "number of steps must be >= 0, got %ld", num_steps);
   PDK_CALL(pdk_model_set_dt(e->m, e->dt)); /* a restore may have changed e->dt */
+  /* The power and the prescribed kinetic energy at a step's start are those at the previous
+   * step's end: computed once per step (the state cannot change between steps of one call). */
+  double p0 = num_steps > 0 ? external_power(e, e->time) : 0.0;
+  double k0 = num_steps > 0 ? constrained_kinetic(e) : 0.0;
   for (long s = 0; s < num_steps; ++s) {
     double t0 = e->time, t1 = e->time + e->dt;
-    double p0 = external_power(e, t0), k0 = constrained_kinetic(e);
     half_kick(e, t0);
     drift(e);
     apply_kinematic_bcs(e, t1, 1);
@@ -564,7 +567,10 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     PDK_CALL(check_state(e));
     /* work of the constraints: the trapezoid of their power against the internal forces, plus
      * the change of the prescribed particles' kinetic energy (their inertia) */
-    e->external_work += 0.5 * e->dt * (p0 + external_power(e, t1)) + constrained_kinetic(e) - k0;
+    const double p1 = external_power(e, t1), k1 = constrained_kinetic(e);
+    e->external_work += 0.5 * e->dt * (p0 + p1) + k1 - k0;
+    p0 = p1;
+    k0 = k1;
     if (e->step % 8 == 0) PDK_CALL(check_blowup(e));
   }
   if (hist) {
