@@ -30,12 +30,19 @@
  * every pair now closer than delta (1 - s) is bonded, and every bonded pair is closer than
  * delta (1 + s). The check costs one read of x and X_r per committing pass (min/max reductions,
  * exact in any order). Rigid rotations do count (they trigger harmless rebuilds).
- * Stability: a run that rebuilds under tension clumps and blows up within 15-20% stretch unless
- * strongly stabilized (tests/t133_ul_tensile_instability.c, docs/connectivity.md); the cause is the
- * reference update, which accepts the current disorder as undeformed.
+ * Weights. A bond of the families rebuilt at the positions x gets w = omega(min(r0, r)), r0 =
+ * |X_j - X_i| its initial length and r = |x_j - x_i| its length at the rebuild (the initial
+ * families: omega(r0)). Taking omega(r) alone (an Eulerian kernel) made rebuilt runs clump and
+ * blow up in tension: the pair attraction omega(r) r then grows as a pair closes wherever it
+ * decreases with r (beyond delta / 4 for the cubic weight), Swegle's tensile instability. With the
+ * minimum a stretched bond keeps its initial weight (its attraction grows with r like a spring's)
+ * and a compressed bond takes the weight of its current length, the stable choice in compression
+ * (tests/t133_ul_tensile_instability.c, docs/connectivity.md). Influence functions that do not
+ * vanish at the horizon (constant, 1/r, 1/r^2) still switch bonds on and off at full weight as
+ * pairs cross the horizon, and clump under rebuilds in tension: use linear or cubic with rebuilds.
  * A rebuild, at the positions x of the committing pass that just ran:
  *   1. families from x (pdk_families_build_coords, the same horizon, no pre-cracks), omega per
- *      bond from the new reference lengths;
+ *      bond as above;
  *   2. per particle: F_ref <- F (this pass's total F), J_ref <- det F, V_r <- J_ref V0, X_r <- x.
  *      A flagged particle (SPAN or INVERTED) keeps its F_ref and J_ref;
  *   3. the rebuild shape (flag SPAN, m) over the new families.
@@ -133,9 +140,13 @@ static void ul_destroy(pdk_model *m) {
   m->impl = NULL;
 }
 
-/* omega per bond of `fam` from the coordinates X (the reference of those families). Returns the
- * first particle with a zero-length bond, or n when there is none (such a bond gets weight 0). */
-static pdk_index ul_omega(pdk_model *m, const pdk_families *fam, const double *const X[3],
+/* omega per bond of `fam`: w = omega(r), r = |X_j - X_i| over the initial coordinates X (the
+ * store's "X"), or, with x != NULL (a rebuild at the positions x), r = min(|X_j - X_i|,
+ * |x_j - x_i|): a bond stretched since the start keeps its initial weight (Lagrangian), a
+ * compressed one takes the weight of its current length (see the file comment, "Weights").
+ * Returns the first particle with a zero-length bond in X, or n when there is none (such a bond
+ * gets weight 0). */
+static pdk_index ul_omega(pdk_model *m, const pdk_families *fam, const double *const x[3],
                           double *omega) {
   const ul_impl *c = m->impl;
   const int dim = pdk_particles_dim(m->p);
@@ -145,12 +156,15 @@ static pdk_index ul_omega(pdk_model *m, const pdk_families *fam, const double *c
   const pdk_influence kind = m->opts.influence;
   const double width = m->opts.gaussian_width, horizon = c->k.horizon;
   const pdk_index num_blocks = c->num_blocks;
-  const double *X0 = X[0], *X1 = X[1], *X2 = X[2];
+  const double *X0 = pdk_particles_X(m->p, 0), *X1 = pdk_particles_X(m->p, 1);
+  const double *X2 = dim == 3 ? pdk_particles_X(m->p, 2) : NULL;
+  const double *x0 = x ? x[0] : NULL, *x1 = x ? x[1] : NULL, *x2 = x ? x[2] : NULL;
   const int nt = m->ctx->num_threads;
   pdk_index bad = n;
   /* clang-format off */
 #pragma omp parallel for default(none) \
-    shared(bond_start, bond_j, omega, kind, width, horizon, num_blocks, n, dim, X0, X1, X2) \
+    shared(bond_start, bond_j, omega, kind, width, horizon, num_blocks, n, dim, X0, X1, X2, x0, \
+           x1, x2) \
     reduction(min : bad) schedule(static) num_threads(nt)
   /* clang-format on */
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
@@ -159,11 +173,16 @@ static pdk_index ul_omega(pdk_model *m, const pdk_families *fam, const double *c
       for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
         const pdk_index j = bond_j[b];
         const double d0 = X0[j] - X0[i], d1 = X1[j] - X1[i], d2 = dim == 3 ? X2[j] - X2[i] : 0.0;
-        const double r = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        const double r0 = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+        double r = r0;
+        if (x0) {
+          const double e0 = x0[j] - x0[i], e1 = x1[j] - x1[i], e2 = dim == 3 ? x2[j] - x2[i] : 0.0;
+          r = fmin(r0, sqrt(e0 * e0 + e1 * e1 + e2 * e2));
+        }
         /* clamped at 0 as in the TL driver (a lattice point admitted at delta (1 + 1e-12)) */
         const double w = r > 0.0 ? fmax(pdk_influence_eval(kind, r, horizon, width), 0.0) : 0.0;
         omega[b] = isfinite(w) ? w : 0.0;
-        if (!(r > 0.0) && i < bad) bad = i;
+        if (!(r0 > 0.0) && i < bad) bad = i;
       }
   }
   return bad;
@@ -277,9 +296,7 @@ static int ul_setup(pdk_model *m) {
   k->span_rtol = PDK_CORR_SPAN_RTOL;
   k->jc = o->law == PDK_LAW_JC ? &m->opts.jc : NULL;
 
-  const double *X[3] = {pdk_particles_X(p, 0), pdk_particles_X(p, 1),
-                        dim == 3 ? pdk_particles_X(p, 2) : NULL};
-  const pdk_index bad = ul_omega(m, m->fam, X, c->bond_omega);
+  const pdk_index bad = ul_omega(m, m->fam, NULL, c->bond_omega);
   if (bad < n)
     return pdk_ctx_error_set(ctx, PDK_ERR_ARG, __func__,
                              "correspondence model: particle id %lld has a neighbour at the same "
@@ -311,7 +328,7 @@ static int ul_rebuild_now(pdk_model *m) {
                              "out of memory for the bond weights of a ul rebuild (%lld bonds)",
                              (long long)nb);
   }
-  (void)ul_omega(m, fam, x, omega); /* a zero-length bond (particles met) gets weight 0 */
+  (void)ul_omega(m, fam, x, omega); /* particles that met: weight 0 */
 
   /* The new reference: F_ref, J_ref, V_r, X_r. */
   {

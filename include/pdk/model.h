@@ -100,8 +100,9 @@ typedef enum pdk_connectivity {
                              moved more than ul_skin delta / 2 since the last rebuild, and the
                              reference data (positions, volumes, F) are updated there. No bond
                              breaking, no pre-cracks across rebuilds, no float storage yet.
-                             Rebuilding brings back the tensile instability of Eulerian kernels
-                             (t133): prefer ul_skin = 0 in tension. docs/connectivity.md */
+                             Rebuilt bonds weigh omega(min(initial, current length)), which keeps
+                             rebuilt runs stable in tension with an influence function that
+                             vanishes at the horizon (linear, cubic; t133). docs/connectivity.md */
 } pdk_connectivity;
 
 typedef enum pdk_precision {

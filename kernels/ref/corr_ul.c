@@ -4,8 +4,9 @@
  * Configurations. 0: the initial one (X, V0: the store's "X", "volume"); r: the configuration of
  * the last rebuild (X_r, V_r, with F_ref the deformation gradient from 0 to r and J_ref = det
  * F_ref; at creation r = 0, F_ref = I); the current one (x). The families are those of r: bond b
- * of particle i with neighbour j, xi = X_r,j - X_r,i, Y = x_j - x_i, w_b = omega(|xi|) (fixed
- * between rebuilds: Bergel & Li's omega(xi) dV = omega_t dv), V_j = V_r,j.
+ * of particle i with neighbour j, xi = X_r,j - X_r,i, Y = x_j - x_i, w_b = omega(|xi|) at
+ * creation and omega(min(|X_j - X_i|, |xi|)) after a rebuild (src/model_corr_ul.c, "Weights";
+ * fixed between rebuilds: Bergel & Li's omega(xi) dV = omega_t dv), V_j = V_r,j.
  *
  * Rebuild shape (pdk_kernel_corr_ul_shape_ref), at creation and after each rebuild:
  *   K_i = sum_b w_b V_j xi (x) xi, m_i = sum_b w_b V_j |xi|^2; flag bit SPAN as the TL kernels
