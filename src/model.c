@@ -245,6 +245,8 @@ int pdk_model_set_dt(pdk_model *m, double dt) {
   return PDK_SUCCESS;
 }
 
+double pdk_model_get_dt(const pdk_model *m) { return m->dt; }
+
 /* Particles per block of the energy sums: a constant, so the order of the sum is fixed. */
 #define PDK_MODEL_SUM_BLOCK 4096
 

@@ -1158,7 +1158,7 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
       }
       PDK_CALL(pdk_static_residual(s));
       if (isfinite(s->rnorm) && isfinite(s->fnorm) &&
-          (s->rnorm <= (1.0 - 1e-4 * alpha) * phi0 || pdk_static_converged(s))) {
+          (s->rnorm <= (1.0 - s->opts.ls_decrease * alpha) * phi0 || pdk_static_converged(s))) {
         accepted = 1;
         break;
       }

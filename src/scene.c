@@ -107,6 +107,18 @@ typedef struct sc_solver {
   int type;
   double end_time, steps, dt, safety, threads;
   bool force_dt;
+  /* static solvers (adr, newton) */
+  double load_steps;
+  double *load_levels;
+  unsigned load_levels_count;
+  double tolerance, absolute_tolerance, max_iterations, max_break_rounds;
+  bool extrapolate;
+  int adr_mass;
+  double adr_safety;
+  int linear_solver, fd_scheme;
+  double fd_step, line_search_backtracks, line_search_decrease, singular_tolerance,
+      symmetry_tolerance;
+  bool reuse_tangent;
 } sc_solver;
 typedef struct sc_output {
   double field_interval, history_interval, checkpoint_interval;
@@ -164,7 +176,15 @@ static const cyaml_strval_t function_names[] = {{"constant", PDK_TFUN_CONSTANT},
                                                 {"ramp", PDK_TFUN_RAMP},
                                                 {"smooth", PDK_TFUN_SMOOTH},
                                                 {"sine", PDK_TFUN_SINE}};
-static const cyaml_strval_t solver_names[] = {{"explicit", 0}};
+static const cyaml_strval_t solver_names[] = {
+    {"explicit", PDK_SOLVER_EXPLICIT}, {"adr", PDK_SOLVER_ADR}, {"newton", PDK_SOLVER_NEWTON}};
+static const cyaml_strval_t adr_mass_names[] = {{"auto", PDK_ADR_MASS_AUTO},
+                                                {"row_sum", PDK_ADR_MASS_ROW_SUM},
+                                                {"lanczos", PDK_ADR_MASS_LANCZOS}};
+static const cyaml_strval_t linear_solver_names[] = {
+    {"auto", PDK_LINEAR_AUTO}, {"cholmod", PDK_LINEAR_CHOLMOD}, {"umfpack", PDK_LINEAR_UMFPACK}};
+static const cyaml_strval_t fd_scheme_names[] = {{"central", PDK_FD_CENTRAL},
+                                                 {"forward", PDK_FD_FORWARD}};
 
 #define N_OF(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
 #define OPT (CYAML_FLAG_OPTIONAL)
@@ -336,6 +356,27 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(solver, CYAML_FIELD_FLOAT("safety", OPT, sc_solver, safety));
   ADD(solver, CYAML_FIELD_BOOL("force_dt", OPT, sc_solver, force_dt));
   ADD(solver, CYAML_FIELD_FLOAT("threads", OPT, sc_solver, threads));
+  ADD(solver, CYAML_FIELD_FLOAT("load_steps", OPT, sc_solver, load_steps));
+  ADD(solver,
+      CYAML_FIELD_SEQUENCE("load_levels", OPT_PTR, sc_solver, load_levels, &sc->num, 1, 1000000));
+  ADD(solver, CYAML_FIELD_FLOAT("tolerance", OPT, sc_solver, tolerance));
+  ADD(solver, CYAML_FIELD_FLOAT("absolute_tolerance", OPT, sc_solver, absolute_tolerance));
+  ADD(solver, CYAML_FIELD_FLOAT("max_iterations", OPT, sc_solver, max_iterations));
+  ADD(solver, CYAML_FIELD_FLOAT("max_break_rounds", OPT, sc_solver, max_break_rounds));
+  ADD(solver, CYAML_FIELD_BOOL("extrapolate", OPT, sc_solver, extrapolate));
+  ADD(solver, CYAML_FIELD_ENUM("adr_mass", ENUM_FLAGS, sc_solver, adr_mass, adr_mass_names,
+                               N_OF(adr_mass_names)));
+  ADD(solver, CYAML_FIELD_FLOAT("adr_safety", OPT, sc_solver, adr_safety));
+  ADD(solver, CYAML_FIELD_ENUM("linear_solver", ENUM_FLAGS, sc_solver, linear_solver,
+                               linear_solver_names, N_OF(linear_solver_names)));
+  ADD(solver, CYAML_FIELD_ENUM("fd_scheme", ENUM_FLAGS, sc_solver, fd_scheme, fd_scheme_names,
+                               N_OF(fd_scheme_names)));
+  ADD(solver, CYAML_FIELD_FLOAT("fd_step", OPT, sc_solver, fd_step));
+  ADD(solver, CYAML_FIELD_FLOAT("line_search_backtracks", OPT, sc_solver, line_search_backtracks));
+  ADD(solver, CYAML_FIELD_FLOAT("line_search_decrease", OPT, sc_solver, line_search_decrease));
+  ADD(solver, CYAML_FIELD_BOOL("reuse_tangent", OPT, sc_solver, reuse_tangent));
+  ADD(solver, CYAML_FIELD_FLOAT("singular_tolerance", OPT, sc_solver, singular_tolerance));
+  ADD(solver, CYAML_FIELD_FLOAT("symmetry_tolerance", OPT, sc_solver, symmetry_tolerance));
 
   ADD(output, CYAML_FIELD_FLOAT("field_interval", OPT, sc_output, field_interval));
   ADD(output, CYAML_FIELD_SEQUENCE("fields", OPT_PTR, sc_output, fields, &sc->str, 0, 64));
@@ -1371,10 +1412,208 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
   return PDK_SUCCESS;
 }
 
+/* Keys of one solver family given in a scene that runs another. */
+static const char *const explicit_keys[] = {"steps", "dt", "safety", "force_dt"};
+static const char *const static_keys[] = {"load_steps",
+                                          "load_levels",
+                                          "tolerance",
+                                          "absolute_tolerance",
+                                          "max_iterations",
+                                          "max_break_rounds",
+                                          "extrapolate",
+                                          "adr_mass",
+                                          "adr_safety",
+                                          "linear_solver",
+                                          "fd_scheme",
+                                          "fd_step",
+                                          "line_search_backtracks",
+                                          "line_search_decrease",
+                                          "reuse_tangent",
+                                          "singular_tolerance",
+                                          "symmetry_tolerance"};
+static const char *const adr_keys[] = {"adr_mass", "adr_safety"};
+static const char *const newton_keys[] = {"linear_solver",
+                                          "fd_scheme",
+                                          "fd_step",
+                                          "line_search_backtracks",
+                                          "line_search_decrease",
+                                          "reuse_tangent",
+                                          "singular_tolerance",
+                                          "symmetry_tolerance"};
+
+static int refuse_keys(loader *ld, const char *const *keys, int num, const char *why) {
+  for (int k = 0; k < num; ++k) {
+    const char *key = K(ld, "solver.%s", keys[k]);
+    REQUIRE(ld, !has(ld, key), key, "%s; remove it", why);
+  }
+  return PDK_SUCCESS;
+}
+
+static int resolve_static_solver(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  const sc_solver *so = &d->solver;
+  const int newton = s->solver_type == PDK_SOLVER_NEWTON;
+  const char *tname = newton ? "newton" : "adr";
+  char why[160];
+  snprintf(why, sizeof why,
+           "is a key of the explicit solver (solver.type is %s: a static solve has load_steps or "
+           "load_levels, no time steps)",
+           tname);
+  PDK_CALL(refuse_keys(ld, explicit_keys, N_OF(explicit_keys), why));
+  snprintf(why, sizeof why, "is a key of the %s solver (solver.type is %s)",
+           newton ? "adr" : "newton", tname);
+  if (newton)
+    PDK_CALL(refuse_keys(ld, adr_keys, N_OF(adr_keys), why));
+  else
+    PDK_CALL(refuse_keys(ld, newton_keys, N_OF(newton_keys), why));
+  REQUIRE(ld, !has(ld, "initial_conditions"), "initial_conditions",
+          "a static solve (solver.type %s) has no velocities; remove initial_conditions", tname);
+  for (int k = 0; k < s->num_bcs; ++k)
+    REQUIRE(ld, s->bcs[k].kind != PDK_BC_VELOCITY, K(ld, "boundary_conditions[%d].type", k),
+            "velocity conditions have no meaning in a static solve (solver.type %s); prescribe "
+            "the displacement instead: from rest, a pull at velocity v is type: displacement, "
+            "function: linear with the value v, and solver.end_time the duration of the pull",
+            tname);
+  pdk_static_opts *o = &s->static_opts;
+  *o = pdk_static_opts_default(newton ? PDK_STATIC_NEWTON : PDK_STATIC_ADR);
+  o->bcs = s->bcs;
+  o->num_bcs = s->num_bcs;
+
+  /* Load steps: equal steps or explicit levels (fractions of the load path). */
+  const int hsteps = has(ld, "solver.load_steps"), hlevels = has(ld, "solver.load_levels");
+  REQUIRE(ld, !(hsteps && hlevels), "solver.load_levels",
+          "given together with solver.load_steps; give one of them (load_steps: that many equal "
+          "steps; load_levels: the fractions of the load at which to stop)");
+  if (hlevels) {
+    const int nl = (int)so->load_levels_count;
+    s->load_levels = malloc((size_t)nl * sizeof(double));
+    if (!s->load_levels)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+    double prev = 0.0;
+    for (int k = 0; k < nl; ++k) {
+      const double v = so->load_levels[k];
+      REQUIRE(ld, isfinite(v) && v > prev && v <= 1.0, K(ld, "solver.load_levels[%d]", k),
+              "is %g; load levels are fractions of the load path: increasing, in (0, 1]%s", v,
+              k ? " and above the previous one" : "");
+      s->load_levels[k] = prev = v;
+    }
+    o->load_levels = s->load_levels;
+    o->num_levels = nl;
+  } else {
+    long steps = 1;
+    if (hsteps) PDK_CALL(check_whole(ld, "solver.load_steps", so->load_steps, 1, 1e6, &steps));
+    o->num_levels = (int)steps;
+  }
+
+  /* Pseudo-time. */
+  if (has(ld, "solver.end_time")) {
+    REQUIRE(ld, isfinite(so->end_time) && so->end_time > 0, "solver.end_time",
+            "must be > 0, got %g (the duration of the load path, which sets the strain rates)",
+            so->end_time);
+    int timed = 0;
+    for (int k = 0; k < s->num_bcs; ++k)
+      for (int c = 0; c < s->dim; ++c)
+        if ((s->bcs[k].components & (1u << c)) && s->bcs[k].value[c].kind != PDK_TFUN_CONSTANT)
+          timed = 1;
+    REQUIRE(ld, timed, "solver.end_time",
+            "every boundary condition is constant in time, so every load step would apply the "
+            "whole load at once; give the conditions a function of time (linear, ramp, smooth) "
+            "to load along the time, or remove end_time to scale them by the load steps");
+    o->total_time = so->end_time;
+    s->end_time = so->end_time;
+  } else if (s->model.kind == PDK_MODEL_CORRESPONDENCE && s->model.law == PDK_LAW_JC) {
+    const pdk_jc_params *jc = &s->model.jc;
+    REQUIRE(ld, jc->C == 0.0 && !(jc->damage && jc->D4 != 0.0), "solver",
+            "the Johnson-Cook rate terms (C = %g, D4 = %g) need strain rates, so the load steps "
+            "need a pseudo-time; give solver.end_time (the duration of the load path) and "
+            "conditions with functions of time",
+            jc->C, jc->damage ? jc->D4 : 0.0);
+  }
+
+  /* Convergence. */
+  if (has(ld, "solver.tolerance")) {
+    REQUIRE(ld, isfinite(so->tolerance) && so->tolerance > 0 && so->tolerance < 1,
+            "solver.tolerance",
+            "must be in (0, 1), got %g (the residual force relative to the external forces)",
+            so->tolerance);
+    o->rtol = so->tolerance;
+  }
+  if (has(ld, "solver.absolute_tolerance")) {
+    REQUIRE(ld, isfinite(so->absolute_tolerance) && so->absolute_tolerance >= 0,
+            "solver.absolute_tolerance", "must be >= 0, got %g (a force)", so->absolute_tolerance);
+    o->atol = so->absolute_tolerance;
+  }
+  if (has(ld, "solver.max_iterations"))
+    PDK_CALL(
+        check_whole(ld, "solver.max_iterations", so->max_iterations, 1, 1e15, &o->max_iterations));
+  if (has(ld, "solver.max_break_rounds")) {
+    long v = 0;
+    PDK_CALL(check_whole(ld, "solver.max_break_rounds", so->max_break_rounds, 0, 1e9, &v));
+    o->max_break_rounds = (int)v;
+  }
+  if (has(ld, "solver.extrapolate")) o->extrapolate = so->extrapolate ? 1 : 0;
+  /* ADR */
+  if (has(ld, "solver.adr_mass")) o->adr_mass = (pdk_adr_mass)so->adr_mass;
+  if (has(ld, "solver.adr_safety")) {
+    REQUIRE(ld, isfinite(so->adr_safety) && so->adr_safety >= 1, "solver.adr_safety",
+            "must be >= 1, got %g (it multiplies the fictitious mass; 1 is the stable bound)",
+            so->adr_safety);
+    o->adr_safety = so->adr_safety;
+  }
+  /* Newton */
+  if (has(ld, "solver.linear_solver")) o->linear_solver = (pdk_linear_solver)so->linear_solver;
+  if (has(ld, "solver.fd_scheme")) o->fd_scheme = (pdk_fd_scheme)so->fd_scheme;
+  if (has(ld, "solver.fd_step")) {
+    REQUIRE(ld, isfinite(so->fd_step) && so->fd_step > 0 && so->fd_step < 0.1, "solver.fd_step",
+            "must be in (0, 0.1), got %g (the difference step as a fraction of the horizon)",
+            so->fd_step);
+    o->fd_step = so->fd_step;
+  }
+  if (has(ld, "solver.line_search_backtracks")) {
+    long v = 0;
+    PDK_CALL(
+        check_whole(ld, "solver.line_search_backtracks", so->line_search_backtracks, 0, 60, &v));
+    o->max_backtracks = (int)v;
+  }
+  if (has(ld, "solver.line_search_decrease")) {
+    REQUIRE(ld,
+            isfinite(so->line_search_decrease) && so->line_search_decrease > 0 &&
+                so->line_search_decrease < 1,
+            "solver.line_search_decrease",
+            "must be in (0, 1), got %g (a step is taken when it reduces the residual by this "
+            "fraction of the step length)",
+            so->line_search_decrease);
+    o->ls_decrease = so->line_search_decrease;
+  }
+  if (has(ld, "solver.reuse_tangent")) o->reuse_tangent = so->reuse_tangent ? 1 : 0;
+  if (has(ld, "solver.singular_tolerance")) {
+    REQUIRE(ld,
+            isfinite(so->singular_tolerance) && so->singular_tolerance >= 0 &&
+                so->singular_tolerance < 1,
+            "solver.singular_tolerance", "must be in [0, 1), got %g (0: no singularity test)",
+            so->singular_tolerance);
+    o->singular_rtol = so->singular_tolerance;
+  }
+  if (has(ld, "solver.symmetry_tolerance")) {
+    REQUIRE(ld, isfinite(so->symmetry_tolerance) && so->symmetry_tolerance >= 0,
+            "solver.symmetry_tolerance", "must be >= 0, got %g", so->symmetry_tolerance);
+    o->sym_rtol = so->symmetry_tolerance;
+  }
+  return PDK_SUCCESS;
+}
+
 static int resolve_solver(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   const sc_solver *so = &d->solver;
   pdk_explicit_opts *e = &s->solver;
+  s->solver_type = has(ld, "solver.type") ? (pdk_solver_type)so->type : PDK_SOLVER_EXPLICIT;
+  long threads = 0;
+  PDK_CALL(check_whole(ld, "solver.threads", so->threads, 0, 4096, &threads));
+  s->threads = (int)threads;
+  if (s->solver_type != PDK_SOLVER_EXPLICIT) return resolve_static_solver(ld, d);
+  PDK_CALL(refuse_keys(ld, static_keys, N_OF(static_keys),
+                       "is a key of the static solvers (solver.type adr or newton); the explicit "
+                       "solver takes end_time or steps"));
   for (int c = 0; c < s->dim; ++c) {
     REQUIRE(ld, isfinite(d->initial_conditions.velocity[c]), "initial_conditions.velocity",
             "entry %d is %g; velocities must be finite", c, d->initial_conditions.velocity[c]);
@@ -1406,9 +1645,6 @@ static int resolve_solver(loader *ld, const sc_scene *d) {
   REQUIRE(ld, isfinite(e->safety) && e->safety > 0 && e->safety <= 1, "solver.safety",
           "must be in (0, 1] (the fraction of the stable time step used), got %g", e->safety);
   e->force_dt = so->force_dt ? 1 : 0;
-  long threads = 0;
-  PDK_CALL(check_whole(ld, "solver.threads", so->threads, 0, 4096, &threads));
-  s->threads = (int)threads;
   return PDK_SUCCESS;
 }
 
@@ -1418,7 +1654,8 @@ static int resolve_output(loader *ld, const sc_scene *d) {
   pdk_scene_output *out = &s->output;
   PDK_CALL(
       check_whole(ld, "output.field_interval", o->field_interval, 0, 1e15, &out->field_interval));
-  out->history_interval = 10;
+  const int is_static = s->solver_type != PDK_SOLVER_EXPLICIT;
+  out->history_interval = is_static ? 1 : 10;
   if (has(ld, "output.history_interval"))
     PDK_CALL(check_whole(ld, "output.history_interval", o->history_interval, 1, 1e15,
                          &out->history_interval));
@@ -1427,7 +1664,7 @@ static int resolve_output(loader *ld, const sc_scene *d) {
 
   const char *default_fields[] = {"u", "v"};
   const int hf = has(ld, "output.fields");
-  const int nf = hf ? (int)o->fields_count : 2;
+  const int nf = hf ? (int)o->fields_count : is_static ? 1 : 2; /* static: no velocities */
   s->fields = calloc((size_t)nf + 1, sizeof *s->fields);
   if (!s->fields) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
   for (int k = 0; k < nf; ++k) {
@@ -1486,6 +1723,8 @@ static int resolve_output(loader *ld, const sc_scene *d) {
   out->reaction_sets = (const char *const *)s->reaction_names;
   s->solver.reaction_sets = (const char *const *)s->reaction_fields;
   s->solver.num_reaction_sets = nr;
+  s->static_opts.reaction_sets = (const char *const *)s->reaction_fields;
+  s->static_opts.num_reaction_sets = nr;
   return PDK_SUCCESS;
 }
 
@@ -1655,6 +1894,7 @@ void pdk_scene_destroy(pdk_scene **sp) {
   free(s->precracks);
   free(s->crack_vertices);
   free(s->bcs);
+  free(s->load_levels);
   strings_free(s->bc_fields, s->num_bcs);
   strings_free(s->reaction_fields, s->output.num_reaction_sets);
   strings_free(s->fields, s->output.num_fields);
@@ -1668,4 +1908,13 @@ const char *pdk_scene_name(const pdk_scene *s) { return s->name; }
 const char *pdk_scene_text(const pdk_scene *s) { return s->text; }
 int pdk_scene_threads(const pdk_scene *s) { return s->threads; }
 int pdk_scene_dimension(const pdk_scene *s) { return s->dim; }
+pdk_solver_type pdk_scene_solver_type(const pdk_scene *s) { return s->solver_type; }
+const char *pdk_solver_type_name(pdk_solver_type type) {
+  switch (type) {
+  case PDK_SOLVER_EXPLICIT: return "explicit";
+  case PDK_SOLVER_ADR: return "adr";
+  case PDK_SOLVER_NEWTON: return "newton";
+  }
+  return "?";
+}
 const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s) { return &s->output; }

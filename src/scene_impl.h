@@ -56,7 +56,11 @@ struct pdk_scene {
 
   pdk_model_opts model;
 
+  pdk_solver_type solver_type;
   pdk_explicit_opts solver; /* bcs, reaction_sets point into the arrays below */
+  pdk_static_opts static_opts; /* solver.type adr or newton: the same bcs and reaction sets; its
+                                  load_levels point to load_levels (NULL: equal steps) */
+  double *load_levels;         /* [static_opts.num_levels] when solver.load_levels is given */
   pdk_bc *bcs;              /* [num_bcs] */
   char **bc_fields;         /* [num_bcs] "set:<name>", NULL for the whole body ("all") */
   int num_bcs;

@@ -3,8 +3,10 @@
  * The order of construction, each step's failure blamed on the scene key that caused it:
  *   threads (solver.threads) -> lattice over geometry.box -> cut geometry.holes, geometry.notches
  *   -> define sets -> Morton reorder by the cells of the horizon -> families with
- *   geometry.precracks -> model -> explicit solver (boundary_conditions, initial_conditions,
- *   solver) -> output fields ("u", "von_mises" when output.fields asks for them).
+ *   geometry.precracks -> model -> solver: explicit (boundary_conditions, initial_conditions,
+ *   solver) or static (solver.type adr | newton: boundary_conditions and the load steps of solver;
+ *   pdk_sim_static_step solves one load step at a time) -> output fields ("u", "von_mises" when
+ *   output.fields asks for them).
  *
  * Derived output fields, refreshed by pdk_sim_update_output_fields before each field output:
  *   "u"          f64 x dim  displacement x - X
@@ -43,7 +45,9 @@ struct pdk_sim {
   pdk_particles *p;
   pdk_families *fam;
   pdk_model *m;
-  pdk_explicit *e;
+  pdk_explicit *e; /* solver.type explicit */
+  pdk_static *st;  /* solver.type adr or newton */
+  pdk_solver_type type;
   long num_steps;
   int has_u;
   int has_von_mises;
@@ -127,6 +131,68 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
   return PDK_SUCCESS;
 }
 
+/* The explicit solver of the scene, and the number of steps. */
+static int create_explicit(pdk_sim *sim, const pdk_scene *s) {
+  pdk_ctx *ctx = sim->ctx;
+  int err = PDK_SUCCESS;
+  pdk_explicit_opts eo = s->solver;
+  eo.bcs = sim->bcs;
+  eo.num_bcs = sim->num_bcs;
+  eo.reaction_sets = (const char *const *)sim->reaction_fields;
+  eo.num_reaction_sets = sim->num_reactions;
+  eo.force_dt = 1; /* checked below, against the scene's force_dt, to cite solver.dt */
+  err = pdk_explicit_create(sim->m, &eo, &sim->e);
+  if (err) {
+    const char *msg = pdk_ctx_error_message(ctx);
+    err = pdk_scene_blame(s, ctx, err,
+                          s->num_bcs && strstr(msg, "boundary condition") ? "boundary_conditions"
+                                                                          : "solver");
+    return err;
+  }
+  const double stable = pdk_explicit_stable_dt(sim->e);
+  if (s->solver.dt > stable && !s->solver.force_dt) {
+    err = pdk_scene_error(s, ctx, PDK_ERR_ARG, "solver.dt",
+                          "%g exceeds the estimated stable time step %g (%.3g times it); use "
+                          "dt <= %g, leave dt at 0 to step at solver.safety (%g) x the estimate, "
+                          "or set solver.force_dt: true if you know better",
+                          s->solver.dt, stable, s->solver.dt / stable, stable, s->solver.safety);
+    return err;
+  }
+  const double dt = pdk_explicit_dt(sim->e);
+  if (s->steps > 0) {
+    sim->num_steps = s->steps;
+  } else {
+    /* ceil(end_time / dt), not counting a last step that round-off alone would add */
+    double q = s->end_time / dt;
+    PDK_CHECK(q < 1e15, ctx, PDK_ERR_ARG,
+              "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt", s->path,
+              s->end_time, q, dt);
+    sim->num_steps = (long)ceil(q * (1 - 1e-12));
+    if (sim->num_steps < 1) sim->num_steps = 1;
+  }
+
+  return PDK_SUCCESS;
+}
+
+/* The static solver of the scene (solver.type adr or newton); its load steps are the steps. */
+static int create_static(pdk_sim *sim, const pdk_scene *s) {
+  pdk_ctx *ctx = sim->ctx;
+  pdk_static_opts so = s->static_opts;
+  so.bcs = sim->bcs;
+  so.num_bcs = sim->num_bcs;
+  so.reaction_sets = (const char *const *)sim->reaction_fields;
+  so.num_reaction_sets = sim->num_reactions;
+  int err = pdk_static_create(sim->m, &so, &sim->st);
+  if (err) {
+    const char *msg = pdk_ctx_error_message(ctx);
+    return pdk_scene_blame(s, ctx, err,
+                           s->num_bcs && strstr(msg, "boundary condition") ? "boundary_conditions"
+                                                                           : "solver");
+  }
+  sim->num_steps = pdk_static_num_levels(sim->st);
+  return PDK_SUCCESS;
+}
+
 int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   int err = PDK_SUCCESS;
   pdk_sim *sim = NULL;
@@ -206,41 +272,11 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   for (int k = 0; k < sim->num_reactions; ++k)
     sim->reaction_fields[k] = dup_or_null(s->reaction_fields[k], &fail);
   PDK_CHECK_GOTO(!fail, ctx, PDK_ERR_MEMORY, "out of memory creating a simulation");
-  pdk_explicit_opts eo = s->solver;
-  eo.bcs = sim->bcs;
-  eo.num_bcs = sim->num_bcs;
-  eo.reaction_sets = (const char *const *)sim->reaction_fields;
-  eo.num_reaction_sets = sim->num_reactions;
-  eo.force_dt = 1; /* checked below, against the scene's force_dt, to cite solver.dt */
-  err = pdk_explicit_create(sim->m, &eo, &sim->e);
-  if (err) {
-    const char *msg = pdk_ctx_error_message(ctx);
-    err = pdk_scene_blame(s, ctx, err,
-                          s->num_bcs && strstr(msg, "boundary condition") ? "boundary_conditions"
-                                                                          : "solver");
-    goto cleanup;
-  }
-  const double stable = pdk_explicit_stable_dt(sim->e);
-  if (s->solver.dt > stable && !s->solver.force_dt) {
-    err = pdk_scene_error(s, ctx, PDK_ERR_ARG, "solver.dt",
-                          "%g exceeds the estimated stable time step %g (%.3g times it); use "
-                          "dt <= %g, leave dt at 0 to step at solver.safety (%g) x the estimate, "
-                          "or set solver.force_dt: true if you know better",
-                          s->solver.dt, stable, s->solver.dt / stable, stable, s->solver.safety);
-    goto cleanup;
-  }
-  const double dt = pdk_explicit_dt(sim->e);
-  if (s->steps > 0) {
-    sim->num_steps = s->steps;
-  } else {
-    /* ceil(end_time / dt), not counting a last step that round-off alone would add */
-    double q = s->end_time / dt;
-    PDK_CHECK_GOTO(q < 1e15, ctx, PDK_ERR_ARG,
-                   "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt", s->path,
-                   s->end_time, q, dt);
-    sim->num_steps = (long)ceil(q * (1 - 1e-12));
-    if (sim->num_steps < 1) sim->num_steps = 1;
-  }
+  sim->type = s->solver_type;
+  if (s->solver_type != PDK_SOLVER_EXPLICIT)
+    PDK_CALL_GOTO(create_static(sim, s));
+  else
+    PDK_CALL_GOTO(create_explicit(sim, s));
 
   /* Output fields. */
   for (int k = 0; k < s->output.num_fields; ++k) {
@@ -292,6 +328,7 @@ void pdk_sim_destroy(pdk_sim **simp) {
   if (!simp || !*simp) return;
   pdk_sim *sim = *simp;
   pdk_explicit_destroy(&sim->e);
+  pdk_static_destroy(&sim->st);
   pdk_model_destroy(&sim->m);
   pdk_families_destroy(&sim->fam);
   pdk_particles_destroy(&sim->p);
@@ -313,6 +350,31 @@ pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
 pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
 pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
 long pdk_sim_num_steps(const pdk_sim *sim) { return sim->num_steps; }
+pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
+pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }
+
+int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
+            "pdk_sim_static_history: the scene's solver is explicit, not static");
+  const pdk_static_event *ev = pdk_static_last_event(sim->st);
+  memset(h, 0, sizeof *h);
+  h->step = pdk_static_levels_solved(sim->st);
+  h->time = ev->level >= 0 ? ev->time : 0.0;
+  h->kinetic = 0.0;
+  h->strain = ev->strain;
+  h->external_work = ev->external_work;
+  memcpy(h->reaction, ev->reaction, sizeof h->reaction);
+  h->broken = pdk_model_num_broken(sim->m);
+  return pdk_model_plastic_work(sim->m, &h->plastic_work, &h->damage_work, &h->breaking_work);
+}
+
+int pdk_sim_static_step(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
+            "pdk_sim_static_step: the scene's solver is explicit, not static");
+  PDK_CALL(pdk_static_solve_level(sim->st));
+  if (h) PDK_CALL(pdk_sim_static_history(sim, h));
+  return PDK_SUCCESS;
+}
 
 /* von Mises of a symmetric 3 x 3 stress. */
 static double von_mises_of(const double S[3][3]) {
@@ -328,7 +390,8 @@ static int update_von_mises(pdk_sim *sim) {
   const pdk_index n = pdk_particles_count(p);
   const pdk_model_opts *mo = pdk_model_opts_get(sim->m);
   const double mu = mo->shear_modulus, lambda = mo->bulk_modulus - 2.0 * mu / 3.0;
-  const double dt = pdk_explicit_dt(sim->e);
+  /* the step of the last pass: the explicit time step, or the static load step's pseudo-time */
+  const double dt = sim->e ? pdk_explicit_dt(sim->e) : pdk_model_get_dt(sim->m);
   double *vm = pdk_particles_field_data(p, "von_mises", 0);
   const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
   const double *Fc[9], *Ac[9], *Kc[9];

@@ -29,6 +29,7 @@ pdk_static_opts pdk_static_opts_default(pdk_static_method method) {
   o.sym_rtol = 1e-6;
   o.singular_rtol = 1e-8;
   o.max_backtracks = 10;
+  o.ls_decrease = 1e-4;
   o.reuse_tangent = 1;
   return o;
 }
@@ -80,6 +81,12 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
             PDK_ERR_ARG, "%s: singular_rtol must be in [0, 1), got %g", name, o->singular_rtol);
   PDK_CHECK(o->max_backtracks >= 0 && o->max_backtracks <= 60, ctx, PDK_ERR_ARG,
             "%s: max_backtracks must be in 0..60, got %d", name, o->max_backtracks);
+  PDK_CHECK(isfinite(o->ls_decrease) && o->ls_decrease > 0 && o->ls_decrease < 1, ctx, PDK_ERR_ARG,
+            "%s: ls_decrease (sufficient decrease of the line search) must be in (0, 1), got %g",
+            name, o->ls_decrease);
+  PDK_CHECK(isfinite(o->total_time) && o->total_time >= 0, ctx, PDK_ERR_ARG,
+            "%s: total_time must be >= 0 (0: load factors without time), got %g", name,
+            o->total_time);
   PDK_CHECK(o->num_reaction_sets >= 0 && o->num_reaction_sets <= PDK_STATIC_MAX_REACTION_SETS, ctx,
             PDK_ERR_ARG, "%s: at most %d reaction sets, got %d", name, PDK_STATIC_MAX_REACTION_SETS,
             o->num_reaction_sets);
@@ -95,70 +102,100 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
   return PDK_SUCCESS;
 }
 
-/* Reads the conditions into fixed / u_presc / b_unit. */
+/* Reads the displacement conditions into fixed / owner and checks every condition. */
 static int setup_conditions(pdk_static *s) {
   pdk_ctx *ctx = s->ctx;
   const int dim = s->dim;
   const pdk_index n = s->n;
-  int32_t *owner = NULL; /* [n] bc prescribing the component being scanned, -1 none */
-  int err = PDK_SUCCESS;
-  owner = malloc((size_t)n * sizeof *owner);
-  PDK_CHECK_GOTO(owner, ctx, PDK_ERR_MEMORY, "static solver: out of memory for condition maps");
-  for (int c = 0; c < dim; ++c) {
+  for (int c = 0; c < dim; ++c)
     for (pdk_index i = 0; i < n; ++i)
-      owner[i] = -1;
-    for (int k = 0; k < s->opts.num_bcs; ++k) {
-      const pdk_bc *bc = &s->bcs[k];
-      PDK_CHECK_GOTO(
-          bc->kind == PDK_BC_DISPLACEMENT || bc->kind == PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
-          "boundary condition %d is a %s condition; static solvers take displacement and "
-          "body-force conditions only (prescribe the displacement instead)",
-          k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
-      PDK_CHECK_GOTO(
-          bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
-          "boundary condition %d: component mask %u must select some of the %d components", k,
-          bc->components, dim);
-      const uint8_t *mem = NULL;
-      if (bc->set) {
-        mem = pdk_particles_field_data(s->p, bc->set, 0);
-        PDK_CHECK_GOTO(mem, ctx, PDK_ERR_NOT_FOUND,
-                       "boundary condition %d names the set field '%s', which does not exist; "
-                       "define the set first",
-                       k, bc->set);
-      }
+      s->owner[c][i] = -1;
+  for (int k = 0; k < s->opts.num_bcs; ++k) {
+    const pdk_bc *bc = &s->bcs[k];
+    PDK_CHECK(bc->kind == PDK_BC_DISPLACEMENT || bc->kind == PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
+              "boundary condition %d is a %s condition; static solvers take displacement and "
+              "body-force conditions only (prescribe the displacement instead: from rest, a "
+              "velocity v is the displacement v t, time function linear, with a total_time)",
+              k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
+    PDK_CHECK(bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
+              "boundary condition %d: component mask %u must select some of the %d components", k,
+              bc->components, dim);
+    const uint8_t *mem = NULL;
+    if (bc->set) {
+      mem = pdk_particles_field_data(s->p, bc->set, 0);
+      PDK_CHECK(mem, ctx, PDK_ERR_NOT_FOUND,
+                "boundary condition %d names the set field '%s', which does not exist; define "
+                "the set first",
+                k, bc->set);
+    }
+    for (int c = 0; c < dim; ++c) {
       if (!(bc->components & (1u << c))) continue;
       const pdk_tfun *tf = &bc->value[c];
-      PDK_CHECK_GOTO(
-          (unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
-              ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
-                tf->kind != PDK_TFUN_SINE) ||
-               tf->b > 0),
-          ctx, PDK_ERR_ARG,
-          "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
-          "ramp, smooth and sine need a positive duration b",
-          k, c, (int)tf->kind, tf->a, tf->b);
-      const double value = pdk_tfun_value(tf, 1.0); /* static: the value at t = 1 */
+      PDK_CHECK((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
+                    ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
+                      tf->kind != PDK_TFUN_SINE) ||
+                     tf->b > 0),
+                ctx, PDK_ERR_ARG,
+                "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
+                "ramp, smooth and sine need a positive duration b",
+                k, c, (int)tf->kind, tf->a, tf->b);
+      if (bc->kind == PDK_BC_BODY_FORCE) {
+        s->has_body_force = 1;
+        continue;
+      }
       for (pdk_index i = 0; i < n; ++i) {
         if (mem && !mem[i]) continue;
-        if (bc->kind == PDK_BC_BODY_FORCE) {
-          s->b_unit[c][i] += value;
-          s->has_body_force = 1;
-          continue;
-        }
-        PDK_CHECK_GOTO(owner[i] < 0, ctx, PDK_ERR_ARG,
-                       "particle %d (id %lld), component %d is prescribed by both boundary "
-                       "conditions %d and %d; give each component of a particle one condition",
-                       (int)i, (long long)pdk_particles_id(s->p)[i], c, owner[i], k);
-        owner[i] = k;
+        PDK_CHECK(s->owner[c][i] < 0, ctx, PDK_ERR_ARG,
+                  "particle %d (id %lld), component %d is prescribed by both boundary "
+                  "conditions %d and %d; give each component of a particle one condition",
+                  (int)i, (long long)pdk_particles_id(s->p)[i], c, (int)s->owner[c][i], k);
+        s->owner[c][i] = k;
         s->fixed[c][i] = 1;
-        s->u_presc[c][i] = value;
         s->num_fixed++;
       }
     }
   }
-cleanup:
-  free(owner);
-  return err;
+  return PDK_SUCCESS;
+}
+
+/* Pseudo-time of level k (time mode) or its load factor (scale mode); 0 before the first. */
+double pdk_static_level_time(const pdk_static *s, int k) {
+  if (k < 0) return 0.0;
+  return s->time_mode ? s->levels[k] * s->opts.total_time : s->levels[k];
+}
+
+/* The prescribed displacements and body forces of level k: time mode, the time functions at t_k;
+ * scale mode, lambda_k times their values at t = 1. Sets s->load_measure. */
+static void set_level_values(pdk_static *s, int k) {
+  const int dim = s->dim;
+  const pdk_index n = s->n;
+  const double t = s->time_mode ? pdk_static_level_time(s, k) : 1.0;
+  const double scale = s->time_mode ? 1.0 : s->levels[k];
+  double value[PDK_STATIC_MAX_BCS][3];
+  for (int b = 0; b < s->opts.num_bcs; ++b)
+    for (int c = 0; c < dim; ++c)
+      value[b][c] =
+          (s->bcs[b].components & (1u << c)) ? scale * pdk_tfun_value(&s->bcs[b].value[c], t) : 0.0;
+  double u2 = 0.0, b2 = 0.0;
+  for (int c = 0; c < dim; ++c) {
+    double *u = s->u_level[c], *bl = s->b_level[c];
+    const int32_t *own = s->owner[c];
+    for (pdk_index i = 0; i < n; ++i) {
+      u[i] = own[i] >= 0 ? value[own[i]][c] : 0.0;
+      u2 += u[i] * u[i];
+      bl[i] = 0.0;
+    }
+    for (int b = 0; b < s->opts.num_bcs; ++b) {
+      const pdk_bc *bc = &s->bcs[b];
+      if (bc->kind != PDK_BC_BODY_FORCE || !(bc->components & (1u << c))) continue;
+      const uint8_t *mem = bc->set ? pdk_particles_field_data(s->p, bc->set, 0) : NULL;
+      for (pdk_index i = 0; i < n; ++i)
+        if (!mem || mem[i]) bl[i] += value[b][c];
+    }
+    for (pdk_index i = 0; i < n; ++i)
+      b2 += bl[i] * bl[i];
+  }
+  s->load_measure = u2 > 0.0 ? sqrt(u2) : sqrt(b2);
 }
 
 int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static **out) {
@@ -196,17 +233,34 @@ int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static *
     s->levels[k] = opts_in->load_levels ? opts_in->load_levels[k] : (double)(k + 1) / s->num_levels;
   s->opts.load_levels = s->levels;
   if (s->opts.fd_step == 0.0) s->opts.fd_step = s->opts.fd_scheme == PDK_FD_CENTRAL ? 1e-5 : 1e-7;
+  s->time_mode = s->opts.total_time > 0.0;
   for (int c = 0; c < s->dim; ++c) {
     s->fixed[c] = calloc((size_t)s->n, 1);
-    s->u_presc[c] = calloc((size_t)s->n, sizeof(double));
-    s->b_unit[c] = calloc((size_t)s->n, sizeof(double));
+    s->owner[c] = malloc((size_t)s->n * sizeof(int32_t));
+    s->u_level[c] = calloc((size_t)s->n, sizeof(double));
+    s->b_level[c] = calloc((size_t)s->n, sizeof(double));
     s->r[c] = calloc((size_t)s->n, sizeof(double));
-    PDK_CHECK_GOTO(s->fixed[c] && s->u_presc[c] && s->b_unit[c] && s->r[c], ctx, PDK_ERR_MEMORY,
-                   "static solver: out of memory for %d particles", (int)s->n);
+    s->x_prev[c] = malloc((size_t)s->n * sizeof(double));
+    s->fext_prev[c] = calloc((size_t)s->n, sizeof(double));
+    PDK_CHECK_GOTO(s->fixed[c] && s->owner[c] && s->u_level[c] && s->b_level[c] && s->r[c] &&
+                       s->x_prev[c] && s->fext_prev[c],
+                   ctx, PDK_ERR_MEMORY, "static solver: out of memory for %d particles", (int)s->n);
+    memcpy(s->x_prev[c], field(s->p, "x", c), (size_t)s->n * sizeof(double));
+  }
+  if (!s->time_mode && m->opts.kind == PDK_MODEL_CORRESPONDENCE && m->opts.law == PDK_LAW_JC) {
+    const pdk_jc_params *jc = &m->opts.jc;
+    PDK_CHECK_GOTO(jc->C == 0.0 && !(jc->damage && jc->D4 != 0.0), ctx, PDK_ERR_ARG,
+                   "%s: the Johnson-Cook rate terms (C = %g, D4 = %g) need strain rates, so the "
+                   "load steps need a pseudo-time: set total_time > 0 (scene: solver.end_time) "
+                   "and give the conditions time functions (e.g. a displacement with function "
+                   "linear)",
+                   pdk_static_method_name(s->opts.method), jc->C, jc->damage ? jc->D4 : 0.0);
   }
   s->block_part = calloc((size_t)(s->num_blocks > 0 ? s->num_blocks : 1) * 2, sizeof(double));
   PDK_CHECK_GOTO(s->block_part, ctx, PDK_ERR_MEMORY, "static solver: out of memory");
   PDK_CALL_GOTO(setup_conditions(s));
+  s->last.level = -1;
+  s->last.broken = pdk_model_num_broken(m);
   for (int k = 0; k < s->opts.num_reaction_sets; ++k) {
     s->reaction_member[k] = pdk_particles_field_data(s->p, s->opts.reaction_sets[k], 0);
     PDK_CHECK_GOTO(s->reaction_member[k], ctx, PDK_ERR_NOT_FOUND,
@@ -232,9 +286,12 @@ void pdk_static_destroy(pdk_static **sp) {
   pdk_newton_free(s);
   for (int c = 0; c < 3; ++c) {
     free(s->fixed[c]);
-    free(s->u_presc[c]);
-    free(s->b_unit[c]);
+    free(s->owner[c]);
+    free(s->u_level[c]);
+    free(s->b_level[c]);
     free(s->r[c]);
+    free(s->x_prev[c]);
+    free(s->fext_prev[c]);
   }
   free(s->bcs);
   free(s->levels);
@@ -249,14 +306,13 @@ void pdk_static_destroy(pdk_static **sp) {
 const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return &s->stats; }
 
 void pdk_static_apply_prescribed(pdk_static *s) {
-  const double lambda = s->lambda;
   for (int c = 0; c < s->dim; ++c) {
     double *x = field(s->p, "x", c);
     const double *X = pdk_particles_X(s->p, c);
     const uint8_t *fixed = s->fixed[c];
-    const double *u = s->u_presc[c];
+    const double *u = s->u_level[c];
     for (pdk_index i = 0; i < s->n; ++i)
-      if (fixed[i]) x[i] = X[i] + lambda * u[i];
+      if (fixed[i]) x[i] = X[i] + u[i];
   }
 }
 
@@ -265,28 +321,27 @@ int pdk_static_residual(pdk_static *s) {
   s->stats.force_passes++;
   const int dim = s->dim;
   const pdk_index n = s->n, num_blocks = s->num_blocks;
-  const double lambda = s->lambda;
   const double *vol = pdk_particles_volume(s->p);
   const double *f[3] = {NULL, NULL, NULL}, *b[3] = {NULL, NULL, NULL};
   const uint8_t *fixed[3] = {NULL, NULL, NULL};
   double *r[3] = {NULL, NULL, NULL};
   for (int c = 0; c < dim; ++c) {
     f[c] = field(s->p, "f", c);
-    b[c] = s->b_unit[c];
+    b[c] = s->b_level[c];
     fixed[c] = s->fixed[c];
     r[c] = s->r[c];
   }
   double *part = s->block_part;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none)                                                             \
-    shared(f, b, fixed, r, vol, part, n, num_blocks, dim, lambda) schedule(static) num_threads(nt)
+#pragma omp parallel for default(none) shared(f, b, fixed, r, vol, part, n, num_blocks, dim)       \
+    schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_STATIC_BLOCK;
     const pdk_index i1 = i0 + PDK_STATIC_BLOCK < n ? i0 + PDK_STATIC_BLOCK : n;
     double rs = 0.0, fs = 0.0;
     for (pdk_index i = i0; i < i1; ++i)
       for (int c = 0; c < dim; ++c) {
-        const double load = vol[i] * lambda * b[c][i];
+        const double load = vol[i] * b[c][i];
         const double ri = vol[i] * f[c][i] + load;
         r[c][i] = ri;
         if (fixed[c][i])
@@ -512,12 +567,13 @@ static void reactions(pdk_static *s, double out[][3]) {
 
 static void emit(pdk_static *s, pdk_static_phase phase, long iterations, double strain,
                  pdk_bond_index broken_now) {
-  if (!s->opts.monitor) return;
+  if (!s->opts.monitor && phase != PDK_STATIC_COMMITTED) return;
   pdk_static_event ev;
   memset(&ev, 0, sizeof ev);
   ev.phase = phase;
   ev.level = s->level;
   ev.load_factor = s->lambda;
+  ev.time = pdk_static_level_time(s, s->level);
   ev.round = s->round;
   ev.iterations = iterations;
   ev.residual = s->rnorm;
@@ -526,8 +582,42 @@ static void emit(pdk_static *s, pdk_static_phase phase, long iterations, double 
   ev.strain = strain;
   ev.broken = pdk_model_num_broken(s->m);
   ev.broken_now = broken_now;
+  ev.external_work = s->stats.external_work;
   reactions(s, ev.reaction);
-  s->opts.monitor(s->opts.monitor_user, &ev);
+  if (phase == PDK_STATIC_COMMITTED) s->last = ev;
+  if (s->opts.monitor) s->opts.monitor(s->opts.monitor_user, &ev);
+}
+
+/* External work of the step from the last commit to this equilibrium (r: the trial residual at
+ * it): trapezoid of the external force (supports and body forces: V b - r on prescribed
+ * components, V b on free ones) times the displacement increment, summed in index order. */
+static void work_to_equilibrium(pdk_static *s) {
+  const double *vol = pdk_particles_volume(s->p);
+  double w = 0.0;
+  for (int c = 0; c < s->dim; ++c) {
+    const double *x = field(s->p, "x", c);
+    const double *b = s->b_level[c], *r = s->r[c], *xp = s->x_prev[c], *fp = s->fext_prev[c];
+    const uint8_t *fixed = s->fixed[c];
+    for (pdk_index i = 0; i < s->n; ++i) {
+      const double fe = vol[i] * b[i] - (fixed[i] ? r[i] : 0.0);
+      w += 0.5 * (fp[i] + fe) * (x[i] - xp[i]);
+    }
+  }
+  s->stats.external_work += w;
+}
+
+/* After a commit: the external force there (the commit's forces on prescribed components: bonds
+ * that broke changed them) and the positions, the start of the next step's trapezoid. */
+static void work_commit_state(pdk_static *s) {
+  const double *vol = pdk_particles_volume(s->p);
+  for (int c = 0; c < s->dim; ++c) {
+    const double *x = field(s->p, "x", c), *f = field(s->p, "f", c), *b = s->b_level[c];
+    const uint8_t *fixed = s->fixed[c];
+    double *fp = s->fext_prev[c];
+    for (pdk_index i = 0; i < s->n; ++i)
+      fp[i] = fixed[i] ? -vol[i] * f[i] : vol[i] * b[i];
+    memcpy(s->x_prev[c], x, (size_t)s->n * sizeof(double));
+  }
 }
 
 /* Scales the displacement of the free components by `factor` (extrapolation between levels). */
@@ -541,49 +631,72 @@ static void scale_free(pdk_static *s, double factor) {
   }
 }
 
-int pdk_static_solve(pdk_static *s) {
+int pdk_static_num_levels(const pdk_static *s) { return s->num_levels; }
+double pdk_static_total_time(const pdk_static *s) { return s->opts.total_time; }
+int pdk_static_levels_solved(const pdk_static *s) { return s->stats.levels_done; }
+const pdk_static_event *pdk_static_last_event(const pdk_static *s) { return &s->last; }
+
+int pdk_static_solve_level(pdk_static *s) {
   pdk_ctx *ctx = s->ctx;
+  const int k = s->stats.levels_done;
+  PDK_CHECK(k < s->num_levels, ctx, PDK_ERR_ARG, "%s: all %d load levels are solved already",
+            pdk_static_method_name(s->opts.method), s->num_levels);
   const double t0 = pdk_wtime();
   int err = PDK_SUCCESS;
-  for (int k = 0; k < s->num_levels; ++k) {
-    const double lambda = s->levels[k];
-    if (s->opts.extrapolate && s->lambda > 0.0) scale_free(s, lambda / s->lambda);
-    s->lambda = lambda;
-    s->level = k;
-    pdk_static_apply_prescribed(s);
-    for (int round = 0;; ++round) {
-      s->round = round;
-      long iterations = 0;
-      if (s->opts.method == PDK_STATIC_ADR)
-        PDK_CALL_GOTO(pdk_adr_relax(s, &iterations));
-      else
-        PDK_CALL_GOTO(pdk_newton_solve_level(s, &iterations));
-      s->stats.iterations += iterations;
-      emit(s, PDK_STATIC_CONVERGED, iterations, 0.0, 0);
-      /* History advances here, and only here: one committing pass at the equilibrium. */
-      const pdk_bond_index before = pdk_model_num_broken(s->m);
-      double strain = 0.0;
-      PDK_CALL_GOTO(pdk_model_force(s->m, &strain));
-      s->stats.commit_passes++;
-      const pdk_bond_index broken_now = pdk_model_num_broken(s->m) - before;
-      emit(s, PDK_STATIC_COMMITTED, iterations, strain, broken_now);
-      if (broken_now == 0) break;
-      PDK_CHECK_GOTO(round < s->opts.max_break_rounds, ctx, PDK_ERR_NUMERIC,
-                     "%s: load level %d (load factor %g) still breaks bonds after %d re-solves "
-                     "(%lld broken in the last); the body is probably failing at this load: "
-                     "stop at a lower level or raise max_break_rounds",
-                     pdk_static_method_name(s->opts.method), k, lambda, round,
-                     (long long)broken_now);
-      s->stats.break_rounds++;
-    }
-    s->stats.levels_done++;
+  const double lambda = s->levels[k];
+  const double previous_measure = s->load_measure;
+  set_level_values(s, k);
+  if (s->opts.extrapolate && s->lambda > 0.0 && previous_measure > 0.0)
+    scale_free(s, s->load_measure / previous_measure);
+  s->lambda = lambda;
+  s->level = k;
+  /* The model's time step: the pseudo-time increment of this level (time mode), or none (scale
+   * mode: quasi-static limit, no rate terms; refused at creation when the law has them). */
+  if (s->time_mode)
+    PDK_CALL_GOTO(
+        pdk_model_set_dt(s->m, pdk_static_level_time(s, k) - pdk_static_level_time(s, k - 1)));
+  else
+    s->m->dt = 0.0;
+  pdk_static_apply_prescribed(s);
+  for (int round = 0;; ++round) {
+    s->round = round;
+    long iterations = 0;
+    if (s->opts.method == PDK_STATIC_ADR)
+      PDK_CALL_GOTO(pdk_adr_relax(s, &iterations));
+    else
+      PDK_CALL_GOTO(pdk_newton_solve_level(s, &iterations));
+    s->stats.iterations += iterations;
+    work_to_equilibrium(s);
+    emit(s, PDK_STATIC_CONVERGED, iterations, 0.0, 0);
+    /* History advances here, and only here: one committing pass at the equilibrium. */
+    const pdk_bond_index before = pdk_model_num_broken(s->m);
+    double strain = 0.0;
+    PDK_CALL_GOTO(pdk_model_force(s->m, &strain));
+    s->stats.commit_passes++;
+    work_commit_state(s);
+    const pdk_bond_index broken_now = pdk_model_num_broken(s->m) - before;
+    emit(s, PDK_STATIC_COMMITTED, iterations, strain, broken_now);
+    if (broken_now == 0) break;
+    PDK_CHECK_GOTO(round < s->opts.max_break_rounds, ctx, PDK_ERR_NUMERIC,
+                   "%s: load level %d (load factor %g) still breaks bonds after %d re-solves "
+                   "(%lld broken in the last); the body is probably failing at this load: "
+                   "stop at a lower level or raise max_break_rounds",
+                   pdk_static_method_name(s->opts.method), k, lambda, round, (long long)broken_now);
+    s->stats.break_rounds++;
   }
+  s->stats.levels_done++;
   s->stats.residual = s->rnorm;
   s->stats.load_norm = s->fnorm;
   s->stats.residual_floor = s->floor;
 cleanup:
   s->stats.time_total += pdk_wtime() - t0;
   return err;
+}
+
+int pdk_static_solve(pdk_static *s) {
+  while (s->stats.levels_done < s->num_levels)
+    PDK_CALL(pdk_static_solve_level(s));
+  return PDK_SUCCESS;
 }
 
 void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {

@@ -7,10 +7,13 @@
  *
  * Per-particle arrays are [n] per component c < dim (not padded: solver-private):
  *   fixed[c]    1 if component c of particle i is prescribed
- *   u_presc[c]  prescribed displacement at load factor 1 [length]
- *   b_unit[c]   body-force density at load factor 1 [force / length^dim]
- *   r[c]        residual V_i (f_ic + lambda b_ic) of the last evaluation [force]; on prescribed
+ *   owner[c]    index of the displacement condition that prescribes it, -1 if free
+ *   u_level[c]  prescribed displacement of the current level [length] (0 where free)
+ *   b_level[c]  body-force density of the current level [force / length^dim]
+ *   r[c]        residual V_i (f_ic + b_ic) of the last evaluation [force]; on prescribed
  *               components it holds the same expression (minus the support reaction)
+ *   x_prev[c], fext_prev[c]  position and external force (support + body force) after the last
+ *               commit, for the trapezoidal external work
  * Coloring: color_of [n]; particles of color k are color_members[color_start[k] ..
  * color_start[k+1]-1], ascending.
  */
@@ -39,17 +42,22 @@ struct pdk_static {
   int hops; /* coupling radius in family hops: 1 (PMB) or 2 */
   double horizon;
   uint8_t *fixed[3];
-  double *u_presc[3];
-  double *b_unit[3];
+  int32_t *owner[3];
+  double *u_level[3];
+  double *b_level[3];
   double *r[3];
+  double *x_prev[3], *fext_prev[3];
+  int time_mode;         /* opts.total_time > 0 */
+  pdk_static_event last; /* last COMMITTED event */
   int has_body_force;
   int num_fixed;                                          /* prescribed components */
   uint8_t *reaction_member[PDK_STATIC_MAX_REACTION_SETS]; /* borrowed set fields */
   int num_reaction;
-  double lambda; /* load factor of the current level (0 before the first) */
-  double rnorm;  /* ||r||_free of the last evaluation [force] */
-  double fnorm;  /* ||F_ext|| of the last evaluation [force] */
-  double floor;  /* round-off floor of ||r|| [force] (0 until known), see static.h */
+  double lambda;       /* load factor of the current level (0 before the first) */
+  double load_measure; /* norm of u_level (or of b_level without displacements) of the level */
+  double rnorm;        /* ||r||_free of the last evaluation [force] */
+  double fnorm;        /* ||F_ext|| of the last evaluation [force] */
+  double floor;        /* round-off floor of ||r|| [force] (0 until known), see static.h */
   int level, round;
   /* coloring of the coupling graph, built on first use */
   int num_colors;
@@ -68,7 +76,7 @@ struct pdk_static {
 int pdk_static_residual(pdk_static *s);
 /* 1 if the last residual meets the tolerance or lies at the round-off floor. */
 int pdk_static_converged(const pdk_static *s);
-/* Sets x = X + lambda u_presc on prescribed components. */
+/* Sets x = X + u_level on prescribed components. */
 void pdk_static_apply_prescribed(pdk_static *s);
 /* Greedy coloring: particles closer than 2 hops delta get different colors (built once). */
 int pdk_static_color(pdk_static *s);

@@ -193,6 +193,9 @@ pdk_families *pdk_model_current_families(const pdk_model *m);
  * solver sets it. Until it is set, a commit pass of a law with rate terms is refused and trial
  * passes take the quasi-static limit (dt = infinity: no rate hardening). */
 int pdk_model_set_dt(pdk_model *m, double dt);
+/* The time step of the history update: as set, or 0 (none: quasi-static limit). The static
+ * solvers set it for each load step (include/pdk/static.h). */
+double pdk_model_get_dt(const pdk_model *m);
 /* Energy dissipated so far [energy], each summed over particles in a fixed order (thread-count
  * independent): plastic work, damage, and what bond breaking released (see "w_broken"). A
  * quantity the model does not track is 0. Any pointer may be NULL. Together with the strain

@@ -13,6 +13,7 @@
 #define PDK_SCENE_H
 
 #include "pdk/explicit.h"
+#include "pdk/static.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -29,6 +30,15 @@ const char *pdk_scene_name(const pdk_scene *s); /* "name" key, default: file ste
 const char *pdk_scene_text(const pdk_scene *s); /* the scene after overrides, as YAML text */
 int pdk_scene_threads(const pdk_scene *s);      /* solver.threads, 0 = default */
 int pdk_scene_dimension(const pdk_scene *s);    /* 2 or 3 */
+
+/* solver.type */
+typedef enum pdk_solver_type {
+  PDK_SOLVER_EXPLICIT = 0, /* explicit dynamics (pdk/explicit.h) */
+  PDK_SOLVER_ADR = 1,   /* quasi-static load steps by adaptive dynamic relaxation (pdk/static.h) */
+  PDK_SOLVER_NEWTON = 2 /* static load steps by Newton-Raphson (pdk/static.h) */
+} pdk_solver_type;
+pdk_solver_type pdk_scene_solver_type(const pdk_scene *s);
+const char *pdk_solver_type_name(pdk_solver_type type);
 
 /* Where a key of the scene was given: "<file>:<line>", or "<file>: --set <key.path>=<value>" when
  * an override set it. An absent key (a default) gives the location of its nearest present parent.
@@ -47,11 +57,12 @@ int pdk_scene_error(const pdk_scene *s, pdk_ctx *ctx, int code, const char *key_
 
 /* What the output section asks for. */
 typedef struct pdk_scene_output {
-  long field_interval;            /* steps between field outputs (0: first and last only) */
-  long history_interval;          /* steps between history rows (>= 1) */
-  long checkpoint_interval;       /* steps between checkpoints (0: only at the end / on Ctrl-C) */
+  long field_interval;      /* steps (static: load steps) between field outputs (0: first
+                               and last only) */
+  long history_interval;    /* steps between history rows (>= 1; static default 1) */
+  long checkpoint_interval; /* steps between checkpoints (0: only at the end / on Ctrl-C) */
   int num_fields;
-  const char *const *fields;      /* particle field names to write, e.g. "u", "v", "f" */
+  const char *const *fields; /* particle field names to write, e.g. "u", "v", "f" */
   int num_reaction_sets;
   const char *const *reaction_sets; /* set names (without "set:") whose reactions are recorded */
 } pdk_scene_output;
@@ -67,8 +78,25 @@ void pdk_sim_destroy(pdk_sim **sim);
 pdk_particles *pdk_sim_particles(pdk_sim *sim);
 pdk_families *pdk_sim_families(pdk_sim *sim);
 pdk_model *pdk_sim_model(pdk_sim *sim);
-pdk_explicit *pdk_sim_explicit(pdk_sim *sim);
-long pdk_sim_num_steps(const pdk_sim *sim); /* solver.steps, or ceil(end_time / dt) */
+pdk_explicit *pdk_sim_explicit(pdk_sim *sim); /* NULL for a static solver */
+/* explicit: solver.steps, or ceil(end_time / dt); static: the number of load steps */
+long pdk_sim_num_steps(const pdk_sim *sim);
+
+/* Static solvers (solver.type adr or newton). A static run is a sequence of load steps; each is
+ * solved to equilibrium (with its re-solves while bonds break) and gives one history record:
+ *   step            load steps solved (0: the unloaded state)
+ *   time            the load step's pseudo-time (solver.end_time given), else its load factor
+ *   kinetic         0
+ *   strain, broken, reaction, plastic_work, damage_work, breaking_work   at the equilibrium,
+ *                   after the committing pass
+ *   external_work   work of the supports and body forces along the load path (trapezoidal over
+ *                   the load steps; see pdk/static.h)                                          */
+pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim);
+pdk_static *pdk_sim_static(pdk_sim *sim); /* NULL for the explicit solver */
+/* Solves the next load step and fills h (may be NULL) with its record. */
+int pdk_sim_static_step(pdk_sim *sim, pdk_history *h);
+/* The record of the current state (the last load step solved, or the unloaded state). */
+int pdk_sim_static_history(pdk_sim *sim, pdk_history *h);
 
 /* Refreshes derived output fields before a field output: displacement "u" = x - X, and
  * "von_mises" (the von Mises Cauchy stress of a correspondence model; see src/sim.c). */

@@ -17,13 +17,33 @@
  * bounds it by the row sums of its mass): at small strains (1e-6) it can lie above rtol ||F_ext||.
  *
  * Load stepping. The levels lambda_1 < lambda_2 < ... (default: num_levels equal steps up to 1)
- * multiply the prescribed displacements and body forces: a static solve ignores time, and the
- * value of a condition is its time function at t = 1 (for a constant function, its constant).
+ * are the load steps, in one of two modes:
+ *   scale (total_time = 0, the default): lambda multiplies the prescribed displacements and body
+ *     forces, each taken at the value of its time function at t = 1 (for a constant function, its
+ *     constant). There is no time: every pass uses the quasi-static limit of rate terms (no rate
+ *     hardening, "eps_p_rate" 0), and a model with Johnson-Cook rate terms is refused at creation
+ *     (give a total_time).
+ *   time (total_time = T > 0): level k is the pseudo-time t_k = lambda_k T of the load path, and
+ *     every condition takes the value of its time function at t_k, exactly as the explicit solver
+ *     would at that time (so a scene runs the same load path with either solver: a displacement
+ *     with function linear and value v is the pull at velocity v). Every pass of level k (trial
+ *     and committing) runs with the model's time step set to dt_k = t_k - t_{k-1} (t_0 = 0) by
+ *     pdk_model_set_dt: rate terms see the strain rate of the load step, and "eps_p_rate" is the
+ *     plastic strain increment of the step over dt_k. Re-solves of a level after bonds broke
+ *     commit with the same dt_k (the redistribution belongs to that step); finer levels make that
+ *     choice matter less.
  * Each level is solved to equilibrium from the previous one (the displacement of the free
- * components is first scaled by lambda_k / lambda_{k-1}: exact for a linear problem).
+ * components is first scaled by the ratio of the norms of the prescribed displacements, or of the
+ * body forces when no displacement is prescribed, of this level and the last: lambda_k /
+ * lambda_{k-1} in scale mode, exact for a linear problem).
+ * External work (event and stats): the trapezoidal sum over the load path of the external forces
+ * (supports and body forces) times the displacement increments, between consecutive committed
+ * equilibria; for a linear elastic body loaded proportionally it equals the strain energy.
  *
  * History. Every iterate of a relaxation or a Newton solve is evaluated with trial force passes
- * (pdk_model_force_trial): nothing breaks, no history moves. When a level has converged, one
+ * (pdk_model_force_trial): nothing breaks, no history moves (the trial passes of level k use the
+ * same dt_k as its commit, so the committed state is the equilibrium that was found). When a
+ * level has converged, one
  * committing pass (pdk_model_force) advances the history at that equilibrium. If it broke bonds,
  * the level is solved again from there, and so on until a commit breaks nothing (at most
  * max_break_rounds rounds). So history advances only from converged states.
@@ -67,7 +87,8 @@
  *   - Tangent reuse: within a round, an iteration keeps the factorized tangent of the previous one
  *     when that full step reduced ||r|| by at least 1000 (opts.reuse_tangent).
  *   - Each iteration does a backtracking line search on ||r||: step lengths 1, 1/2, 1/4, ...
- *     until ||r(x + a dx)|| <= (1 - 1e-4 a) ||r(x)||.
+ *     (at most max_backtracks halvings) until ||r(x + a dx)|| <= (1 - ls_decrease a) ||r(x)||
+ *     (ls_decrease default 1e-4).
  *   - Before the first factorization the solver checks that the displacement conditions stop every
  *     rigid motion ("the body is not held: ..."). A singular or nearly singular tangent stops the
  *     solve with a message naming the particle and the likely cause. Singular means a pivot, or
@@ -130,6 +151,7 @@ typedef struct pdk_static_event {
   double load_factor;    /* lambda of the level */
   int round;             /* 0 for the first solve of the level, then one per re-solve */
   long iterations;       /* ADR iterations or Newton iterations of this round */
+  double time;           /* pseudo-time t_k of the level (time mode), else the load factor */
   double residual;       /* ||r||_free [force] at the equilibrium */
   double load_norm;      /* ||F_ext|| [force] */
   double tolerance;      /* the residual bound that was met: max(rtol ||F_ext|| + atol, round-off
@@ -139,6 +161,7 @@ typedef struct pdk_static_event {
   pdk_bond_index broken_now; /* bonds this commit broke (COMMITTED only) */
   double reaction[8][3];     /* on opts.reaction_sets: -sum_{i in set} V_i f_i (as the explicit
                                 solver: the force the supports or loads exert on the set) */
+  double external_work;      /* work of the supports and body forces so far (COMMITTED only) */
 } pdk_static_event;
 
 typedef struct pdk_static_opts {
@@ -147,6 +170,8 @@ typedef struct pdk_static_opts {
   int num_bcs;
   const double *load_levels; /* [num_levels] increasing, > 0; NULL: k / num_levels, k = 1..num */
   int num_levels;            /* default 1 */
+  double total_time;         /* 0 (default): scale mode; > 0: time mode, level k at pseudo-time
+                                load_levels[k] total_time (see "Load stepping" above) */
   double rtol;               /* residual tolerance relative to ||F_ext|| (ADR 1e-6, Newton 1e-10;
                                 the round-off floor applies when it is higher) */
   double atol;               /* absolute floor [force] (default 0) */
@@ -164,7 +189,8 @@ typedef struct pdk_static_opts {
   double sym_rtol;      /* asymmetry accepted as difference error (default 1e-6) */
   double singular_rtol; /* singular when a pivot or the smallest eigenvalue is below this times the
                            largest diagonal (default 1e-8, above the difference error; 0: off) */
-  int max_backtracks;   /* line-search halvings (default 10) */
+  int max_backtracks;   /* line-search halvings (default 10; 0: full steps only) */
+  double ls_decrease;   /* sufficient decrease of the line search, in (0, 1) (default 1e-4) */
   int reuse_tangent;    /* 1 (default): within a round, keep the factorized tangent for the next
                            iteration when the last full step reduced ||r|| by at least 1000 (the
                            problem behaves linearly: a linear problem costs one assembly; a looser
@@ -187,6 +213,7 @@ typedef struct pdk_static_stats {
   long commit_passes;
   int break_rounds;           /* re-solves caused by broken bonds */
   double residual, load_norm; /* of the last converged state [force] */
+  double external_work;       /* of the supports and body forces so far [energy] */
   /* coloring of the coupling graph (Newton, ADR row sums) */
   int num_colors;
   int coupling_hops;       /* 1 (bond-based) or 2 (state-based) */
@@ -224,9 +251,23 @@ typedef struct pdk_static pdk_static;
 int pdk_static_create(pdk_model *m, const pdk_static_opts *opts, pdk_static **out);
 void pdk_static_destroy(pdk_static **s);
 
-/* Solves every load level. On success the particles' "x" holds the equilibrium of the last level
- * and "f" its internal forces. On failure the message names the level, the round and why. */
+/* Solves every load level not solved yet. On success the particles' "x" holds the equilibrium of
+ * the last level and "f" its internal forces. On failure the message names the level, the round
+ * and why. */
 int pdk_static_solve(pdk_static *s);
+/* Solves the next load level only (with its re-solve rounds), so a caller can write output after
+ * each one; pdk_static_solve is a loop over it. Refused (PDK_ERR_ARG) when every level is done. */
+int pdk_static_solve_level(pdk_static *s);
+/* Load levels in all, and how many are solved. */
+int pdk_static_num_levels(const pdk_static *s);
+int pdk_static_levels_solved(const pdk_static *s);
+/* opts.total_time: > 0 in time mode, 0 in scale mode. */
+double pdk_static_total_time(const pdk_static *s);
+/* Pseudo-time of level k (time mode), or its load factor (scale mode); 0 for k < 0. */
+double pdk_static_level_time(const pdk_static *s, int k);
+/* The last COMMITTED event (the equilibrium after the last solved level, every field of it), or
+ * the unloaded state (level -1, everything 0 but broken) before the first level. */
+const pdk_static_event *pdk_static_last_event(const pdk_static *s);
 
 const pdk_static_stats *pdk_static_stats_get(const pdk_static *s);
 const char *pdk_static_method_name(pdk_static_method method);

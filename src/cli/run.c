@@ -29,6 +29,8 @@ const char *pdk_cli_usage_run =
     "  <name>_history.png       plot of the histories (when gnuplot is installed)\n"
     "  <name>_checkpoint.h5     state for --restart (at checkpoint_interval, the end, and Ctrl-C)\n"
     "Files are written under temporary names and renamed when complete.\n"
+    "Static scenes (solver.type adr or newton) write one history row per load step (reaction vs\n"
+    "displacement, energies) and the fields of the load steps, and no checkpoint.\n"
     "\n"
     "options:\n"
     "  -o, --output DIR     output folder (created if missing)\n"
@@ -82,7 +84,9 @@ static int parse_args(int argc, char **argv, run_args *a, const char *usage, int
       char *end = NULL;
       long v = strtol(argv[++k], &end, 10);
       if (!argv[k][0] || *end || v < 1 || v > 4096) {
-        fprintf(stderr, "pdk: --threads '%s' is not a thread count; use an integer from 1 to 4096\n", argv[k]);
+        fprintf(stderr,
+                "pdk: --threads '%s' is not a thread count; use an integer from 1 to 4096\n",
+                argv[k]);
         return 2;
       }
       a->threads = (int)v;
@@ -125,10 +129,14 @@ static int mkdir_p(const char *path) {
 }
 
 static void fmt_duration(char *buf, size_t len, double s) {
-  if (!isfinite(s) || s < 0) snprintf(buf, len, "--");
-  else if (s < 60) snprintf(buf, len, "%.1fs", s);
-  else if (s < 3600) snprintf(buf, len, "%dm%02ds", (int)(s / 60), (int)fmod(s, 60));
-  else snprintf(buf, len, "%dh%02dm", (int)(s / 3600), (int)fmod(s / 60, 60));
+  if (!isfinite(s) || s < 0)
+    snprintf(buf, len, "--");
+  else if (s < 60)
+    snprintf(buf, len, "%.1fs", s);
+  else if (s < 3600)
+    snprintf(buf, len, "%dm%02ds", (int)(s / 60), (int)fmod(s, 60));
+  else
+    snprintf(buf, len, "%dh%02dm", (int)(s / 3600), (int)fmod(s / 60, 60));
 }
 
 /* Loads the scene and builds the simulation; prints the error and returns the exit status. */
@@ -159,14 +167,30 @@ static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
   pdk_particles *p = pdk_sim_particles(sim);
   pdk_families *f = pdk_sim_families(sim);
   pdk_explicit *e = pdk_sim_explicit(sim);
+  pdk_static *st = pdk_sim_static(sim);
   const pdk_model_opts *mo = pdk_model_opts_get(pdk_sim_model(sim));
   fprintf(out, "scene %s (%s): %d-D, %d particles, %lld bonds (%.1f per particle), model %s\n",
           pdk_scene_name(scene), pdk_scene_path(scene), pdk_particles_dim(p),
           (int)pdk_particles_count(p), (long long)pdk_families_num_bonds(f),
-          (double)pdk_families_num_bonds(f) / pdk_particles_count(p), pdk_model_kind_name(mo->kind));
-  fprintf(out, "explicit: dt %.4g (stable estimate %.4g), %ld steps to t = %.4g, %d thread(s)\n",
-          pdk_explicit_dt(e), pdk_explicit_stable_dt(e), pdk_sim_num_steps(sim),
-          pdk_sim_num_steps(sim) * pdk_explicit_dt(e), pdk_ctx_num_threads(ctx));
+          (double)pdk_families_num_bonds(f) / pdk_particles_count(p),
+          pdk_model_kind_name(mo->kind));
+  if (e) {
+    fprintf(out, "explicit: dt %.4g (stable estimate %.4g), %ld steps to t = %.4g, %d thread(s)\n",
+            pdk_explicit_dt(e), pdk_explicit_stable_dt(e), pdk_sim_num_steps(sim),
+            pdk_sim_num_steps(sim) * pdk_explicit_dt(e), pdk_ctx_num_threads(ctx));
+  } else {
+    const int nl = pdk_static_num_levels(st);
+    const double last = pdk_static_level_time(st, nl - 1);
+    const pdk_static_stats *ss = pdk_static_stats_get(st);
+    fprintf(out, "%s: %d load step(s) to %s %.4g, %d thread(s)",
+            pdk_solver_type_name(pdk_sim_solver_type(sim)), nl,
+            pdk_static_total_time(st) > 0 ? "pseudo-time t =" : "load factor", last,
+            pdk_ctx_num_threads(ctx));
+    if (ss->num_colors)
+      fprintf(out, "; coloring %d colors (%ld passes per difference tangent)", ss->num_colors,
+              ss->passes_per_tangent);
+    fputc('\n', out);
+  }
 }
 
 int pdk_cli_check(int argc, char **argv) {
@@ -188,6 +212,78 @@ int pdk_cli_check(int argc, char **argv) {
   return rc;
 }
 
+/* A static run: one history record per load step (history_interval and field_interval count load
+ * steps), a progress line per load step, the solver's statistics at the end. No checkpoints: on
+ * Ctrl-C the load steps solved so far are kept (complete files) and the run stops with 130. */
+static int run_static(pdk_ctx *ctx, const run_args *a, pdk_scene *scene, pdk_sim *sim,
+                      pdk_output **out, const char *dir, double wall0) {
+  pdk_static *st = pdk_sim_static(sim);
+  pdk_particles *p = pdk_sim_particles(sim);
+  const pdk_scene_output *so = pdk_scene_output_get(scene);
+  const long total = pdk_sim_num_steps(sim);
+  const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
+  const long field_every = so->field_interval;
+  const char *method = pdk_solver_type_name(pdk_sim_solver_type(sim));
+  pdk_history h;
+  int err = pdk_sim_static_history(sim, &h);
+  if (!err) err = pdk_output_write_history(*out, &h);
+  if (!err) err = pdk_sim_update_output_fields(sim);
+  if (!err) err = pdk_output_write_fields(*out, p, h.step, h.time, so->fields, so->num_fields);
+  const double run0 = pdk_wtime();
+  long iterations_before = 0;
+  while (!err && h.step < total && !interrupted) {
+    if ((err = pdk_sim_static_step(sim, &h))) break;
+    const long s = h.step;
+    if (s % hist_every == 0 || s == total) err = pdk_output_write_history(*out, &h);
+    if (!err && ((field_every > 0 && s % field_every == 0) || s == total)) {
+      err = pdk_sim_update_output_fields(sim);
+      if (!err) err = pdk_output_write_fields(*out, p, s, h.time, so->fields, so->num_fields);
+    }
+    if (!a->quiet) {
+      const pdk_static_stats *ss = pdk_static_stats_get(st);
+      const pdk_static_event *ev = pdk_static_last_event(st);
+      char w[32];
+      fmt_duration(w, sizeof w, pdk_wtime() - wall0);
+      fprintf(stderr,
+              "%s load step %ld/%ld  %s %.4g  iterations %ld  re-solves %d  residual %.2e  "
+              "broken %lld  wall %s\n",
+              method, s, total, pdk_static_total_time(st) > 0 ? "t" : "load", h.time,
+              ss->iterations - iterations_before, ev->round, ev->residual, (long long)h.broken, w);
+      iterations_before = ss->iterations;
+    }
+  }
+  if (err) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    if (pdk_static_levels_solved(st) > 0) {
+      /* keep the load steps that did converge: their records are complete */
+      if (pdk_output_close(out, 1))
+        fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+      else
+        fprintf(stderr, "pdk: the %d load step(s) solved are in %s/%s_history.csv\n",
+                pdk_static_levels_solved(st), dir, pdk_scene_name(scene));
+    }
+    return 1;
+  }
+  if (pdk_output_close(out, 1)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    return 1;
+  }
+  if (interrupted) {
+    fprintf(stderr,
+            "pdk: interrupted after load step %ld of %ld (static runs have no checkpoints; the "
+            "output holds the steps solved)\n",
+            h.step, total);
+    return 130;
+  }
+  if (!a->quiet) pdk_static_stats_print(pdk_static_stats_get(st), stderr);
+  fprintf(stderr,
+          "done: %ld load steps in %.2f s (%.2f s solving), peak memory %.1f MiB, %lld bonds "
+          "broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
+          h.step, pdk_wtime() - wall0, pdk_wtime() - run0, pdk_peak_memory_bytes() / 1048576.0,
+          (long long)h.broken, dir, pdk_scene_name(scene), pdk_scene_name(scene));
+  return 0;
+}
+
 int pdk_cli_run(int argc, char **argv) {
   run_args a;
   int rc = parse_args(argc, argv, &a, pdk_cli_usage_run, 1);
@@ -202,9 +298,19 @@ int pdk_cli_run(int argc, char **argv) {
   if ((rc = load_and_build(ctx, &a, &scene, &sim))) goto done;
   pdk_explicit *e = pdk_sim_explicit(sim);
   pdk_particles *p = pdk_sim_particles(sim);
+  if (!e && a.restart) {
+    fprintf(stderr,
+            "pdk: --restart continues explicit runs only; %s is a static run (solver.type %s), "
+            "which writes no checkpoints: run it again\n",
+            a.scene, pdk_solver_type_name(pdk_sim_solver_type(sim)));
+    rc = 2;
+    goto done;
+  }
   const pdk_scene_output *so = pdk_scene_output_get(scene);
-  if (a.outdir) snprintf(dir, sizeof dir, "%s", a.outdir);
-  else snprintf(dir, sizeof dir, "out/%s", pdk_scene_name(scene));
+  if (a.outdir)
+    snprintf(dir, sizeof dir, "%s", a.outdir);
+  else
+    snprintf(dir, sizeof dir, "out/%s", pdk_scene_name(scene));
   snprintf(ckpt, sizeof ckpt, "%s/%s_checkpoint.h5", dir, pdk_scene_name(scene));
   if (mkdir_p(dir)) {
     fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n", dir, strerror(errno));
@@ -238,6 +344,10 @@ int pdk_cli_run(int argc, char **argv) {
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
 
+  if (!e) {
+    rc = run_static(ctx, &a, scene, sim, &out, dir, wall0);
+    goto done;
+  }
   const long total = pdk_sim_num_steps(sim);
   const long start = pdk_explicit_step(e);
   const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
@@ -257,7 +367,8 @@ int pdk_cli_run(int argc, char **argv) {
     long cand[3] = {(s / hist_every + 1) * hist_every,
                     field_every > 0 ? (s / field_every + 1) * field_every : total,
                     ckpt_every > 0 ? (s / ckpt_every + 1) * ckpt_every : total};
-    for (int k = 0; k < 3; ++k) next = cand[k] < next ? cand[k] : next;
+    for (int k = 0; k < 3; ++k)
+      next = cand[k] < next ? cand[k] : next;
     /* advance in chunks of at most 100 steps so Ctrl-C and the progress line stay responsive */
     long chunk = next - s < 100 ? next - s : 100;
     if ((err = pdk_explicit_run(e, chunk, &h))) break;
@@ -271,7 +382,8 @@ int pdk_cli_run(int argc, char **argv) {
       err = pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene));
     double now = pdk_wtime();
     if (tty && (now - last_print > 0.25 || s == total)) {
-      double el = now - run0, frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
+      double el = now - run0,
+             frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
       char w[32], eta[32];
       fmt_duration(w, sizeof w, now - wall0);
       fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
@@ -289,14 +401,16 @@ int pdk_cli_run(int argc, char **argv) {
   }
   if (interrupted) {
     if (pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene))) {
-      fprintf(stderr, "pdk: interrupted, and the checkpoint failed: %s\n", pdk_ctx_error_message(ctx));
+      fprintf(stderr, "pdk: interrupted, and the checkpoint failed: %s\n",
+              pdk_ctx_error_message(ctx));
       pdk_output_close(&out, 0);
       rc = 1;
       goto done;
     }
     /* The output holds every step written so far; a checkpoint continues it. */
     pdk_output_close(&out, 1);
-    fprintf(stderr, "pdk: interrupted at step %ld of %ld; continue with\n  pdk run %s --restart %s\n",
+    fprintf(stderr,
+            "pdk: interrupted at step %ld of %ld; continue with\n  pdk run %s --restart %s\n",
             pdk_explicit_step(e), total, a.scene, ckpt);
     rc = 130;
     goto done;
@@ -311,12 +425,13 @@ int pdk_cli_run(int argc, char **argv) {
     double wall = pdk_wtime() - wall0, run = pdk_wtime() - run0;
     long steps = pdk_explicit_step(e) - start;
     double bonds = (double)pdk_families_num_bonds(pdk_sim_families(sim)) * (double)steps;
-    fprintf(stderr,
-            "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f MiB, "
-            "%lld bonds broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
-            steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
-            (long long)pdk_model_num_broken(pdk_sim_model(sim)), dir, pdk_scene_name(scene),
-            pdk_scene_name(scene));
+    fprintf(
+        stderr,
+        "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f MiB, "
+        "%lld bonds broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
+        steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
+        (long long)pdk_model_num_broken(pdk_sim_model(sim)), dir, pdk_scene_name(scene),
+        pdk_scene_name(scene));
   }
 done:
   pdk_output_close(&out, 0);
