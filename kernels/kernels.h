@@ -190,6 +190,21 @@ typedef struct pdk_corr_arrays {
   double *Kinv[9];                  /* K^-1 [1/length^5] */
   double *F[9];                     /* deformation gradient [-] */
   double *A[9];                     /* P K^-1 [pressure/length^5] */
+  /* Pass-2 data of each particle, written by pass 1 from its final A, F, flag (each NULL when the
+   * driver does not provide it; which it provides: pdk_corr_pair_layout):
+   *   kst   [n_pad] stabilization coefficient k_i = stab_modulus / m_i (0 when flagged)
+   *   B     A - k (F - I) (Silling); double storage, optimized variants
+   *   G     k (F - I) (hourglass); double storage, optimized variants
+   *   Bf    float copy of A - k (F - I) (Silling) or of A (none, hourglass); float storage
+   *   Gf    float copy of k (F - I) (hourglass); float storage
+   * Pass 2 of every variant reads the neighbour's tensors from Bf, Gf when Bf is set (float
+   * storage). Otherwise the reference reads A, F and the optimized variants read B (A when B is
+   * NULL), G. */
+  double *kst;
+  double *B[9];
+  double *G[9];
+  float *Bf[9];
+  float *Gf[9];
   double *m;                        /* weighted volume sum w V |xi|^2 [length^5]; NULL if unused */
   uint8_t *flag;                    /* PDK_CORR_FLAG_* bits */
   int32_t *num_alive;               /* intact bonds when K^-1 was computed; NULL if no failure */
@@ -213,6 +228,15 @@ typedef struct pdk_corr_arrays {
   uint8_t *detach;  /* [n] semi-TL: particle detached in this round; NULL in TL */
 } pdk_corr_arrays;
 
+/* Which pass-2 arrays (pdk_corr_arrays kst, B, G, Bf, Gf) a pass needs: bit 1 kst, 2 B, 4 G,
+ * 8 Bf, 16 Gf, for stabilization `stab`, float storage `fl`, optimized variant `opt`. */
+static inline unsigned pdk_corr_pair_layout(int stab, int fl, int opt) {
+  const unsigned k = stab != 0 ? 1u : 0u; /* PDK_STAB_NONE is 0 */
+  if (fl) return k | 8u | (stab == 2 ? 16u : 0u); /* 2: PDK_STAB_HOURGLASS */
+  if (!opt) return 0u;
+  return k | (stab == 1 ? 2u : 0u) | (stab == 2 ? 4u : 0u);
+}
+
 /* Shape: K^-1, m, flag bit SPAN, num_alive for i in [i0, i1); returns how many do not span. */
 pdk_index pdk_kernel_corr_shape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                     pdk_index i0, pdk_index i1);
@@ -222,6 +246,33 @@ void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *
 /* Pass 2: f (and W += Silling stabilization energy); reads A, F of neighbours from pass 1. */
 void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
                                pdk_index i1);
+/* Per-particle ends of the shape and of pass 1, shared by every variant (the family sums are the
+ * variant's): shape_point stores K^-1 (or 0), m, num_alive, flag bit SPAN from K = sum w V xi xi,
+ * m = sum w V |xi|^2 and the intact count, returning 1 if the family does not span; point takes
+ * N = sum w V Y xi (d x d in 3 x 3) and stores F, A, W, the flags, the JC history and the pass-2
+ * data. */
+int pdk_kernel_corr_shape_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i, const double K[3][3], double m, int32_t count);
+void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                               const double N[3][3]);
+
+/* Optimized variants of shape, pass 1 and pass 2 (kernels/opt/corr_avx2.c, corr_avx512.c: one
+ * source, kernels/opt/corr_simd.h, compiled for each ISA). Same contract and results as the
+ * reference up to round-off (sums regrouped and vectorized across a family's bonds, contractions
+ * to FMA). Call only when the CPU has the ISA. */
+pdk_index pdk_kernel_corr_shape_avx2(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                     pdk_index i0, pdk_index i1);
+void pdk_kernel_corr_pass1_avx2(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                                pdk_index i1);
+void pdk_kernel_corr_pass2_avx2(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                                pdk_index i1);
+pdk_index pdk_kernel_corr_shape_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                       pdk_index i0, pdk_index i1);
+void pdk_kernel_corr_pass1_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                  pdk_index i0, pdk_index i1);
+void pdk_kernel_corr_pass2_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                  pdk_index i0, pdk_index i1);
+
 /* Bond failure (commit passes): the s0 rule (when s0 != NULL) and, with break_failed, every bond
  * with a failed end; sets changed[i] to 3 for rows that lost bonds, 0 otherwise. Returns the
  * directed bonds broken. */

@@ -148,7 +148,9 @@ int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, si
   if (pdk_kernels_select(opts.kernels, ctx->isa, &ctx->kernels)) {
     hwloc_topology_destroy(topo);
     free(ctx);
-    return fail_early(err_buf, err_len, "PDK_KERNELS/kernels='%s' is not a kernel family; use 'ref' or 'simd'",
+    return fail_early(err_buf, err_len,
+                      "PDK_KERNELS/kernels='%s' is not a kernel family this CPU runs; use 'ref' "
+                      "or 'simd' (best for the CPU), or 'avx2', 'avx512' where the CPU has them",
                       opts.kernels);
   }
   pdk_h5_init();

@@ -1,5 +1,6 @@
 /* The kernel-variant table: filled once per context from the CPU's features or the user's forced
- * choice (PDK_KERNELS=ref|simd). Drivers call through the table and never branch on variants. */
+ * choice (PDK_KERNELS=ref|simd, or avx2|avx512: simd limited to that ISA). Drivers call through
+ * the table and never branch on variants. */
 #include <string.h>
 
 #include "kernels.h"
@@ -9,6 +10,10 @@ static void fill_ref(pdk_kernel_table *t) {
   t->name = "ref";
   t->family_scan2 = pdk_kernel_family_scan2_ref;
   t->family_scan3 = pdk_kernel_family_scan3_ref;
+  t->corr_shape = pdk_kernel_corr_shape_ref;
+  t->corr_pass1 = pdk_kernel_corr_pass1_ref;
+  t->corr_pass2 = pdk_kernel_corr_pass2_ref;
+  t->corr_opt = 0;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -19,10 +24,17 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
   if (isa & PDK_ISA_AVX2) {
     t->family_scan2 = pdk_kernel_family_scan2_avx2;
     t->family_scan3 = pdk_kernel_family_scan3_avx2;
+    t->corr_shape = pdk_kernel_corr_shape_avx2;
+    t->corr_pass1 = pdk_kernel_corr_pass1_avx2;
+    t->corr_pass2 = pdk_kernel_corr_pass2_avx2;
+    t->corr_opt = 1;
   }
   if (isa & PDK_ISA_AVX512) {
     t->family_scan2 = pdk_kernel_family_scan2_avx512;
     t->family_scan3 = pdk_kernel_family_scan3_avx512;
+    t->corr_shape = pdk_kernel_corr_shape_avx512;
+    t->corr_pass1 = pdk_kernel_corr_pass1_avx512;
+    t->corr_pass2 = pdk_kernel_corr_pass2_avx512;
   }
 }
 
@@ -34,6 +46,18 @@ int pdk_kernels_select(const char *name, unsigned isa, pdk_kernel_table *out) {
   }
   if (!strcmp(name, "ref")) {
     fill_ref(out);
+    return PDK_SUCCESS;
+  }
+  /* The simd family limited to one ISA (benchmarks and tests compare them); refused when the CPU
+   * lacks it. */
+  if (!strcmp(name, "avx2") && (isa & PDK_ISA_AVX2)) {
+    fill_simd(out, PDK_ISA_AVX2);
+    out->name = "avx2";
+    return PDK_SUCCESS;
+  }
+  if (!strcmp(name, "avx512") && (isa & PDK_ISA_AVX512)) {
+    fill_simd(out, isa & (PDK_ISA_AVX2 | PDK_ISA_AVX512));
+    out->name = "avx512";
     return PDK_SUCCESS;
   }
   return PDK_ERR_ARG;

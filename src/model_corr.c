@@ -103,6 +103,14 @@ typedef struct corr_impl {
   pdk_bond_index c_dead;   /* broken entries still in that list (counted since creation or the
                               last compaction) */
   pdk_index failed_seen;   /* failed particles when the break kernel last ran */
+  /* Kernels (from the context's table at setup) and the pass-2 data they need
+   * (pdk_corr_pair_layout): kst [n_pad], B, G [9][n_pad] double, Bf, Gf [9][n_pad] float. */
+  pdk_index (*shape)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
+  void (*pass1)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
+  void (*pass2)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
+  double *kst, *B[9], *G[9];
+  float *Bf[9], *Gf[9];
+  void *pair_d, *pair_f; /* the allocations behind kst, B, G and Bf, Gf */
 } corr_impl;
 
 /* Points the kernel arrays at the current fields. */
@@ -132,6 +140,13 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
     a->Kinv[t] = pdk_particles_field_data(p, "Kinv", t);
     a->F[t] = pdk_particles_field_data(p, "F", t);
     a->A[t] = pdk_particles_field_data(p, "A", t);
+  }
+  a->kst = c->kst;
+  for (int t = 0; t < 9; ++t) {
+    a->B[t] = c->B[t];
+    a->G[t] = c->G[t];
+    a->Bf[t] = c->Bf[t];
+    a->Gf[t] = c->Gf[t];
   }
   a->m = c->m;
   a->flag = pdk_particles_field_data(p, "flag", 0);
@@ -177,6 +192,8 @@ static void corr_destroy(pdk_model *m) {
   pdk_free_aligned(c->block_energy);
   pdk_free_aligned(c->changed);
   pdk_free_aligned(c->detach);
+  pdk_free_aligned(c->pair_d);
+  pdk_free_aligned(c->pair_f);
   free_compacted(c);
   free(c);
   m->impl = NULL;
@@ -191,12 +208,13 @@ static int corr_setup(pdk_model *m) {
   const pdk_index n_pad = pdk_particles_count_padded(p);
   const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
   const double horizon = pdk_families_horizon(m->fam);
-  PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE, ctx, PDK_ERR_UNSUPPORTED,
-            "correspondence model: float storage is not implemented yet; use precision double");
 
   corr_impl *c = calloc(1, sizeof *c);
   PDK_CHECK(c, ctx, PDK_ERR_MEMORY, "out of memory creating the correspondence model");
   m->impl = c;
+  c->shape = ctx->kernels.corr_shape;
+  c->pass1 = ctx->kernels.corr_pass1;
+  c->pass2 = ctx->kernels.corr_pass2;
   c->num_blocks = (n + PDK_CORR_BLOCK - 1) / PDK_CORR_BLOCK;
   c->bond_omega = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
   c->W = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
@@ -218,6 +236,35 @@ static int corr_setup(pdk_model *m) {
   if (m->s0) {
     c->s0_next = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
     ok = ok && c->s0_next;
+  }
+  /* Pass-2 data: each of B, G, Bf, Gf is dim*dim arrays of n_pad; kst one. */
+  const unsigned layout = pdk_corr_pair_layout((int)o->stabilization,
+                                               o->precision == PDK_PRECISION_FLOAT,
+                                               ctx->kernels.corr_opt);
+  const int dd = dim * dim;
+  const size_t nd = (size_t)((layout & 1u) ? 1 : 0) + (size_t)((layout & 2u) ? dd : 0) +
+                    (size_t)((layout & 4u) ? dd : 0);
+  const size_t nf = (size_t)((layout & 8u) ? dd : 0) + (size_t)((layout & 16u) ? dd : 0);
+  if (nd) {
+    double *q = c->pair_d = pdk_alloc_aligned(nd * (size_t)n_pad, sizeof(double));
+    ok = ok && q;
+    if (q) {
+      if (layout & 1u) c->kst = q, q += n_pad;
+      for (int t = 0; t < dd && (layout & 2u); ++t)
+        c->B[t] = q, q += n_pad;
+      for (int t = 0; t < dd && (layout & 4u); ++t)
+        c->G[t] = q, q += n_pad;
+    }
+  }
+  if (nf) {
+    float *q = c->pair_f = pdk_alloc_aligned(nf * (size_t)n_pad, sizeof(float));
+    ok = ok && q;
+    if (q) {
+      for (int t = 0; t < dd && (layout & 8u); ++t)
+        c->Bf[t] = q, q += n_pad;
+      for (int t = 0; t < dd && (layout & 16u); ++t)
+        c->Gf[t] = q, q += n_pad;
+    }
   }
   c->c_len = nb;
   PDK_CHECK(ok, ctx, PDK_ERR_MEMORY,
@@ -323,12 +370,12 @@ static int corr_setup(pdk_model *m) {
 
   /* Shape tensors, once (TL). */
   pdk_index flagged = 0;
-#pragma omp parallel for default(none) shared(a, k, num_blocks, n) reduction(+ : flagged)        \
-    schedule(static) num_threads(nt)
+#pragma omp parallel for default(none) shared(a, k, c, num_blocks, n)                           \
+    reduction(+ : flagged) schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_CORR_BLOCK;
     const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
-    flagged += pdk_kernel_corr_shape_ref(k, &a, i0, i1);
+    flagged += c->shape(k, &a, i0, i1);
   }
   m->num_flagged = flagged;
   return PDK_SUCCESS;
@@ -531,21 +578,25 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   double *block_energy = c->block_energy;
   const int nt = m->ctx->num_threads;
   pdk_index flagged = 0, num_failed = 0;
+  void (*const pass1)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index) =
+      c->pass1;
+  void (*const pass2)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index) =
+      c->pass2;
 
 #pragma omp parallel default(none)                                                              \
-    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy)                          \
+    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2)            \
     reduction(+ : flagged, num_failed) num_threads(nt)
   {
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);
-      pdk_kernel_corr_pass1_ref(k, &a, i0, i1);
+      pass1(k, &a, i0, i1);
     }
     /* implicit barrier: pass 2 reads A and F of neighbours in other blocks */
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);
-      pdk_kernel_corr_pass2_ref(k, &a, i0, i1);
+      pass2(k, &a, i0, i1);
       double e = 0.0;
       for (pdk_index i = i0; i < i1; ++i) {
         e += volume[i] * W[i];

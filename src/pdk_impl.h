@@ -18,6 +18,9 @@
 /* Kernel-variant table: one function pointer per kernel kind, filled at context creation from the
  * CPU's features (or the user's forced choice). Later issues add kinds; callers never branch on
  * variants themselves. */
+struct pdk_corr_consts; /* kernels/kernels.h */
+struct pdk_corr_arrays;
+
 typedef struct pdk_kernel_table {
   const char *name; /* "ref" or "simd" */
   /* Family build, candidate scan (kernels/ref/family_scan.c and variants). */
@@ -28,6 +31,16 @@ typedef struct pdk_kernel_table {
                             const double *restrict cz, double xi, double yi, double zi,
                             double r2max, pdk_index self, const pdk_index *restrict cand_id,
                             pdk_index *restrict out);
+  /* Correspondence, total Lagrangian (kernels/ref/corr.c and variants): shape, pass 1, pass 2;
+   * corr_opt = 1 when they are optimized variants (they then need the B, G pass-2 arrays in
+   * double storage: pdk_corr_pair_layout). */
+  pdk_index (*corr_shape)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *a,
+                          pdk_index i0, pdk_index i1);
+  void (*corr_pass1)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *a,
+                     pdk_index i0, pdk_index i1);
+  void (*corr_pass2)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *a,
+                     pdk_index i0, pdk_index i1);
+  int corr_opt;
 } pdk_kernel_table;
 
 struct pdk_ctx {

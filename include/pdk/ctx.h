@@ -48,8 +48,9 @@ typedef struct pdk_ctx_opts {
   int num_threads;     /* 0: one per core (hwloc), capped at the OpenMP maximum; env PDK_NUM_THREADS */
   pdk_bind bind;       /* env PDK_BIND=core|none overrides the default, not an explicit option */
   int bind_explicit;   /* 1: `bind` was set by the caller and wins over the environment */
-  const char *kernels; /* force a kernel variant family by name ("ref", "simd"); NULL: best for the
-                          CPU; env PDK_KERNELS */
+  const char *kernels; /* force a kernel variant family by name ("ref", "simd", or "avx2",
+                          "avx512": simd limited to that ISA); NULL: best for the CPU; env
+                          PDK_KERNELS */
 } pdk_ctx_opts;
 
 typedef struct pdk_ctx pdk_ctx;
@@ -66,7 +67,7 @@ int pdk_ctx_num_threads(const pdk_ctx *ctx);
 int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads);
 pdk_bind pdk_ctx_bind_policy(const pdk_ctx *ctx);
 unsigned pdk_ctx_isa(const pdk_ctx *ctx); /* PDK_ISA_* bits that this CPU has and pdk may use */
-const char *pdk_ctx_kernels_name(const pdk_ctx *ctx); /* "ref" or "simd" */
+const char *pdk_ctx_kernels_name(const pdk_ctx *ctx); /* "ref", "simd", "avx2" or "avx512" */
 
 /* Last error. The message is empty when nothing failed since the last clear. */
 const char *pdk_ctx_error_message(const pdk_ctx *ctx);

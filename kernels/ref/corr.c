@@ -229,8 +229,32 @@ static int law_eval(const pdk_corr_consts *k, const double F[3][3], double P[3][
 /* ---- shape ------------------------------------------------------------------------------------
  */
 
-/* Shape of one particle: K^-1 (or 0), m, the SPAN flag bit, the intact-bond count. Returns 1 if
- * the family does not span. */
+/* Shape of one particle from its sums: K^-1 (or 0), m, the SPAN flag bit, the intact-bond count.
+ * Returns 1 if the family does not span. */
+int pdk_kernel_corr_shape_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i, const double K[3][3], double m, int32_t count) {
+  const int d = k->dim;
+  double tr = 0.0;
+  for (int c = 0; c < d; ++c)
+    tr += K[c][c];
+  const double det = det_d(d, K);
+  const double mean = tr / d;
+  const double scale = d == 2 ? mean * mean : mean * mean * mean;
+  const int spans = tr > 0.0 && isfinite(tr) && isfinite(det) && det >= k->span_rtol * scale;
+  if (spans) {
+    double Kinv[3][3];
+    inv_d(d, K, det, Kinv);
+    store_d(d, a->Kinv, i, Kinv);
+  } else {
+    store_zero_d(d, a->Kinv, i);
+  }
+  if (a->m) a->m[i] = m;
+  if (a->num_alive) a->num_alive[i] = count;
+  a->flag[i] = (uint8_t)((a->flag[i] & ~PDK_CORR_FLAG_SPAN) | (spans ? 0u : PDK_CORR_FLAG_SPAN));
+  return !spans;
+}
+
+/* Shape of one particle: sums over its family, then pdk_kernel_corr_shape_point_ref. */
 static int shape_one(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
   const int d = k->dim;
   const pdk_bond_index *restrict bond_start = a->bond_start;
@@ -254,24 +278,7 @@ static int shape_one(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_ind
         K[r][c] += wv * xi[r] * xi[c];
     }
   }
-  double tr = 0.0;
-  for (int c = 0; c < d; ++c)
-    tr += K[c][c];
-  const double det = det_d(d, K);
-  const double mean = tr / d;
-  const double scale = d == 2 ? mean * mean : mean * mean * mean;
-  const int spans = tr > 0.0 && isfinite(tr) && isfinite(det) && det >= k->span_rtol * scale;
-  if (spans) {
-    double Kinv[3][3];
-    inv_d(d, K, det, Kinv);
-    store_d(d, a->Kinv, i, Kinv);
-  } else {
-    store_zero_d(d, a->Kinv, i);
-  }
-  if (a->m) a->m[i] = m;
-  if (a->num_alive) a->num_alive[i] = count;
-  a->flag[i] = (uint8_t)((a->flag[i] & ~PDK_CORR_FLAG_SPAN) | (spans ? 0u : PDK_CORR_FLAG_SPAN));
-  return !spans;
+  return pdk_kernel_corr_shape_point_ref(k, a, i, K, m, count);
 }
 
 pdk_index pdk_kernel_corr_shape_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
@@ -337,6 +344,62 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
 /* ---- pass 1 -----------------------------------------------------------------------------------
  */
 
+/* Stabilization coefficient k of particle p (0 when flagged or without a weighted volume). */
+static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
+  if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
+  return k->stab_modulus / a->m[p];
+}
+
+/* The pass-2 data of particle i (kst, B, G and their float copies, whichever the arrays have),
+ * from its final A, F and flag: B = A - k (F - I) (Silling; A otherwise), G = k (F - I). Taking
+ * F - I rather than F keeps B and G of the size of the strain, so their float copies round
+ * relative to the strain, not to k |F| ~ k. */
+static void store_pair(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                       pdk_index i) {
+  if (!a->kst && !a->Bf[0]) return;
+  const double ki = k->stab == PDK_STAB_NONE ? 0.0 : stab_coef(k, a, i);
+  if (a->kst) a->kst[i] = ki;
+  const int silling = k->stab == PDK_STAB_SILLING, hourglass = k->stab == PDK_STAB_HOURGLASS;
+  for (int t = 0; t < d * d; ++t) {
+    const double A = a->A[t][i], kF = ki * (a->F[t][i] - (t % (d + 1) == 0 ? 1.0 : 0.0));
+    const double B = silling ? A - kF : A;
+    if (a->B[0]) a->B[t][i] = B;
+    if (a->G[0]) a->G[t][i] = kF;
+    if (a->Bf[0]) a->Bf[t][i] = (float)B;
+    if (hourglass && a->Gf[0]) a->Gf[t][i] = (float)kF;
+  }
+}
+
+void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                               const double N[3][3]) {
+  const int d = k->dim;
+  if (a->flag[i] & PDK_CORR_FLAG_SPAN) {
+    store_zero_d(d, a->F, i);
+    store_zero_d(d, a->A, i);
+    a->W[i] = 0.0;
+    if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
+    store_pair(d, k, a, i);
+    return;
+  }
+  double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
+  load_d(d, a->Kinv, i, Kinv);
+  mul_d(d, N, Kinv, F);
+  store_d(d, a->F, i, F);
+  if (k->law == PDK_LAW_JC) {
+    pass1_jc(d, k, a, i, F, Kinv);
+  } else if (law_eval(k, F, P, &W)) {
+    mul_d(d, P, Kinv, A);
+    store_d(d, a->A, i, A);
+    a->W[i] = W;
+    a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
+  } else {
+    store_zero_d(d, a->A, i);
+    a->W[i] = 0.0;
+    a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
+  }
+  store_pair(d, k, a, i);
+}
+
 static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
                       pdk_index i) {
   const pdk_bond_index *restrict bond_start = a->bond_start;
@@ -361,31 +424,7 @@ static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
         N[r][c] += wv * Y[r] * xi[c];
   }
   if (alive && a->num_alive && count != a->num_alive[i]) shape_one(k, a, i);
-  if (a->flag[i] & PDK_CORR_FLAG_SPAN) {
-    store_zero_d(d, a->F, i);
-    store_zero_d(d, a->A, i);
-    a->W[i] = 0.0;
-    if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
-    return;
-  }
-  double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
-  load_d(d, a->Kinv, i, Kinv);
-  mul_d(d, N, Kinv, F);
-  store_d(d, a->F, i, F);
-  if (k->law == PDK_LAW_JC) {
-    pass1_jc(d, k, a, i, F, Kinv);
-    return;
-  }
-  if (law_eval(k, F, P, &W)) {
-    mul_d(d, P, Kinv, A);
-    store_d(d, a->A, i, A);
-    a->W[i] = W;
-    a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
-  } else {
-    store_zero_d(d, a->A, i);
-    a->W[i] = 0.0;
-    a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
-  }
+  pdk_kernel_corr_point_ref(k, a, i, N);
 }
 
 void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
@@ -401,12 +440,6 @@ void pdk_kernel_corr_pass1_ref(const pdk_corr_consts *k, const pdk_corr_arrays *
 
 /* ---- pass 2 -----------------------------------------------------------------------------------
  */
-
-/* Stabilization coefficient k of particle p (0 when flagged or without a weighted volume). */
-static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
-  if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
-  return k->stab_modulus / a->m[p];
-}
 
 static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
                       pdk_index i) {
@@ -488,14 +521,82 @@ static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
     a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
 }
 
+/* Pass 2 with float storage: the neighbour's part of the pair term from the float tensors pass 1
+ * stored (Bf = A - k (F - I) for Silling, A otherwise; Gf = k (F - I) for hourglass), everything
+ * else in double. The same sum as pass2_one, regrouped so that j enters through Bf_j, Gf_j, k_j
+ * only (U = Y - xi, the relative displacement):
+ *   Silling    w V [(A_i xi + k_i z_i) + (B_j xi + k_j U)]    (A_j xi + k_j z_j' = B_j xi + k_j U)
+ *   hourglass  w V [(A_i + A_j) xi + (delta/|xi|) (k_i z_i.Y + k_j U.Y - (G_j xi).Y) Y / |Y|^2]
+ */
+static void pass2_one_float(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                            pdk_index i) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  const int silling = k->stab == PDK_STAB_SILLING, hourglass = k->stab == PDK_STAB_HOURGLASS;
+  double Ai[3][3], Fi[3][3];
+  load_d(d, a->A, i, Ai);
+  load_d(d, a->F, i, Fi);
+  const double ki = stab_coef(k, a, i);
+  double f[3] = {0.0, 0.0, 0.0}, zz = 0.0;
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    if (alive && !alive[b]) continue;
+    const pdk_index j = bond_j[b];
+    const double wv = omega[b] * volume[j];
+    const double kj = silling || hourglass ? a->kst[j] : 0.0;
+    double xi[3], Y[3], t[3], zi[3], Gxi[3], y2 = 0.0, x2 = 0.0, ziY = 0.0, uY = 0.0, GY = 0.0;
+    for (int c = 0; c < d; ++c) {
+      xi[c] = a->X[c][j] - a->X[c][i];
+      Y[c] = a->x[c][j] - a->x[c][i];
+    }
+    for (int r = 0; r < d; ++r) {
+      double s = 0.0, si = 0.0, g = 0.0;
+      for (int c = 0; c < d; ++c) {
+        s += (Ai[r][c] + (double)a->Bf[r * d + c][j]) * xi[c];
+        si += Fi[r][c] * xi[c];
+        if (hourglass) g += (double)a->Gf[r * d + c][j] * xi[c];
+      }
+      t[r] = s;
+      zi[r] = Y[r] - si;
+      Gxi[r] = g;
+    }
+    for (int r = 0; r < d; ++r) {
+      if (silling) {
+        t[r] += ki * zi[r] + kj * (Y[r] - xi[r]);
+        zz += wv * zi[r] * zi[r];
+      }
+      y2 += Y[r] * Y[r];
+      x2 += xi[r] * xi[r];
+      ziY += zi[r] * Y[r];
+      uY += (Y[r] - xi[r]) * Y[r];
+      GY += Gxi[r] * Y[r];
+    }
+    if (hourglass && y2 > 0.0) {
+      const double g = k->horizon / sqrt(x2) * (ki * ziY + kj * uY - GY) / y2;
+      for (int r = 0; r < d; ++r)
+        t[r] += g * Y[r];
+    }
+    for (int r = 0; r < d; ++r)
+      f[r] += wv * t[r];
+  }
+  for (int r = 0; r < d; ++r)
+    a->f[r][i] = f[r];
+  if (silling) a->W[i] += 0.5 * ki * zz;
+  if (silling && (a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
+    a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+}
+
 void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
                                pdk_index i1) {
-  if (k->dim == 2)
-    for (pdk_index i = i0; i < i1; ++i)
-      pass2_one(2, k, a, i);
-  else
-    for (pdk_index i = i0; i < i1; ++i)
-      pass2_one(3, k, a, i);
+  const int fl = a->Bf[0] != NULL;
+  for (pdk_index i = i0; i < i1; ++i) {
+    if (k->dim == 2)
+      fl ? pass2_one_float(2, k, a, i) : pass2_one(2, k, a, i);
+    else
+      fl ? pass2_one_float(3, k, a, i) : pass2_one(3, k, a, i);
+  }
 }
 
 /* ---- bond failure -----------------------------------------------------------------------------
