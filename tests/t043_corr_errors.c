@@ -9,11 +9,13 @@ int main(void) {
   pdk_families *fam = cu_families(ctx, p, 1.5);
   pdk_model *m = NULL;
 
-  /* Float storage is not implemented yet. */
+  /* Float storage is implemented for TL (t148) but not for UL connectivity. */
   pdk_model_opts o = cu_opts(PDK_LAW_SVK, PDK_INFLUENCE_CUBIC, PDK_STAB_NONE, 0.0);
   o.precision = PDK_PRECISION_FLOAT;
+  o.connectivity = PDK_CONNECTIVITY_UL;
   T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "float");
   T_ASSERT(m == NULL, "no model on failure");
+  o.connectivity = PDK_CONNECTIVITY_TL;
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
 

@@ -107,7 +107,10 @@ typedef enum pdk_connectivity {
 
 typedef enum pdk_precision {
   PDK_PRECISION_DOUBLE = 0,
-  PDK_PRECISION_FLOAT = 1 /* float storage of per-bond/neighbour data, double accumulation */
+  PDK_PRECISION_FLOAT = 1 /* float storage of per-bond/neighbour data, double accumulation.
+                             Correspondence TL/semi-TL: the tensors pass 2 gathers from neighbours
+                             (kernels/kernels.h, pdk_corr_arrays Bf, Gf) are floats; kinds that do
+                             not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
 typedef struct pdk_model_opts {
