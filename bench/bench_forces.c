@@ -4,8 +4,16 @@
  * Morton order of the family cells (or lattice order). Each configuration is timed R times after
  * two warm-up passes; the median is reported, per thread count.
  *
- *   bench_forces [--side L]... [--model pmb|lps|corr|pmb-r0]... [--threads T]... [--repeat R]
- *                [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
+ *   bench_forces [--side L]... [--plate L]... [--model pmb|lps|corr|pmb-r0]... [--threads T]...
+ *                [--repeat R] [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
+ *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
+ *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
+ *
+ * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
+ *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
+ *   family in turn (default: the context's, PDK_KERNELS). --precision: storage precision of the
+ *   models (a kind that refuses one is reported and skipped). --law, --stab: correspondence law
+ *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
  *   force, v += dt/2 f/rho; zero initial velocity, as the LAMMPS side-by-side in bench/lammps/)
@@ -24,8 +32,11 @@
  * the force written (dim x 8 B, counted twice for the write-allocate), plus for breaking s0 read
  * and the next s0 written (8 + 16 B). LPS makes two passes: the dilation pass reads the same plus
  * 1/m and writes theta (8 + 16 B), the force pass reads the same plus theta and 1/m (16 B).
- * Correspondence: as LPS plus the 9 entries of A_j read per particle (72 B) in the second pass, a
- * lower bound. Triad bytes follow STREAM: 24 B per element, write-allocate not counted.
+ * Correspondence (corr_bytes_per_bond): per sweep and bond, bond_j 4 B and the influence weight
+ * 8 B; per particle, pass 1 reads bond_start, X, x, V, K^-1 and writes F, A, W, flag (and, for the
+ * optimized kernels or float storage, the pass-2 data B [, G], k), pass 2 reads bond_start, X, x,
+ * V, A, F, W, its own pass-2 data and writes f, W; writes count twice (write-allocate). Triad
+ * bytes follow STREAM: 24 B per element, write-allocate not counted.
  */
 #include <math.h>
 #include <omp.h>
@@ -38,11 +49,10 @@
 #include "pdk/pdk.h"
 
 /* src/model_impl.h declares the kinds' operation tables weak; a weak reference does not pull an
- * object out of the static archive, so reference the two this benchmark always uses strongly.
- * (The correspondence kind runs only when something else links src/model_corr.c in.) */
-extern const struct pdk_model_ops pdk_model_ops_pmb, pdk_model_ops_lps;
-__attribute__((used)) static const void *const link_models[] = {&pdk_model_ops_pmb,
-                                                                &pdk_model_ops_lps};
+ * object out of the static archive, so reference the kinds this benchmark uses strongly. */
+extern const struct pdk_model_ops pdk_model_ops_pmb, pdk_model_ops_lps, pdk_model_ops_corr;
+__attribute__((used)) static const void *const link_models[] = {
+    &pdk_model_ops_pmb, &pdk_model_ops_lps, &pdk_model_ops_corr};
 
 #define MAX_LIST 8
 
@@ -58,9 +68,11 @@ static double median(double *v, int n) {
 
 static void usage(void) {
   fprintf(stderr,
-          "usage: bench_forces [--side L]... [--model pmb|lps|corr]... [--threads T]...\n"
-          "                    [--repeat R] [--order morton|lattice] [--s00 S] [--steps N]\n"
-          "                    [--triad-mib M]\n");
+          "usage: bench_forces [--side L]... [--plate L]... [--model pmb|lps|corr]...\n"
+          "                    [--threads T]... [--repeat R] [--order morton|lattice] [--s00 S]\n"
+          "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
+          "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
+          "                    [--stab none|silling|hourglass]\n");
   exit(2);
 }
 
@@ -121,6 +133,21 @@ static double bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_part
   double second = per_bond + (per_particle + 16.0) / bonds_per_particle;
   if (kind == PDK_MODEL_CORRESPONDENCE) second += 72.0 / bonds_per_particle;
   return first + second;
+}
+
+/* Correspondence, modelled compulsory bytes per directed bond for one force pass (both sweeps). */
+static double corr_bytes_per_bond(int dim, double bpp, int stab, int fl, int opt) {
+  const double dd = dim * dim;
+  const unsigned layout = (stab ? 1u : 0u) |
+                          (fl ? 8u | (stab == 2 ? 16u : 0u)
+                              : (opt ? (stab == 1 ? 2u : 0u) | (stab == 2 ? 4u : 0u) : 0u));
+  const double pair = ((layout & 1u) ? 8.0 : 0.0) + ((layout & 2u) ? 8.0 * dd : 0.0) +
+                      ((layout & 4u) ? 8.0 * dd : 0.0) + ((layout & 8u) ? 4.0 * dd : 0.0) +
+                      ((layout & 16u) ? 4.0 * dd : 0.0);
+  const double own = 8.0 + 2.0 * dim * 8.0 + 8.0; /* bond_start, X, x, V */
+  const double p1 = own + 8.0 * dd + 2.0 * (2.0 * 8.0 * dd + 8.0 + 1.0 + pair);
+  const double p2 = own + 2.0 * 8.0 * dd + 8.0 + pair + 2.0 * (dim * 8.0 + 8.0);
+  return 2.0 * (4.0 + 8.0) + (p1 + p2) / bpp;
 }
 
 /* ---- experiment: PMB with the bond length r0 stored per bond ------------------------------------
@@ -194,6 +221,12 @@ int main(int argc, char **argv) {
   int num_models = 3, user_models = 0, repeat = 10, steps = 0;
   const char *order = "morton";
   double s00 = 0.0, triad_mib = 512.0;
+  long plates[MAX_LIST];
+  int num_plates = 0, num_kernels = 0, num_prec = 1, user_prec = 0;
+  const char *kernels[MAX_LIST] = {NULL};
+  pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
+  pdk_law law = PDK_LAW_LINEAR_ELASTIC;
+  pdk_stabilization stab = PDK_STAB_NONE;
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
       if (!user_sides) num_sides = 0, user_sides = 1;
@@ -221,21 +254,49 @@ int main(int argc, char **argv) {
       s00 = atof(argv[++k]);
     } else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
       steps = atoi(argv[++k]);
+    } else if (!strcmp(argv[k], "--plate") && k + 1 < argc) {
+      if (num_plates < MAX_LIST) plates[num_plates++] = atol(argv[++k]);
+    } else if (!strcmp(argv[k], "--kernels") && k + 1 < argc) {
+      if (num_kernels < MAX_LIST) kernels[num_kernels++] = argv[++k];
+    } else if (!strcmp(argv[k], "--precision") && k + 1 < argc) {
+      if (!user_prec) num_prec = 0, user_prec = 1;
+      const char *v = argv[++k];
+      if (strcmp(v, "double") && strcmp(v, "float")) usage();
+      if (num_prec < MAX_LIST)
+        precs[num_prec++] = !strcmp(v, "float") ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
+    } else if (!strcmp(argv[k], "--law") && k + 1 < argc) {
+      const char *v = argv[++k];
+      law = !strcmp(v, "linear")      ? PDK_LAW_LINEAR_ELASTIC
+            : !strcmp(v, "svk")       ? PDK_LAW_SVK
+            : !strcmp(v, "neo_hooke") ? PDK_LAW_NEO_HOOKE
+                                      : (pdk_law)-1;
+      if ((int)law < 0) usage();
+    } else if (!strcmp(argv[k], "--stab") && k + 1 < argc) {
+      const char *v = argv[++k];
+      stab = !strcmp(v, "none")        ? PDK_STAB_NONE
+             : !strcmp(v, "silling")   ? PDK_STAB_SILLING
+             : !strcmp(v, "hourglass") ? PDK_STAB_HOURGLASS
+                                       : (pdk_stabilization)-1;
+      if ((int)stab < 0) usage();
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
       triad_mib = atof(argv[++k]);
     } else {
       usage();
     }
   }
-  if (repeat < 1 || steps < 0 || num_sides < 1 || num_threads < 1) usage();
+  if (repeat < 1 || steps < 0 || num_sides + num_plates < 1 || num_threads < 1) usage();
+  if (user_sides == 0 && num_plates > 0) num_sides = 0; /* --plate alone: plates only */
+  if (num_kernels == 0) num_kernels = 1;                /* kernels[0] NULL: the default */
 
-  pdk_ctx *ctx = NULL;
+  pdk_ctx *ctx0 = NULL; /* the default kernels: only to check that a context can be made */
   char why[512];
   pdk_ctx_opts co = pdk_ctx_opts_default();
-  if (pdk_ctx_create(&co, &ctx, why, sizeof why)) {
+  if (pdk_ctx_create(&co, &ctx0, why, sizeof why)) {
     fprintf(stderr, "bench_forces: pdk_ctx_create: %s\n", why);
     return 1;
   }
+  static const char *const law_name[] = {"linear", "svk", "neo_hooke"};
+  static const char *const stab_name[] = {"none", "silling", "hourglass"};
 
   double triad[MAX_LIST];
   const size_t triad_len = (size_t)(triad_mib * (1 << 20) / 8.0);
@@ -243,20 +304,34 @@ int main(int argc, char **argv) {
     triad[t] = triad_gbs(triad_len, threads[t]);
 
   const double dx = 5e-4, delta = 3.015 * dx, rho = 7800.0, dt = 1e-8;
-  printf("# bench_forces: simple cubic, horizon 3.015 dx, partial volumes on, order %s, s00 %g, "
-         "kernels %s, %s of %d\n",
-         order, s00, pdk_ctx_kernels_name(ctx), steps ? "steps" : "median pass",
-         steps ? steps : repeat);
-  printf("# %-6s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model", "n", "bonds",
-         "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c", "Gbond/s", "B/bond", "GB/s", "triad",
-         "roof%", "cpu_ns/b");
-  for (int is = 0; is < num_sides; ++is) {
-    const long L = sides[is];
+  printf("# bench_forces: simple cubic cube (3-D) / square plate (2-D), horizon 3.015 dx, partial "
+         "volumes on, order %s, s00 %g, %s of %d; corr: law %s, stabilization %s\n",
+         order, s00, steps ? "steps" : "median pass", steps ? steps : repeat, law_name[law],
+         stab_name[stab]);
+  printf("# %-6s %-6s %-6s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model",
+         "kern", "prec", "d", "n", "bonds", "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c",
+         "Gbond/s", "B/bond", "GB/s", "triad", "roof%", "cpu_ns/b");
+  pdk_ctx *kctx = NULL;
+  for (int ik = 0; ik < num_kernels; ++ik)
+  for (int is = 0; is < num_sides + num_plates; ++is) {
+    const int dim = is < num_sides ? 3 : 2;
+    const long L = is < num_sides ? sides[is] : plates[is - num_sides];
+    if (is == 0) {
+      pdk_ctx_destroy(&kctx);
+      pdk_ctx_opts ko = pdk_ctx_opts_default();
+      ko.kernels = kernels[ik];
+      if (pdk_ctx_create(&ko, &kctx, why, sizeof why)) {
+        fprintf(stderr, "bench_forces: kernels %s: %s\n", kernels[ik], why);
+        return 1;
+      }
+    }
+    pdk_ctx *ctx = kctx;
     pdk_lattice_opts lo = pdk_lattice_opts_default();
-    lo.type = PDK_LATTICE_CUBIC;
+    lo.type = dim == 3 ? PDK_LATTICE_CUBIC : PDK_LATTICE_SQUARE;
     for (int a = 0; a < 3; ++a)
-      lo.lo[a] = 0.0, lo.hi[a] = (double)L * dx;
+      lo.lo[a] = 0.0, lo.hi[a] = a < dim ? (double)L * dx : dx;
     lo.spacing = dx;
+    lo.thickness = dx;
     pdk_particles *p = NULL;
     if (pdk_lattice_create(ctx, &lo, &p)) die(ctx, "lattice");
     if (!strcmp(order, "morton") &&
@@ -270,12 +345,17 @@ int main(int argc, char **argv) {
     const pdk_bond_index nb = pdk_families_num_bonds(fam);
     const double bpp = (double)nb / n;
 
-    for (int im = 0; im < num_models; ++im) {
-      const int experiment = models[im] == PMB_R0;
+    for (int im = 0; im < num_models * num_prec; ++im) {
+      const pdk_precision prec = precs[im % num_prec];
+      const int experiment = models[im / num_prec] == PMB_R0;
+      if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
+      if (experiment && dim != 3) continue;
       pmb_r0_case ex = {
           p, fam, NULL, 18.0 * 1.6e11 / (M_PI * pow(delta, 4)), delta + 0.5 * dx, 1.0 / dx};
       pdk_model_opts mo = pdk_model_opts_default();
-      mo.kind = experiment ? PDK_MODEL_PMB : models[im];
+      mo.kind = experiment ? PDK_MODEL_PMB : models[im / num_prec];
+      mo.precision = prec;
+      if (mo.kind == PDK_MODEL_CORRESPONDENCE) mo.law = law, mo.stabilization = stab;
       mo.bulk_modulus = 1.6e11;
       mo.shear_modulus = 0.8e11;
       mo.density = rho;
@@ -284,7 +364,8 @@ int main(int argc, char **argv) {
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
-        printf("  %-6s (not part of this build: %s)\n", short_name(models[im]),
+        printf("  %-6s %-6s %-6s (unsupported: %s)\n", short_name(models[im / num_prec]),
+               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
                pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
@@ -330,7 +411,7 @@ int main(int argc, char **argv) {
           free(times);
         } else {
           /* Velocity Verlet from rest, as LAMMPS fix nve. */
-          const int dim = 3, nt = threads[it];
+          const int nt = threads[it];
           double *v[3], *x[3], *f[3];
           for (int a = 0; a < dim; ++a) {
             v[a] = calloc((size_t)n, sizeof(double));
@@ -360,10 +441,17 @@ int main(int argc, char **argv) {
           for (int a = 0; a < dim; ++a)
             memcpy(x[a], pdk_particles_X(p, a), (size_t)n * sizeof(double));
         }
-        const double bb = bytes_per_bond(mo.kind, 3, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+        const double bb =
+            mo.kind == PDK_MODEL_CORRESPONDENCE
+                ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
+                                      strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
+                : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
-        printf("  %-6s %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f %7.1f %8.3f\n",
-               short_name(models[im]), (int)n, (long long)nb, bpp, threads[it], t_med,
+        printf("  %-6s %-6s %-6s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f "
+               "%7.1f %8.3f\n",
+               short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
+               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double", dim,
+               (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
                triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9);
         fflush(stdout);
@@ -374,6 +462,7 @@ int main(int argc, char **argv) {
     pdk_families_destroy(&fam);
     pdk_particles_destroy(&p);
   }
-  pdk_ctx_destroy(&ctx);
+  pdk_ctx_destroy(&kctx);
+  pdk_ctx_destroy(&ctx0);
   return 0;
 }
