@@ -461,6 +461,10 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
     const pdk_bc *bc = &e->bcs[k];
     PDK_CHECK_GOTO((unsigned)bc->kind <= PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
                    "boundary condition %d: unknown kind %d", k, (int)bc->kind);
+    PDK_CHECK_GOTO(!bc->scale_field, ctx, PDK_ERR_UNSUPPORTED,
+                   "boundary condition %d: scale_field ('%s') is supported by the static solvers "
+                   "only; the explicit solver takes uniform values per set",
+                   k, bc->scale_field);
     PDK_CHECK_GOTO(bc->components && bc->components < (1u << e->dim), ctx, PDK_ERR_ARG,
                    "boundary condition %d: component mask %u must select some of the %d components",
                    k, bc->components, e->dim);

@@ -27,6 +27,7 @@ const char *pdk_model_kind_name(pdk_model_kind kind) {
   case PDK_MODEL_PMB: return "pmb";
   case PDK_MODEL_LPS: return "lps";
   case PDK_MODEL_CORRESPONDENCE: return "correspondence";
+  case PDK_MODEL_OTERKUS: return "oterkus";
   }
   return "?";
 }
@@ -42,6 +43,7 @@ double pdk_influence_eval(pdk_influence kind, double r, double delta, double gau
   case PDK_INFLUENCE_INV_R2: return 1.0 / (q * q);
   case PDK_INFLUENCE_LINEAR: return 1.0 - q;
   case PDK_INFLUENCE_CUBIC: return (1.0 - q) * (1.0 - q) * (1.0 - q);
+  case PDK_INFLUENCE_QUADRATIC: return (1.0 - q) * (1.0 - q);
   case PDK_INFLUENCE_GAUSSIAN: {
     double s = q / gaussian_width;
     return exp(-s * s);
@@ -51,8 +53,11 @@ double pdk_influence_eval(pdk_influence kind, double r, double delta, double gau
 }
 
 static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
-  PDK_CHECK((unsigned)o->kind <= PDK_MODEL_CORRESPONDENCE, ctx, PDK_ERR_ARG,
-            "model kind %d is not one of pmb (0), lps (1), correspondence (2)", (int)o->kind);
+  PDK_CHECK((unsigned)o->kind <= PDK_MODEL_OTERKUS, ctx, PDK_ERR_ARG,
+            "model kind %d is not one of pmb (0), lps (1), correspondence (2), oterkus (3)",
+            (int)o->kind);
+  PDK_CHECK(o->lps_use_influence == 0 || o->lps_use_influence == 1, ctx, PDK_ERR_ARG,
+            "lps_use_influence must be 0 or 1, got %d", o->lps_use_influence);
   const char *name = pdk_model_kind_name(o->kind);
   PDK_CHECK(isfinite(o->bulk_modulus) && o->bulk_modulus > 0, ctx, PDK_ERR_ARG,
             "%s model: bulk modulus must be a positive finite pressure, got %g", name, o->bulk_modulus);
@@ -68,8 +73,9 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "critical-stretch alpha must be >= 0, got %g", o->alpha);
   PDK_CHECK(isfinite(o->lattice_constant) && o->lattice_constant >= 0, ctx, PDK_ERR_ARG,
             "lattice constant for partial volumes must be >= 0 (0 disables), got %g", o->lattice_constant);
-  PDK_CHECK((unsigned)o->influence <= PDK_INFLUENCE_GAUSSIAN, ctx, PDK_ERR_ARG,
-            "influence function %d unknown; use constant, 1/r, 1/r^2, linear, cubic or gaussian",
+  PDK_CHECK((unsigned)o->influence <= PDK_INFLUENCE_QUADRATIC, ctx, PDK_ERR_ARG,
+            "influence function %d unknown; use constant, 1/r, 1/r^2, linear, quadratic, cubic or "
+            "gaussian",
             (int)o->influence);
   PDK_CHECK(o->influence != PDK_INFLUENCE_GAUSSIAN || (isfinite(o->gaussian_width) && o->gaussian_width > 0),
             ctx, PDK_ERR_ARG, "gaussian influence width must be > 0 (fraction of the horizon), got %g",
@@ -166,7 +172,10 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   m->opts = *opts;
   switch (opts->kind) {
   case PDK_MODEL_PMB: m->ops = &pdk_model_ops_pmb; break;
-  case PDK_MODEL_LPS: m->ops = &pdk_model_ops_lps; break;
+  case PDK_MODEL_LPS:
+    m->ops = opts->lps_use_influence ? &pdk_model_ops_dil2 : &pdk_model_ops_lps;
+    break;
+  case PDK_MODEL_OTERKUS: m->ops = &pdk_model_ops_dil2; break;
   case PDK_MODEL_CORRESPONDENCE:
     m->ops = opts->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul
                                                        : &pdk_model_ops_corr;

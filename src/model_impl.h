@@ -39,6 +39,7 @@ struct pdk_model {
 extern const pdk_model_ops pdk_model_ops_pmb;
 extern const pdk_model_ops pdk_model_ops_lps;
 extern const pdk_model_ops pdk_model_ops_corr;
+extern const pdk_model_ops pdk_model_ops_dil2; /* lps with influence, oterkus (model_dil2.c) */
 extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connectivity */
 /* UL only (m->ops == &pdk_model_ops_corr_ul): rebuild the families at the current x now; the
  * families the passes walk now. */

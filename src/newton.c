@@ -85,7 +85,8 @@ static int model_hyperelastic(const pdk_model *m) {
   const pdk_model_opts *o = &m->opts;
   switch (o->kind) {
   case PDK_MODEL_PMB:
-  case PDK_MODEL_LPS: return 1;
+  case PDK_MODEL_LPS:
+  case PDK_MODEL_OTERKUS: return 1;
   case PDK_MODEL_CORRESPONDENCE:
     return (o->law == PDK_LAW_LINEAR_ELASTIC || o->law == PDK_LAW_SVK ||
             o->law == PDK_LAW_NEO_HOOKE) &&

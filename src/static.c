@@ -102,6 +102,11 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
   return PDK_SUCCESS;
 }
 
+/* Component c of a condition's scale field (pdk_bc.scale_field), NULL when it has none. */
+static const double *bc_scale(pdk_static *s, const pdk_bc *bc, int c) {
+  return bc->scale_field ? pdk_particles_field_data(s->p, bc->scale_field, c) : NULL;
+}
+
 /* Reads the displacement conditions into fixed / owner and checks every condition. */
 static int setup_conditions(pdk_static *s) {
   pdk_ctx *ctx = s->ctx;
@@ -127,6 +132,27 @@ static int setup_conditions(pdk_static *s) {
                 "boundary condition %d names the set field '%s', which does not exist; define "
                 "the set first",
                 k, bc->set);
+    }
+    if (bc->scale_field) {
+      pdk_type type = PDK_U8;
+      int ncomp = 0;
+      PDK_CHECK(pdk_particles_field_exists(s->p, bc->scale_field) &&
+                    pdk_particles_field_info(s->p, bc->scale_field, &type, &ncomp) ==
+                        PDK_SUCCESS &&
+                    type == PDK_F64 && ncomp == dim,
+                ctx, PDK_ERR_NOT_FOUND,
+                "boundary condition %d: scale field '%s' must be an existing f64 field with %d "
+                "components",
+                k, bc->scale_field, dim);
+      for (int c = 0; c < dim; ++c) {
+        const double *sc = bc_scale(s, bc, c);
+        if (!(bc->components & (1u << c))) continue;
+        for (pdk_index i = 0; i < n; ++i)
+          PDK_CHECK((mem && !mem[i]) || isfinite(sc[i]), ctx, PDK_ERR_ARG,
+                    "boundary condition %d: scale field '%s' is not finite at particle %d (id "
+                    "%lld), component %d",
+                    k, bc->scale_field, (int)i, (long long)pdk_particles_id(s->p)[i], c);
+      }
     }
     for (int c = 0; c < dim; ++c) {
       if (!(bc->components & (1u << c))) continue;
@@ -181,7 +207,11 @@ static void set_level_values(pdk_static *s, int k) {
     double *u = s->u_level[c], *bl = s->b_level[c];
     const int32_t *own = s->owner[c];
     for (pdk_index i = 0; i < n; ++i) {
-      u[i] = own[i] >= 0 ? value[own[i]][c] : 0.0;
+      u[i] = 0.0;
+      if (own[i] >= 0) {
+        const double *sc = bc_scale(s, &s->bcs[own[i]], c);
+        u[i] = sc ? value[own[i]][c] * sc[i] : value[own[i]][c];
+      }
       u2 += u[i] * u[i];
       bl[i] = 0.0;
     }
@@ -189,8 +219,9 @@ static void set_level_values(pdk_static *s, int k) {
       const pdk_bc *bc = &s->bcs[b];
       if (bc->kind != PDK_BC_BODY_FORCE || !(bc->components & (1u << c))) continue;
       const uint8_t *mem = bc->set ? pdk_particles_field_data(s->p, bc->set, 0) : NULL;
+      const double *sc = bc_scale(s, bc, c);
       for (pdk_index i = 0; i < n; ++i)
-        if (!mem || mem[i]) bl[i] += value[b][c];
+        if (!mem || mem[i]) bl[i] += sc ? value[b][c] * sc[i] : value[b][c];
     }
     for (pdk_index i = 0; i < n; ++i)
       b2 += bl[i] * bl[i];

@@ -18,82 +18,16 @@
  * RF 1.5).
  */
 #include "test_util.h"
+#include "vq_util.h"
 
+/* The block and probe of tests/vq_util.h (the setup described above). */
 static double probe(pdk_ctx *ctx, int np) {
-  const double W = 10.0, H = 10.0, E = 1000.0, T = 1e-3, h = W / np, rf = 1.5;
-  pdk_lattice_opts lo = pdk_lattice_opts_default();
-  lo.type = PDK_LATTICE_SQUARE;
-  lo.node_type = 1;
-  lo.spacing = h;
-  lo.hi[0] = W;
-  lo.hi[1] = H;
-  pdk_particles *p;
-  pdk_families *fam;
-  pdk_model *m;
-  T_OK(ctx, pdk_lattice_create(ctx, &lo, &p));
-  T_OK(ctx, pdk_particles_reorder_morton(p, rf * h, NULL));
-  const double e = 0.25 * h;
-  double b0[3] = {-1, -1, -1}, b1[3] = {W + 1, e, 1};        /* bottom row */
-  double l0[3] = {-1, e, -1}, l1[3] = {e, H + 1, 1};         /* left column above it */
-  double r0[3] = {W - e, e, -1}, r1[3] = {W + 1, H + 1, 1};  /* right column above it */
-  double t0[3] = {-1, H - e, -1}, t1[3] = {W + 1, H + 1, 1}; /* top row */
-  pdk_region bottom = pdk_region_box(b0, b1), left = pdk_region_box(l0, l1);
-  pdk_region right = pdk_region_box(r0, r1), top = pdk_region_box(t0, t1);
-  pdk_index n_top;
-  T_OK(ctx, pdk_particles_set_define(p, "bottom", &bottom, NULL));
-  T_OK(ctx, pdk_particles_set_define(p, "left", &left, NULL));
-  T_OK(ctx, pdk_particles_set_define(p, "right", &right, NULL));
-  T_OK(ctx, pdk_particles_set_define(p, "top", &top, &n_top));
-  pdk_families_opts fo = pdk_families_opts_default();
-  fo.horizon = rf * h;
-  T_OK(ctx, pdk_families_build(p, &fo, &fam));
-  pdk_model_opts mo = pdk_model_opts_default();
-  mo.kind = PDK_MODEL_CORRESPONDENCE;
-  mo.bulk_modulus = E / 3.0; /* nu = 0 */
-  mo.shear_modulus = E / 2.0;
-  mo.density = 1.0;
-  mo.influence = PDK_INFLUENCE_CUBIC;
-  mo.stabilization = PDK_STAB_NONE;
-  mo.law = PDK_LAW_LINEAR_ELASTIC;
-  T_OK(ctx, pdk_model_create(p, fam, &mo, &m));
-  pdk_bc bcs[4];
-  memset(bcs, 0, sizeof bcs);
-  bcs[0].kind = PDK_BC_DISPLACEMENT;
-  bcs[0].set = "set:bottom";
-  bcs[0].components = 3;
-  bcs[1].kind = PDK_BC_DISPLACEMENT;
-  bcs[1].set = "set:left";
-  bcs[1].components = 1;
-  bcs[2].kind = PDK_BC_DISPLACEMENT;
-  bcs[2].set = "set:right";
-  bcs[2].components = 1;
-  bcs[3].kind = PDK_BC_BODY_FORCE;
-  bcs[3].set = "set:top";
-  bcs[3].components = 2;
-  bcs[3].value[1] = pdk_tfun_constant(-T * W / (n_top * pdk_particles_volume(p)[0]));
-  pdk_static_opts so = pdk_static_opts_default(PDK_STATIC_NEWTON);
-  so.bcs = bcs;
-  so.num_bcs = 4;
-  pdk_static *s;
-  T_OK(ctx, pdk_static_create(m, &so, &s));
-  T_OK(ctx, pdk_static_solve(s));
-  if (getenv("PDK_TEST_VERBOSE")) pdk_static_stats_print(pdk_static_stats_get(s), stdout);
-  const double *y = pdk_particles_field_data(p, "x", 1), *Y = pdk_particles_X(p, 1);
-  const double *X = pdk_particles_X(p, 0);
-  const uint8_t *in_top = pdk_particles_field_data(p, "set:top", 0);
-  double sum = 0.0;
-  int count = 0;
-  for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
-    if (in_top[i] && X[i] >= 0.4 * W - 1e-9 && X[i] <= 0.6 * W + 1e-9) {
-      sum += y[i] - Y[i];
-      ++count;
-    }
-  T_ASSERT(count == np / 5 + 1, "probe holds %d particles at NP = %d", count, np);
-  pdk_static_destroy(&s);
-  pdk_model_destroy(&m);
-  pdk_families_destroy(&fam);
-  pdk_particles_destroy(&p);
-  return sum / count;
+  vq_case c = {VQ_UNIAXIAL, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, np, PDK_OTERKUS_A_PUBLISHED, 2};
+  vq_result r;
+  T_ASSERT(vq_run(ctx, &c, &r) == 0, "NP = %d: the solve failed", np);
+  T_ASSERT(r.exact == -1e-5, "exact top displacement %g", r.exact);
+  T_ASSERT(r.probe_count == np / 5 + 1, "probe holds %d particles at NP = %d", r.probe_count, np);
+  return r.probe;
 }
 
 int main(void) {

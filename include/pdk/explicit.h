@@ -46,6 +46,11 @@ typedef struct pdk_bc {
   const char *set;     /* particle set name ("set:<name>" field); NULL: every particle */
   unsigned components; /* bit c set: the condition acts on component c (1 = x, 2 = y, 4 = z) */
   pdk_tfun value[3];   /* per component */
+  /* Static solvers only (the explicit solver refuses it): NULL, or the name of an f64 particle
+   * field with dim components; the condition's value on component c of particle i is then
+   * value[c] x field[c][i] (a prescribed displacement or body force that varies over the set,
+   * e.g. an analytical solution on the boundary). */
+  const char *scale_field;
 } pdk_bc;
 
 typedef struct pdk_explicit_opts {

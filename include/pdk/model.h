@@ -51,8 +51,18 @@ extern "C" {
 typedef enum pdk_model_kind {
   PDK_MODEL_PMB = 0,           /* prototype microelastic brittle, as LAMMPS peri/pmb */
   PDK_MODEL_LPS = 1,           /* linear peridynamic solid, as LAMMPS peri/lps */
-  PDK_MODEL_CORRESPONDENCE = 2 /* non-ordinary state-based, total Lagrangian */
+  PDK_MODEL_CORRESPONDENCE = 2, /* non-ordinary state-based, total Lagrangian */
+  PDK_MODEL_OTERKUS = 3 /* Oterkus' dilatation law, plane strain, any influence function (2-D;
+                           Queiruga & Moridis 2017 section 2.3; src/model_dil2.c) */
 } pdk_model_kind;
+
+/* Oterkus law: how the dilatation coefficient a is set (src/model_dil2.c). */
+typedef enum pdk_oterkus_a {
+  PDK_OTERKUS_A_PUBLISHED = 0, /* a = (K - 2G)/2, K the 3-D bulk modulus: what Queiruga & Moridis'
+                                  published results used; wrong for isotropic strain */
+  PDK_OTERKUS_A_CALIBRATED = 1 /* a_i = (lambda + mu)/2 - G m_i / (8 D_i) per particle: an
+                                  isotropic stretch has the plane-strain energy exactly */
+} pdk_oterkus_a;
 
 typedef enum pdk_influence {
   PDK_INFLUENCE_CONSTANT = 0, /* 1 */
@@ -60,7 +70,8 @@ typedef enum pdk_influence {
   PDK_INFLUENCE_INV_R2 = 2,   /* (delta / r)^2 */
   PDK_INFLUENCE_LINEAR = 3,   /* 1 - r/delta */
   PDK_INFLUENCE_CUBIC = 4,    /* (1 - r/delta)^3 */
-  PDK_INFLUENCE_GAUSSIAN = 5  /* exp(-(r / (gaussian_width*delta))^2) */
+  PDK_INFLUENCE_GAUSSIAN = 5, /* exp(-(r / (gaussian_width*delta))^2) */
+  PDK_INFLUENCE_QUADRATIC = 6 /* (1 - r/delta)^2 */
 } pdk_influence;
 
 typedef enum pdk_stabilization {
@@ -126,7 +137,12 @@ typedef struct pdk_model_opts {
   /* LAMMPS partial-volume scaling of neighbours near the horizon edge (half_lc = lattice/2);
    * 0: off (full volumes). */
   double lattice_constant;
-  pdk_influence influence; /* correspondence (LPS and PMB use constant, as LAMMPS) */
+  pdk_influence influence; /* correspondence and oterkus; lps with lps_use_influence (otherwise
+                              LPS uses LAMMPS's omega = 1/r and PMB a constant, as LAMMPS) */
+  /* LPS: 0 (default) LAMMPS's omega = 1/r (2-D and 3-D, kernels/ref/lps.c); 1: omega = influence,
+   * Silling's law in plane strain (2-D only, no bond breaking; src/model_dil2.c). */
+  int lps_use_influence;
+  pdk_oterkus_a oterkus_a; /* oterkus model (default published) */
   double gaussian_width;   /* for PDK_INFLUENCE_GAUSSIAN, fraction of delta (default 0.5) */
   pdk_stabilization stabilization;
   double stab_coefficient; /* C_s (Silling) or the hourglass coefficient; default 0.1 */
@@ -205,6 +221,16 @@ double pdk_model_get_dt(const pdk_model *m);
  * energy of pdk_model_force: external work = kinetic + strain + plastic + damage + breaking. */
 int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking);
 const char *pdk_model_kind_name(pdk_model_kind kind);
+
+/* Influence-weighted smoothing of a particle field (Queiruga & Moridis 2017, eq. (49), the
+ * post-process that removes the oscillations of unstabilized correspondence):
+ *   out_i = (w0 V_i in_i + sum_j w(|X_j - X_i|) V_j in_j) / (w0 V_i + sum_j w(|X_j - X_i|) V_j)
+ * over the family of i (so bonds cut by a pre-crack are not averaged across), w the influence
+ * function over the families' horizon, w0 = w(0) (10 for 1/r and 1/r^2, whose w(0) is infinite,
+ * as the authors' code). `in` is an f64 field; `out` (a different name) is created with the same
+ * component count if absent, or must have it. Bitwise the same for any thread count. */
+int pdk_smooth_field(pdk_particles *p, pdk_families *fam, pdk_influence w, double gaussian_width,
+                     const char *in, const char *out);
 
 #ifdef __cplusplus
 }
