@@ -1,7 +1,7 @@
 /* Dilatation laws with any influence function (src/model_dil2.c), the smoothing post-process
  * (pdk_smooth_field), per-particle prescribed values (pdk_bc.scale_field) and the V-Q8
  * pressurized crack at a small size.
- * labels: physics unit threads
+ * labels: physics threads
  *
  * 1. Silling's plane-strain law with w = 1/r (lps_use_influence = 1, the paper's Inv up to the
  *    factor delta, which cancels in w/m) gives the forces of pdk's LAMMPS-style LPS in 2-D: same
