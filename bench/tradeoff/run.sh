@@ -1,0 +1,50 @@
+#!/bin/sh
+# Regenerates the speed-accuracy study: docs/tradeoff/tradeoff.csv, tradeoff.gp, one PNG per
+# problem and run.txt (commit, date, machine load); docs/tradeoff.md reads them.
+#
+#   bench/tradeoff/run.sh [BUILD_DIR]
+#
+# BUILD_DIR defaults to ./build (a Release build: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release).
+# Two processes run side by side, one thread each, on two halves of the problems (about 5 minutes
+# of CPU each); the cost of a run is its own process CPU time, so the other process does not
+# count in it. Their CSVs are concatenated, then the Pareto flags and the plots are made.
+# Only the plots, from the committed CSV: build/bench/bench_tradeoff --plot-only --out-dir docs/tradeoff
+# One problem into another directory:     build/bench/bench_tradeoff --problem wave --out-dir /tmp/t
+set -eu
+src=$(cd "$(dirname "$0")/../.." && pwd)
+build=${1:-"$src/build"}
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  echo "run.sh: '$build' is not a CMake build directory; configure first:" >&2
+  echo "  cmake -S '$src' -B '$build' -DCMAKE_BUILD_TYPE=Release" >&2
+  exit 2
+fi
+cmake --build "$build" -j2 --target bench_tradeoff
+exe="$build/bench/bench_tradeoff"
+out="$src/docs/tradeoff"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out" "$work/a" "$work/b"
+start="$(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
+"$exe" --plan full --no-plot --out-dir "$work/a" --problem mms --problem hole 2> "$work/a/log" &
+pid_a=$!
+"$exe" --plan full --no-plot --out-dir "$work/b" --problem vq_uniaxial --problem vq_isotropic \
+  --problem vq_shear --problem wave 2> "$work/b/log" &
+pid_b=$!
+status=0
+wait $pid_a || status=1
+wait $pid_b || status=1
+if [ $status -ne 0 ]; then
+  tail -n 5 "$work/a/log" "$work/b/log" >&2
+  echo "run.sh: the study failed; docs/tradeoff is unchanged" >&2
+  exit 1
+fi
+{ cat "$work/a/tradeoff.csv"; tail -n +2 "$work/b/tradeoff.csv"; } > "$out/tradeoff.csv"
+"$exe" --plot-only --out-dir "$out"
+{
+  echo "command: bench/tradeoff/run.sh (bench_tradeoff --plan full, two processes of 1 thread)"
+  echo "commit: $(git -C "$src" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "start: $start"
+  echo "end: $(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
+  tail -n 1 "$work/a/log" "$work/b/log"
+} > "$out/run.txt"
+echo "results in $out (tradeoff.csv, *.png, run.txt)"
