@@ -18,9 +18,10 @@
  *     consistent to O(delta^2) at fixed m, and the collar holds the exact field, so order 2;
  *     measured 2.4 here (delta is a fifth of the field's length scale at N = 16, where higher-order
  *     terms still count); accepted [1.7, 3.2].
- *   - wave, correspondence with Silling stabilization (N 32 -> 64): the frequency error falls;
- *     measured order about 1; accepted >= 0.6 (end and surface layers of width delta make it
- *     first order; the dispersion of the nonlocal operator is second order).
+ *   - wave, correspondence with Silling stabilization (N 32 -> 64): the dispersion of the nonlocal
+ *     operator is O((k delta)^2) and Verlet's O((omega dt)^2), but the free ends and sides add
+ *     layers of width delta where the family is one-sided; measured 1.58 (and 1.82 at 64 -> 128);
+ *     accepted [1.2, 2.5].
  *   - hole, correspondence with Silling stabilization (N 20 -> 40): the peak stress approaches the
  *     stress concentration factor; the error must fall by at least a factor 1.2 (first order at
  *     best: the peak is sampled h/2 off the hole edge and smoothed over delta).
@@ -185,7 +186,8 @@ int main(void) {
   const double o_mms = order(rows, n, "mms", "corr-silling", "constant", 3.015, 16, 32);
   T_ASSERT(o_mms >= 1.7 && o_mms <= 3.2, "manufactured field order %.3f, expected about 2", o_mms);
   const double o_wave = order(rows, n, "wave", "corr-silling", "constant", 3.015, 32, 64);
-  T_ASSERT(o_wave >= 0.6, "wave frequency error order %.3f, expected about 1", o_wave);
+  T_ASSERT(o_wave >= 1.2 && o_wave <= 2.5, "wave frequency error order %.3f, expected 1.6 to 2",
+           o_wave);
   const double o_hole = order(rows, n, "hole", "corr-silling", "constant", 3.015, 20, 40);
   T_ASSERT(o_hole >= log2(1.2), "hole stress concentration error order %.3f: it must fall", o_hole);
   return 0;

@@ -323,9 +323,10 @@ static void run_vq(pdk_ctx *ctx, problem_id prob, const knobs *k, int np, row *r
     /* probe: mean displacement of the loaded edge's particles within 0.4..0.6 of its length */
     const double *x = pdk_particles_field_data(p, "x", probe_c);
     const double *Xc = pdk_particles_X(p, probe_c);
-    const double *Xa = pdk_particles_X(p, 1 - probe_c); /* coordinate along the edge */
+    const int along = prob == P_VQ_ISOTROPIC ? 1 : 0; /* right edge: y; top edge: x */
+    const double *Xa = pdk_particles_X(p, along);       /* coordinate along the edge */
     const uint8_t *in = pdk_particles_field_data(p, probe_set, 0);
-    const double len = probe_c == 1 ? W : H;
+    const double len = along == 0 ? W : H;
     double sum = 0.0;
     int cnt = 0;
     for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
