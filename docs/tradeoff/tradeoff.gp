@@ -921,6 +921,348 @@ e
 e
 unset multiplot
 set output
+$all_3 << EOD
+0.01825 0.0966072
+0.09234 0.0531654
+0.6247 0.0315884
+0.01808 0.236483
+0.09276 0.195019
+0.6435 0.174474
+0.08113 0.0248073
+0.4282 0.00470698
+2.966 0.019898
+0.0785 0.0675591
+0.4302 0.0371671
+3.108 0.0213948
+0.04356 0.750117
+0.2737 0.704929
+2.386 0.697433
+0.06969 0.0381945
+0.3761 0.0220039
+2.859 0.0116292
+0.1004 0.0535838
+0.6628 0.0302717
+4.902 0.0158957
+0.002565 0.380077
+0.01242 0.377917
+0.06579 0.376641
+0.4064 0.375949
+0.005196 0.50843
+0.02862 0.510967
+0.1869 0.512607
+1.282 0.513532
+0.03576 0.285843
+0.1982 0.188191
+1.282 0.13995
+0.00903 0.19554
+0.04904 0.171888
+0.3235 0.159429
+1.819 0.153008
+0.01801 0.460649
+0.0998 0.50993
+0.7533 0.535074
+5.365 0.547806
+0.1733 0.0104132
+0.9796 0.0137034
+6.537 0.0259669
+0.008861 0.0685613
+0.05281 0.0346713
+0.2867 0.0174672
+1.828 0.00877049
+0.01736 0.075287
+0.1049 0.0382263
+0.7288 0.0192779
+5.217 0.00968296
+0.1406 0.179296
+0.8333 0.097721
+6.003 0.050799
+0.007196 0.0605786
+0.03936 0.0301953
+0.2654 0.0151451
+1.711 0.00757736
+0.01338 0.267956
+0.09128 0.258753
+0.6429 0.259484
+4.787 0.243291
+0.08884 1.55055
+0.5639 1.77841
+4.698 1.69774
+0.06503 0.024992
+0.3769 0.011381
+2.751 0.00549853
+0.00729 0.0601528
+0.04081 0.0301825
+0.2747 0.015124
+1.733 0.00757202
+0.06638 0.0701639
+0.3694 0.0352164
+2.751 0.0176897
+0.00691 0.0598209
+0.039 0.0300272
+0.06815 0.06402
+0.3873 0.0321181
+2.758 0.016143
+0.007201 0.060652
+0.04074 0.0303153
+0.2846 0.0151651
+1.809 0.00758382
+0.07484 0.0841219
+0.3756 0.0426694
+2.733 0.0215079
+0.007122 0.061316
+0.03954 0.0305339
+0.2594 0.0152305
+1.75 0.00760227
+0.0667 0.0829429
+0.3975 0.0419844
+2.728 0.0211519
+0.007652 0.0606604
+0.04053 0.0303182
+0.2569 0.015166
+1.954 0.00758407
+0.07293 0.0381945
+0.3733 0.0220039
+2.839 0.0116292
+0.07806 0.0381945
+0.4109 0.0220039
+2.824 0.0116292
+EOD
+$front_3 << EOD
+0.002565 0.380077 "pmb"
+0.00691 0.0598209 "corr-none"
+0.039 0.0300272 "corr-none"
+0.06503 0.024992 "corr-silling"
+0.08113 0.0248073 "lps"
+0.1733 0.0104132 "lps"
+0.4282 0.00470698 "lps"
+EOD
+set terminal term size 1560,840 noenhanced font ',9'
+set output 'vq_shear.png'
+set logscale xy
+set grid
+set format x '%g'
+set format y '%g'
+set key outside right top Left reverse samplen 2 spacing 0.9 font ',8'
+set xlabel 'cost: CPU time [s], 1 thread'
+set ylabel 'relative error'
+set multiplot layout 2,3 title 'vq_shear: V-Q simple shear (top displacement)'
+set title 'sweep: model'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'pmb', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'pmb-pv', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'lps', \
+     '-' using 1:2 with linespoints pt 4 lw 1.5 title 'lps-pv', \
+     '-' using 1:2 with linespoints pt 5 lw 1.5 title 'corr-none', \
+     '-' using 1:2 with linespoints pt 6 lw 1.5 title 'corr-silling', \
+     '-' using 1:2 with linespoints pt 7 lw 1.5 title 'corr-hourglass'
+0.01825 0.0966072
+0.09234 0.0531654
+0.6247 0.0315884
+e
+0.01808 0.236483
+0.09276 0.195019
+0.6435 0.174474
+e
+0.08113 0.0248073
+0.4282 0.00470698
+2.966 0.019898
+e
+0.0785 0.0675591
+0.4302 0.0371671
+3.108 0.0213948
+e
+0.04356 0.750117
+0.2737 0.704929
+2.386 0.697433
+e
+0.06969 0.0381945
+0.3761 0.0220039
+2.859 0.0116292
+e
+0.1004 0.0535838
+0.6628 0.0302717
+4.902 0.0158957
+e
+set title 'sweep: m'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'pmb m 1.5', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'pmb m 2.015', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'pmb m 4.015', \
+     '-' using 1:2 with linespoints pt 4 lw 1.5 title 'lps m 1.5', \
+     '-' using 1:2 with linespoints pt 5 lw 1.5 title 'lps m 2.015', \
+     '-' using 1:2 with linespoints pt 6 lw 1.5 title 'lps m 4.015', \
+     '-' using 1:2 with linespoints pt 7 lw 1.5 title 'corr-silling m 1.5', \
+     '-' using 1:2 with linespoints pt 8 lw 1.5 title 'corr-silling m 2.015', \
+     '-' using 1:2 with linespoints pt 9 lw 1.5 title 'corr-silling m 4.015', \
+     '-' using 1:2 with linespoints pt 10 lw 1.5 title 'corr-none m 1.5', \
+     '-' using 1:2 with linespoints pt 11 lw 1.5 title 'corr-none m 2.015', \
+     '-' using 1:2 with linespoints pt 12 lw 1.5 title 'corr-none m 4.015'
+0.002565 0.380077
+0.01242 0.377917
+0.06579 0.376641
+0.4064 0.375949
+e
+0.005196 0.50843
+0.02862 0.510967
+0.1869 0.512607
+1.282 0.513532
+e
+0.03576 0.285843
+0.1982 0.188191
+1.282 0.13995
+e
+0.00903 0.19554
+0.04904 0.171888
+0.3235 0.159429
+1.819 0.153008
+e
+0.01801 0.460649
+0.0998 0.50993
+0.7533 0.535074
+5.365 0.547806
+e
+0.1733 0.0104132
+0.9796 0.0137034
+6.537 0.0259669
+e
+0.008861 0.0685613
+0.05281 0.0346713
+0.2867 0.0174672
+1.828 0.00877049
+e
+0.01736 0.075287
+0.1049 0.0382263
+0.7288 0.0192779
+5.217 0.00968296
+e
+0.1406 0.179296
+0.8333 0.097721
+6.003 0.050799
+e
+0.007196 0.0605786
+0.03936 0.0301953
+0.2654 0.0151451
+1.711 0.00757736
+e
+0.01338 0.267956
+0.09128 0.258753
+0.6429 0.259484
+4.787 0.243291
+e
+0.08884 1.55055
+0.5639 1.77841
+4.698 1.69774
+e
+set title 'sweep: influence'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'constant', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'inv_r', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'inv_r2', \
+     '-' using 1:2 with linespoints pt 4 lw 1.5 title 'linear', \
+     '-' using 1:2 with linespoints pt 5 lw 1.5 title 'cubic', \
+     '-' using 1:2 with linespoints pt 6 lw 1.5 title 'gaussian'
+0.06969 0.0381945
+0.3761 0.0220039
+2.859 0.0116292
+e
+0.06503 0.024992
+0.3769 0.011381
+2.751 0.00549853
+e
+0.06638 0.0701639
+0.3694 0.0352164
+2.751 0.0176897
+e
+0.06815 0.06402
+0.3873 0.0321181
+2.758 0.016143
+e
+0.07484 0.0841219
+0.3756 0.0426694
+2.733 0.0215079
+e
+0.0667 0.0829429
+0.3975 0.0419844
+2.728 0.0211519
+e
+set title 'sweep: influence-rf1.5'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'constant', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'inv_r', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'inv_r2', \
+     '-' using 1:2 with linespoints pt 4 lw 1.5 title 'linear', \
+     '-' using 1:2 with linespoints pt 5 lw 1.5 title 'cubic', \
+     '-' using 1:2 with linespoints pt 6 lw 1.5 title 'gaussian'
+0.007196 0.0605786
+0.03936 0.0301953
+0.2654 0.0151451
+1.711 0.00757736
+e
+0.00729 0.0601528
+0.04081 0.0301825
+0.2747 0.015124
+1.733 0.00757202
+e
+0.00691 0.0598209
+0.039 0.0300272
+e
+0.007201 0.060652
+0.04074 0.0303153
+0.2846 0.0151651
+1.809 0.00758382
+e
+0.007122 0.061316
+0.03954 0.0305339
+0.2594 0.0152305
+1.75 0.00760227
+e
+0.007652 0.0606604
+0.04053 0.0303182
+0.2569 0.015166
+1.954 0.00758407
+e
+set title 'sweep: precision'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'pmb double', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'lps double', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'corr-silling double'
+0.01825 0.0966072
+0.09234 0.0531654
+0.6247 0.0315884
+e
+0.08113 0.0248073
+0.4282 0.00470698
+2.966 0.019898
+e
+0.06969 0.0381945
+0.3761 0.0220039
+2.859 0.0116292
+e
+set title 'sweep: connectivity'
+plot $all_3 using 1:2 with points pt 7 ps 0.4 lc rgb '#c8c8c8' notitle, \
+     $front_3 using 1:2 with steps lw 2 lc rgb 'black' title 'Pareto front', \
+     '-' using 1:2 with linespoints pt 1 lw 1.5 title 'tl', \
+     '-' using 1:2 with linespoints pt 2 lw 1.5 title 'semi_tl', \
+     '-' using 1:2 with linespoints pt 3 lw 1.5 title 'ul'
+0.06969 0.0381945
+0.3761 0.0220039
+2.859 0.0116292
+e
+0.07293 0.0381945
+0.3733 0.0220039
+2.839 0.0116292
+e
+0.07806 0.0381945
+0.4109 0.0220039
+2.824 0.0116292
+e
+unset multiplot
+set output
 $all_4 << EOD
 0.003161 0.0224708
 0.01796 0.00142435
