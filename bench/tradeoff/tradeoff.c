@@ -981,6 +981,14 @@ static int row_ok(const row *r) { return !strcmp(r->status, "ok"); }
 
 /* Marks the runs no other run of the same problem dominates (cost: CPU time). */
 static void pareto_mark(row *rows, int n) {
+  /* compare the values as the CSV stores them, so a reader of the CSV finds the same front */
+  for (int i = 0; i < n; ++i) {
+    char buf[64];
+    snprintf(buf, sizeof buf, "%.4g", rows[i].cpu);
+    rows[i].cpu = atof(buf);
+    snprintf(buf, sizeof buf, "%.6e", rows[i].error);
+    rows[i].error = atof(buf);
+  }
   for (int i = 0; i < n; ++i) {
     rows[i].pareto = 0;
     if (!row_ok(&rows[i])) continue;
