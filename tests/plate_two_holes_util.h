@@ -84,7 +84,7 @@ static inline void ph_dump(pdk_sim *sim, const pdk_index *comp, const char *pref
     Fc[t] = pdk_particles_field_data(p, "F", t);
   for (int t = 0; t < 6; ++t)
     cp[t] = pdk_particles_field_data(p, "cp_inv", t);
-  fprintf(f, "X,Y,x,y,eps_p,damage,failed,component,sigma_vm,eta,eps_p_rate\n");
+  fprintf(f, "X,Y,x,y,eps_p,damage,failed,component,sigma_vm,eta,eps_p_rate,sxx,syy,szz,sxy\n");
   for (pdk_index i = 0; i < pdk_particles_count(p); ++i) {
     double F[3][3] = {{Fc[0][i], Fc[1][i], 0}, {Fc[2][i], Fc[3][i], 0}, {0, 0, 1}}, P[3][3];
     pdk_jc_state in = pdk_jc_state_initial(), out;
@@ -98,10 +98,11 @@ static inline void ph_dump(pdk_sim *sim, const pdk_index *comp, const char *pref
     if (pdk_jc_update(&mo->jc, 2, F, 1e-7, &in, &out, P, &res)) memset(&res, 0, sizeof res);
     const double *sg = res.sigma;
     const double sm = (sg[0] + sg[1] + sg[2]) / 3.0;
-    fprintf(f, "%g,%g,%g,%g,%g,%g,%d,%d,%g,%g,%g\n", pdk_particles_X(p, 0)[i],
+    fprintf(f, "%g,%g,%g,%g,%g,%g,%d,%d,%g,%g,%g,%g,%g,%g,%g\n", pdk_particles_X(p, 0)[i],
             pdk_particles_X(p, 1)[i], x[i], y[i], ep[i], dmg[i], failed[i], comp ? (int)comp[i] : 0,
             res.sigma_vm, res.sigma_vm > 0 ? sm / res.sigma_vm : 0.0,
-            ((const double *)pdk_particles_field_data(p, "eps_p_rate", 0))[i]);
+            ((const double *)pdk_particles_field_data(p, "eps_p_rate", 0))[i], sg[0], sg[1], sg[2],
+            sg[5]);
   }
   fclose(f);
 }
