@@ -153,6 +153,72 @@ pdk_bond_index pdk_kernel_lps_force2_ref(
     uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
     double *restrict fx, double *restrict fy, double *restrict w);
 
+/* ---- PMB and LPS through the kernel table -------------------------------------------------------
+ * One entry per pass, 2-D and 3-D, with every array in one struct so variants that read other
+ * layouts share the signature. The reference entries (kernels/ref/pmb.c, lps.c) read the SoA
+ * arrays; the SIMD entries (kernels/opt/bond_avx2.c, bond_avx512.c) read the packed rows
+ * instead: one 32-byte row per particle, so a bond's neighbour data is two aligned 256-bit loads
+ * and a register transpose rather than 7 (PMB) to 9 (LPS) gathers. Padded entries [n, n_pad) of
+ * the rows are never read. Both read bond_r0 when it is not NULL (float storage, see below).
+ * Formulas, bond failure and the energy are those of the reference kernels; every variant computes
+ * each bond's terms with the same operations in the same order (no FMA contraction), so bond
+ * failure decisions and the s0 maxima equal the reference's bit for bit and forces, dilations and
+ * energies differ only by the order of the sums over a family. */
+typedef struct pdk_bond_arrays {
+  int dim;                          /* 2 or 3 */
+  const pdk_bond_index *bond_start; /* [n+1] */
+  const pdk_index *bond_j;          /* [num_bonds] */
+  const double *X[3], *x[3];        /* reference and current positions [n_pad] (X[2], x[2]: 3-D) */
+  const double *volume;             /* [n_pad] */
+  /* Packed rows (SIMD variants; NULL for the reference): ref4[4 i + c] = X_c (c < dim), 0 for the
+   * other components up to 3, and at c = 3 the LPS 1/m_i (0 for PMB); cur4[4 i + c] = x_c (0
+   * beyond dim), cur4[4 i + 3] = V_i. ref4 is filled once, cur4 before every pass. */
+  const double *ref4, *cur4;
+  /* Float storage (precision float): the reference bond length |X_j - X_i| per bond, rounded to
+   * float, replaces r0 recomputed from X (3 loads and a sqrt fewer per bond, 4 bytes per bond more;
+   * the stretch then carries an error up to 2^-24 r0 / r0 = 6e-8). NULL: double, from X. */
+  const float *bond_r0;
+  uint8_t *bond_alive;              /* [num_bonds] or NULL (bonds never break) */
+  const double *s0;                 /* [n_pad] */
+  double *s0_next;                  /* [n_pad]; non-NULL: committing pass */
+  const double *theta, *inv_m;      /* LPS [n_pad] */
+  double *theta_out;                /* LPS dilation output [n_pad] */
+  double *f[3];                     /* force density [n_pad] */
+  double *w;                        /* strain energy density [n_pad] or NULL */
+} pdk_bond_arrays;
+
+typedef pdk_bond_index (*pdk_pmb_force_fn)(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                           pdk_index i0, pdk_index i1);
+typedef void (*pdk_lps_dilation_fn)(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                    pdk_index i0, pdk_index i1);
+typedef pdk_bond_index (*pdk_lps_force_fn)(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                           pdk_index i0, pdk_index i1);
+
+pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1);
+void pdk_kernel_lps_dilation_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
+                                 pdk_index i1);
+pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1);
+/* Set-up only (not in the table): m_i of pdk_kernel_lps_weighted_volume3_ref from a's arrays,
+ * with bond_r0 when it is set. */
+void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1, double *restrict m);
+/* AVX2 + FMA CPUs (PDK_ISA_AVX2): 4 bonds per step. */
+pdk_bond_index pdk_kernel_pmb_force_avx2(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                         pdk_index i0, pdk_index i1);
+void pdk_kernel_lps_dilation_avx2(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
+                                  pdk_index i1);
+pdk_bond_index pdk_kernel_lps_force_avx2(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                         pdk_index i0, pdk_index i1);
+/* AVX-512 CPUs (PDK_ISA_AVX512): 8 bonds per step. */
+pdk_bond_index pdk_kernel_pmb_force_avx512(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                           pdk_index i0, pdk_index i1);
+void pdk_kernel_lps_dilation_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                    pdk_index i0, pdk_index i1);
+pdk_bond_index pdk_kernel_lps_force_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                           pdk_index i0, pdk_index i1);
+
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */

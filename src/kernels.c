@@ -14,6 +14,10 @@ static void fill_ref(pdk_kernel_table *t) {
   t->corr_pass1 = pdk_kernel_corr_pass1_ref;
   t->corr_pass2 = pdk_kernel_corr_pass2_ref;
   t->corr_opt = 0;
+  t->bond_rows = 0;
+  t->pmb_force = pdk_kernel_pmb_force_ref;
+  t->lps_dilation = pdk_kernel_lps_dilation_ref;
+  t->lps_force = pdk_kernel_lps_force_ref;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -35,6 +39,19 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->corr_shape = pdk_kernel_corr_shape_avx512;
     t->corr_pass1 = pdk_kernel_corr_pass1_avx512;
     t->corr_pass2 = pdk_kernel_corr_pass2_avx512;
+  }
+  /* PMB and LPS passes over packed rows (kernels/opt/bond_simd.h): each bond's terms equal the
+   * reference's bit for bit, the family sums are taken in another order. */
+  if (isa & PDK_ISA_AVX2) {
+    t->bond_rows = 1;
+    t->pmb_force = pdk_kernel_pmb_force_avx2;
+    t->lps_dilation = pdk_kernel_lps_dilation_avx2;
+    t->lps_force = pdk_kernel_lps_force_avx2;
+  }
+  if (isa & PDK_ISA_AVX512) {
+    t->pmb_force = pdk_kernel_pmb_force_avx512;
+    t->lps_dilation = pdk_kernel_lps_dilation_avx512;
+    t->lps_force = pdk_kernel_lps_force_avx512;
   }
 }
 

@@ -108,13 +108,8 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
   }
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
-  /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
-   * than silently computing in double (correspondence TL and semi-TL implement it; UL refuses it
-   * in its setup). */
-  PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE || o->kind == PDK_MODEL_CORRESPONDENCE, ctx,
-            PDK_ERR_UNSUPPORTED,
-            "%s model: float storage is not implemented yet; use precision double",
-            pdk_model_kind_name(o->kind));
+  /* Float storage is a speed/accuracy knob that every kind implements (PMB, LPS: bond lengths;
+   * correspondence TL and semi-TL: pass-2 tensors); UL refuses it in its setup. */
   return PDK_SUCCESS;
 }
 

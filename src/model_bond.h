@@ -9,8 +9,38 @@
 #ifndef PDK_MODEL_BOND_H
 #define PDK_MODEL_BOND_H
 
+#include "kernels.h"
 #include "pdk/model.h"
 #include "model_impl.h"
+
+/* Data the PMB and LPS drivers share (src/model_bond.c): the packed particle rows of the SIMD
+ * kernels and the float bond lengths of precision float (pdk_bond_arrays in kernels/kernels.h). */
+typedef struct pdk_bond_data {
+  int dim;
+  pdk_index n;
+  double *ref4;    /* [4 n_pad] X, Y, Z, extra; NULL when the kernel table reads SoA only */
+  double *cur4;    /* [4 n_pad] x, y, z, V, refilled before every pass */
+  float *bond_r0;  /* [num_bonds] |xi| rounded to float (precision float), else NULL */
+} pdk_bond_data;
+
+/* Allocates what the context's kernel table and m->opts.precision need and fills ref4 (extra
+ * column 0) and bond_r0. `who` names the model in messages. */
+int pdk_bond_data_setup(pdk_model *m, pdk_bond_data *bd, const char *who);
+void pdk_bond_data_free(pdk_bond_data *bd);
+/* The pass's arrays: families, positions, volume, rows, bond_r0, bond state; the caller sets the
+ * model-specific ones (s0_next, theta, inv_m, theta_out, w). Returns 0 when a field is missing. */
+int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *a);
+/* cur4 rows [i0, i1) from x and the volumes (no-op without rows). */
+void pdk_bond_pack_cur(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_index i0,
+                       pdk_index i1);
+
+/* sum_i V_i W_i over one block [i0, i1), in index order. */
+static inline double pdk_bond_block_energy(const double *volume, const double *w, pdk_index i0,
+                                           pdk_index i1) {
+  double e = 0.0;
+  for (pdk_index i = i0; i < i1; ++i) e += volume[i] * w[i];
+  return e;
+}
 
 /* End of a PMB or LPS force pass, shared by both drivers: in a committing pass with bond state
  * the pass's critical stretches become the next pass's "previous" ones (buffer swap) and the

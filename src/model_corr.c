@@ -1,11 +1,7 @@
 /* Correspondence model (non-ordinary state-based, total Lagrangian): the driver.
  *
- * Formulas and kernel contract: kernels/ref/corr.c. Shape, pass 1 and pass 2 come from the
- * context's kernel table (the reference or kernels/opt/corr_simd.h compiled per ISA), fixed at
- * setup together with the pass-2 arrays they need (pdk_corr_pair_layout: k, B = A - k (F - I),
- * G = k (F - I) in double for the optimized kernels, their float copies with precision float);
- * breaking, reshape, detachment and release use the reference. This file owns fields, threading,
- * blocking and the energy reduction:
+ * Formulas and kernel contract: kernels/ref/corr.c. This file owns fields, threading, blocking and
+ * the energy reduction:
  *   setup   declares "Kinv", "F", "A" (f64 x dim*dim, component [a][c] at a*dim + c) and "flag"
  *           (u8: PDK_CORR_FLAG_SPAN = the family does not span the space, PDK_CORR_FLAG_INVERTED
  *           = the law is undefined at F), computes omega per bond and K^-1 once (TL).

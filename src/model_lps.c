@@ -1,4 +1,6 @@
-/* Ordinary state-based LPS model, as LAMMPS peri/lps: driver over kernels/ref/lps.c.
+/* Ordinary state-based LPS model, as LAMMPS peri/lps: driver over the context's kernel table
+ * (reference kernels/ref/lps.c; SIMD variants kernels/opt/bond_*.c over packed rows, see
+ * src/model_pmb.c). precision float: bond lengths stored per bond as floats, m_i computed from them.
  *
  * Fields declared: "m" (f64 x1, weighted volume m_i = sum_b omega r0^2 beta V_j with LAMMPS's
  * omega = 1/r0, computed once here, over all bonds, and never updated, as LAMMPS's wvolume) and
@@ -38,6 +40,7 @@ typedef struct lps_impl {
   double *s0_next;      /* [n_pad] when bonds can break */
   double *w;            /* [n_pad] strain energy density, allocated on first request */
   double *block_energy; /* [num_blocks] */
+  pdk_bond_data bd;     /* packed rows (extra column: 1/m), float bond lengths */
 } lps_impl;
 
 static int64_t block_count(pdk_index n) { return ((int64_t)n + PDK_LPS_BLOCK - 1) / PDK_LPS_BLOCK; }
@@ -100,24 +103,23 @@ static int lps_setup(pdk_model *m) {
               "lps model: out of memory for %d critical stretches", (int)n);
   }
 
-  const pdk_bond_index *bond_start = pdk_families_bond_start(m->fam);
-  const pdk_index *bond_j = pdk_families_bond_j(m->fam);
-  const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
-  const double *Z = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-  const double *volume = pdk_particles_volume(p);
+  PDK_CALL(pdk_bond_data_setup(m, &im->bd, "lps"));
+  pdk_bond_arrays arrays;
+  PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays), ctx, PDK_ERR_NOT_FOUND,
+            "lps model: fields \"x\" and \"f\" are missing from the particle store");
+  const pdk_bond_arrays *a = &arrays;
   double *mw = pdk_particles_field_data(p, "m", 0);
-  double *inv_m = im->inv_m;
+  double *inv_m = im->inv_m, *ref4 = im->bd.ref4;
 #pragma omp parallel for default(none) schedule(static) num_threads(ctx->num_threads)              \
-    shared(num_blocks, n, dim, k, bond_start, bond_j, X, Y, Z, volume, mw, inv_m)
+    shared(num_blocks, n, k, a, mw, inv_m, ref4)
   for (int64_t blk = 0; blk < num_blocks; ++blk) {
     pdk_index i0, i1;
     block_range(blk, n, &i0, &i1);
-    if (dim == 3)
-      pdk_kernel_lps_weighted_volume3_ref(i0, i1, bond_start, bond_j, X, Y, Z, volume, k, mw);
-    else
-      pdk_kernel_lps_weighted_volume2_ref(i0, i1, bond_start, bond_j, X, Y, volume, k, mw);
-    for (pdk_index i = i0; i < i1; ++i)
+    pdk_kernel_lps_weighted_volume_ref(k, a, i0, i1, mw);
+    for (pdk_index i = i0; i < i1; ++i) {
       inv_m[i] = mw[i] > 0 ? 1.0 / mw[i] : 0.0;
+      if (ref4) ref4[4 * (size_t)i + 3] = inv_m[i]; /* the rows' extra column */
+    }
   }
   return PDK_SUCCESS;
 }
@@ -130,65 +132,54 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
     im->w = pdk_alloc_aligned((size_t)pdk_particles_count_padded(p), sizeof(double));
     PDK_CHECK(im->w, ctx, PDK_ERR_MEMORY, "lps model: out of memory for the energy densities");
   }
-  const int dim = im->dim;
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_lps_consts *k = &im->k;
-  const pdk_bond_index *bond_start = pdk_families_bond_start(m->fam);
-  const pdk_index *bond_j = pdk_families_bond_j(m->fam);
-  const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
-  const double *Z = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-  const double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
-  const double *z = dim == 3 ? pdk_particles_field_data(p, "x", 2) : NULL;
-  double *fx = pdk_particles_field_data(p, "f", 0), *fy = pdk_particles_field_data(p, "f", 1);
-  double *fz = dim == 3 ? pdk_particles_field_data(p, "f", 2) : NULL;
+  pdk_bond_arrays arrays;
   double *theta = pdk_particles_field_data(p, "theta", 0);
-  const double *volume = pdk_particles_volume(p);
-  PDK_CHECK(x && y && fx && fy && theta && (dim == 2 || (z && fz)), ctx, PDK_ERR_NOT_FOUND,
+  PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays) && theta, ctx, PDK_ERR_NOT_FOUND,
             "lps model: fields \"x\", \"f\" or \"theta\" are missing from the particle store");
-  const double *inv_m = im->inv_m;
-  uint8_t *alive = m->bond_alive;
-  const double *s0 = m->s0;
-  double *s0_next = commit && alive && s0 ? im->s0_next : NULL;
-  double *w = energy ? im->w : NULL;
+  arrays.s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
+  arrays.w = energy ? im->w : NULL;
+  arrays.theta = arrays.theta_out = theta;
+  arrays.inv_m = im->inv_m;
+  const pdk_bond_arrays *a = &arrays;
+  const pdk_bond_data *bd = &im->bd;
+  const pdk_lps_dilation_fn dilation = ctx->kernels.lps_dilation;
+  const pdk_lps_force_fn force = ctx->kernels.lps_force;
+  const int pack = bd->cur4 != NULL;
+  const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;
 
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
-    shared(num_blocks, n, dim, k, bond_start, bond_j, X, Y, Z, x, y, z, volume, theta, inv_m,      \
-               alive, s0, s0_next, fx, fy, fz, w, block_energy)
+    shared(num_blocks, n, k, a, bd, dilation, force, pack, volume, w, block_energy)
   {
+    if (pack) {
+#pragma omp for schedule(static)
+      for (int64_t blk = 0; blk < num_blocks; ++blk) {
+        pdk_index i0, i1;
+        block_range(blk, n, &i0, &i1);
+        pdk_bond_pack_cur(bd, a, i0, i1);
+      } /* implicit barrier: every row is packed before a neighbour reads it */
+    }
 #pragma omp for schedule(static)
     for (int64_t blk = 0; blk < num_blocks; ++blk) {
       pdk_index i0, i1;
       block_range(blk, n, &i0, &i1);
-      if (dim == 3)
-        pdk_kernel_lps_dilation3_ref(i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, alive,
-                                     inv_m, theta);
-      else
-        pdk_kernel_lps_dilation2_ref(i0, i1, bond_start, bond_j, X, Y, x, y, volume, k, alive,
-                                     inv_m, theta);
+      dilation(k, a, i0, i1);
     } /* implicit barrier: every theta is complete before any force is computed */
 #pragma omp for schedule(static)
     for (int64_t blk = 0; blk < num_blocks; ++blk) {
       pdk_index i0, i1;
       block_range(blk, n, &i0, &i1);
-      if (dim == 3)
-        broken += pdk_kernel_lps_force3_ref(i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k,
-                                            theta, inv_m, alive, s0, s0_next, fx, fy, fz, w);
-      else
-        broken += pdk_kernel_lps_force2_ref(i0, i1, bond_start, bond_j, X, Y, x, y, volume, k,
-                                            theta, inv_m, alive, s0, s0_next, fx, fy, w);
-      if (w) {
-        double e = 0.0;
-        for (pdk_index i = i0; i < i1; ++i)
-          e += volume[i] * w[i];
-        block_energy[blk] = e;
-      }
+      broken += force(k, a, i0, i1);
+      if (w) block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
     }
   }
 
-  pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, block_energy, num_blocks, energy);
+  pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy, num_blocks,
+                       energy);
   return PDK_SUCCESS;
 }
 
@@ -199,6 +190,7 @@ static void lps_destroy(pdk_model *m) {
   pdk_free_aligned(im->s0_next);
   pdk_free_aligned(im->w);
   free(im->block_energy);
+  pdk_bond_data_free(&im->bd);
   free(im);
   m->impl = NULL;
 }

@@ -1,4 +1,6 @@
-/* Bond-based PMB model, as LAMMPS peri/pmb: driver over the reference kernel kernels/ref/pmb.c.
+/* Bond-based PMB model, as LAMMPS peri/pmb: driver over the context's kernel table (reference
+ * kernels/ref/pmb.c; SIMD variants kernels/opt/bond_*.c over packed rows, src/model_bond.c).
+ * precision float: bond lengths stored per bond as floats (kernels/kernels.h, pdk_bond_arrays).
  *
  * Constants. LAMMPS takes the micromodulus c from the user; pdk derives it from the bulk modulus K
  * and the horizon delta by matching the continuum strain energy density of an isotropic stretch s
@@ -16,7 +18,7 @@
  * s0, this driver keeps the second s0 buffer (written by a committing pass, then swapped in).
  *
  * Threads: one parallel region per pass, over fixed blocks of PDK_PMB_BLOCK particles with a
- * static schedule. Each block calls the kernel on its particles and, when the energy is wanted,
+ * static schedule (first the packed rows, when the table reads them, then a barrier). Each block calls the kernel on its particles and, when the energy is wanted,
  * sums V_i W_i over the block into its own slot; the slots are summed in block order afterwards.
  * Every particle's force depends only on its own row, so results are bitwise the same for any
  * thread count.
@@ -39,6 +41,7 @@ typedef struct pmb_impl {
   double *s0_next;      /* [n_pad] when bonds can break */
   double *w;            /* [n_pad] strain energy density, allocated on first request */
   double *block_energy; /* [num_blocks] */
+  pdk_bond_data bd;     /* packed rows, float bond lengths */
 } pmb_impl;
 
 /* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
@@ -78,6 +81,7 @@ static int pmb_setup(pdk_model *m) {
   }
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
+  PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
   return PDK_SUCCESS;
 }
 
@@ -89,50 +93,44 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
     im->w = pdk_alloc_aligned((size_t)pdk_particles_count_padded(p), sizeof(double));
     PDK_CHECK(im->w, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for the energy densities");
   }
-  const int dim = im->dim;
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_pmb_consts *k = &im->k;
-  const pdk_bond_index *bond_start = pdk_families_bond_start(m->fam);
-  const pdk_index *bond_j = pdk_families_bond_j(m->fam);
-  const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
-  const double *Z = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-  const double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
-  const double *z = dim == 3 ? pdk_particles_field_data(p, "x", 2) : NULL;
-  double *fx = pdk_particles_field_data(p, "f", 0), *fy = pdk_particles_field_data(p, "f", 1);
-  double *fz = dim == 3 ? pdk_particles_field_data(p, "f", 2) : NULL;
-  const double *volume = pdk_particles_volume(p);
-  PDK_CHECK(x && y && fx && fy && (dim == 2 || (z && fz)), ctx, PDK_ERR_NOT_FOUND,
+  pdk_bond_arrays arrays;
+  PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays), ctx, PDK_ERR_NOT_FOUND,
             "pmb model: fields \"x\" and \"f\" are missing from the particle store");
-  uint8_t *alive = m->bond_alive;
-  const double *s0 = m->s0;
-  double *s0_next = commit && alive && s0 ? im->s0_next : NULL;
-  double *w = energy ? im->w : NULL;
+  arrays.s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
+  arrays.w = energy ? im->w : NULL;
+  const pdk_bond_arrays *a = &arrays;
+  const pdk_bond_data *bd = &im->bd;
+  const pdk_pmb_force_fn kernel = ctx->kernels.pmb_force;
+  const int pack = bd->cur4 != NULL;
+  const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;
 
-#pragma omp parallel for default(none) schedule(static) num_threads(ctx->num_threads)            \
-    reduction(+ : broken)                                                                          \
-    shared(num_blocks, n, dim, k, bond_start, bond_j, X, Y, Z, x, y, z, volume, alive, s0,         \
-               s0_next, fx, fy, fz, w, block_energy)
-  for (int64_t blk = 0; blk < num_blocks; ++blk) {
-    const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-    const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-    if (dim == 3)
-      broken += pdk_kernel_pmb_force3_ref(i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k,
-                                          alive, s0, s0_next, fx, fy, fz, w);
-    else
-      broken += pdk_kernel_pmb_force2_ref(i0, i1, bond_start, bond_j, X, Y, x, y, volume, k, alive,
-                                          s0, s0_next, fx, fy, w);
-    if (w) {
-      double e = 0.0;
-      for (pdk_index i = i0; i < i1; ++i)
-        e += volume[i] * w[i];
-      block_energy[blk] = e;
+#pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
+    shared(num_blocks, n, k, a, bd, kernel, pack, volume, w, block_energy)
+  {
+    if (pack) {
+#pragma omp for schedule(static)
+      for (int64_t blk = 0; blk < num_blocks; ++blk) {
+        const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+        const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+        pdk_bond_pack_cur(bd, a, i0, i1);
+      } /* implicit barrier: every row is packed before a neighbour reads it */
+    }
+#pragma omp for schedule(static)
+    for (int64_t blk = 0; blk < num_blocks; ++blk) {
+      const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+      const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+      broken += kernel(k, a, i0, i1);
+      if (w) block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
     }
   }
 
-  pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, block_energy, num_blocks, energy);
+  pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy, num_blocks,
+                       energy);
   return PDK_SUCCESS;
 }
 
@@ -142,6 +140,7 @@ static void pmb_destroy(pdk_model *m) {
   pdk_free_aligned(im->s0_next);
   pdk_free_aligned(im->w);
   free(im->block_energy);
+  pdk_bond_data_free(&im->bd);
   free(im);
   m->impl = NULL;
 }

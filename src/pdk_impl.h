@@ -15,6 +15,10 @@
 
 #define PDK_ERRMSG_MAX 2048
 
+struct pdk_pmb_consts;  /* kernels/kernels.h */
+struct pdk_lps_consts;
+struct pdk_bond_arrays;
+
 /* Kernel-variant table: one function pointer per kernel kind, filled at context creation from the
  * CPU's features (or the user's forced choice). Later issues add kinds; callers never branch on
  * variants themselves. */
@@ -41,6 +45,16 @@ typedef struct pdk_kernel_table {
   void (*corr_pass2)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *a,
                      pdk_index i0, pdk_index i1);
   int corr_opt;
+  /* PMB force and LPS dilation / force passes (kernels/ref/pmb.c, lps.c and variants; arrays and
+   * contract in kernels/kernels.h). bond_rows = 1: the entries read the packed rows ref4/cur4,
+   * which the drivers then fill; 0: they read the SoA arrays only. */
+  int bond_rows;
+  pdk_bond_index (*pmb_force)(const struct pdk_pmb_consts *k, const struct pdk_bond_arrays *a,
+                       pdk_index i0, pdk_index i1);
+  void (*lps_dilation)(const struct pdk_lps_consts *k, const struct pdk_bond_arrays *a,
+                       pdk_index i0, pdk_index i1);
+  pdk_bond_index (*lps_force)(const struct pdk_lps_consts *k, const struct pdk_bond_arrays *a,
+                       pdk_index i0, pdk_index i1);
 } pdk_kernel_table;
 
 struct pdk_ctx {

@@ -2,10 +2,9 @@
  *   - correspondence UL refuses it: PDK_ERR_UNSUPPORTED, the message names float storage and says
  *     to use precision double; TL accepts it (tests/t148_corr_float_storage.c, including a body
  *     1e4 spacings from the origin under a 1e-6 strain);
- *   - PMB and LPS refuse it too until float storage is implemented (they used to accept it and
- *     compute in double). When it lands, this test must check that round-off domination is
- *     detected: a body far from the origin (X ~ 1e4 spacings, float resolution ~1e-3 spacing)
- *     under a displacement of 1e-6 spacing.
+ *   - PMB and LPS store bond lengths as floats: a body far from the origin (X ~ 1e4 spacings)
+ *     under a stretch of 1e-6, close to the float stretch resolution 2^-24 = 6e-8, gives finite
+ *     forces within the float error bound of the double ones, and not equal to them.
  * labels: physics extreme */
 #include "extreme_util.h"
 
@@ -48,26 +47,31 @@ int main(void) {
     pdk_families_destroy(&fam);
     pdk_particles_destroy(&p);
   }
-  /* PMB and LPS refuse it as well until float storage is implemented (it used to be accepted
-   * and silently computed in double). */
+  /* PMB and LPS store the bond lengths as floats. The rounding is relative to the bond length
+   * (2^-24 r0), not to the coordinates, so a body 10^4 spacings from the origin loses nothing more
+   * than one at the origin; what the user must know is the stretch resolution, 2^-24 = 6e-8. Here
+   * the stretch is 1e-6 (x = X + 1e-6 (X - 1e4)), so the float forces may differ from the double
+   * ones by up to about 2^-24 / 1e-6 = 6 % per bond (t027 derives the bound; the sums of a family
+   * do not add the errors coherently, hence the limit of 25 % of the largest force here), and must
+   * differ (the option used to be accepted and silently ignored). */
   for (int kind = PDK_MODEL_PMB; kind <= PDK_MODEL_LPS; ++kind) {
     pdk_index n;
-    static double fd[200];
+    static double fd[200], ff[200];
     forces(ctx, kind, PDK_PRECISION_DOUBLE, fd, &n);
-    T_ASSERT(n <= 200 && isfinite(fd[0]), "double run works");
-    pdk_particles *p = cu_lattice(ctx, 2, 6, 0.0, 1);
-    pdk_families *fam = cu_families(ctx, p, 3.015);
-    pdk_model_opts o = pdk_model_opts_default();
-    o.kind = (pdk_model_kind)kind;
-    o.bulk_modulus = 1.0;
-    o.shear_modulus = 0.5;
-    o.density = 1.0;
-    o.precision = PDK_PRECISION_FLOAT;
-    pdk_model *m = NULL;
-    T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "float storage");
-    T_ASSERT(strstr(pdk_ctx_error_message(ctx), "precision double"), "no fix in '%s'", pdk_ctx_error_message(ctx));
-    pdk_families_destroy(&fam);
-    pdk_particles_destroy(&p);
+    forces(ctx, kind, PDK_PRECISION_FLOAT, ff, &n);
+    T_ASSERT(n <= 200, "body of %d particles", (int)n);
+    double fmax = 0, dmax = 0;
+    for (pdk_index i = 0; i < n; ++i) {
+      T_ASSERT(isfinite(ff[i]), "float force of particle %d is %g", (int)i, ff[i]);
+      fmax = fmax > fabs(fd[i]) ? fmax : fabs(fd[i]);
+      dmax = dmax > fabs(ff[i] - fd[i]) ? dmax : fabs(ff[i] - fd[i]);
+    }
+    printf("%s: max |f_float - f_double| = %.3g of max |f| = %.3g\n", kind ? "lps" : "pmb",
+           dmax / fmax, fmax);
+    T_ASSERT(fmax > 0 && dmax > 0, "%s: float storage gave the double forces exactly (ignored?)",
+             kind ? "lps" : "pmb");
+    T_ASSERT(dmax <= 0.25 * fmax, "%s: float error %.3g of the largest force, above 0.25",
+             kind ? "lps" : "pmb", dmax / fmax);
   }
   pdk_ctx_destroy(&ctx);
   return 0;

@@ -119,9 +119,13 @@ typedef enum pdk_connectivity {
 typedef enum pdk_precision {
   PDK_PRECISION_DOUBLE = 0,
   PDK_PRECISION_FLOAT = 1 /* float storage of per-bond/neighbour data, double accumulation.
-                             Correspondence TL/semi-TL: the tensors pass 2 gathers from neighbours
-                             (kernels/kernels.h, pdk_corr_arrays Bf, Gf) are floats; kinds that do
-                             not implement it refuse it (PDK_ERR_UNSUPPORTED) */
+                             PMB and LPS: the reference bond length |X_j - X_i| is stored per bond
+                             as a float (4 bytes per bond) instead of recomputed from X; the
+                             stretch then carries an absolute error up to 2^-24 (6e-8), at rest
+                             too, whatever the distance from the origin (t027 states the force
+                             bound). Correspondence TL/semi-TL: the tensors pass 2 gathers from
+                             neighbours (kernels/kernels.h, pdk_corr_arrays Bf, Gf) are floats;
+                             kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
 typedef struct pdk_model_opts {

@@ -28,6 +28,8 @@
  * only reads bond_alive). m_i is not updated when bonds break (LAMMPS keeps wvolume).
  * Not included: LAMMPS's short-range contact forces (see pmb.c).
  *
+ * Float storage (table entries, bond_r0 != NULL): r0 = (double)bond_r0[b] instead of |xi|.
+ *
  * Contract: pure; no allocation, no OpenMP region; a call writes only entries i in [i0, i1) of its
  * outputs; particle arrays are [n_pad], bond arrays [num_bonds]; the result for particle i does not
  * depend on i0, i1. The force pass reads theta and inv_m of neighbours: the dilation pass must have
@@ -64,8 +66,8 @@ partial_volume(double volume_j, double r0, const double vs_a, const double vs_b)
 static inline __attribute__((always_inline)) void
 lps_m_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
             const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-            const double *restrict Z, const double *restrict volume, const pdk_lps_consts *k,
-            double *restrict m) {
+            const double *restrict Z, const double *restrict volume, const float *restrict bond_r0,
+            const pdk_lps_consts *k, double *restrict m) {
   const double vs_a = k->vs_a, vs_b = k->vs_b;
   for (pdk_index i = i0; i < i1; ++i) {
     const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
@@ -75,7 +77,7 @@ lps_m_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *res
     for (pdk_bond_index b = b0; b < b1; ++b) {
       const pdk_index j = bond_j[b];
       const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
-      const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+      const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(dX * dX + dY * dY + dZ * dZ);
       mi += r0 * partial_volume(volume[j], r0, vs_a, vs_b);
     }
     m[i] = mi;
@@ -88,7 +90,7 @@ void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
                                          const double *restrict Y, const double *restrict Z,
                                          const double *restrict volume, const pdk_lps_consts *k,
                                          double *restrict m) {
-  lps_m_range(3, i0, i1, bond_start, bond_j, X, Y, Z, volume, k, m);
+  lps_m_range(3, i0, i1, bond_start, bond_j, X, Y, Z, volume, NULL, k, m);
 }
 
 void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
@@ -96,7 +98,13 @@ void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
                                          const pdk_index *restrict bond_j, const double *restrict X,
                                          const double *restrict Y, const double *restrict volume,
                                          const pdk_lps_consts *k, double *restrict m) {
-  lps_m_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, volume, k, m);
+  lps_m_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, volume, NULL, k, m);
+}
+
+void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1, double *restrict m) {
+  lps_m_range(a->dim, i0, i1, a->bond_start, a->bond_j, a->X[0], a->X[1], a->X[2], a->volume,
+              a->bond_r0, k, m);
 }
 
 /* ---- dilation -------------------------------------------------------------------------------- */
@@ -106,9 +114,9 @@ lps_theta_range(const int dim, const int has_state, pdk_index i0, pdk_index i1,
                 const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
                 const double *restrict X, const double *restrict Y, const double *restrict Z,
                 const double *restrict x, const double *restrict y, const double *restrict z,
-                const double *restrict volume, const pdk_lps_consts *k,
-                const uint8_t *restrict bond_alive, const double *restrict inv_m,
-                double *restrict theta) {
+                const double *restrict volume, const float *restrict bond_r0,
+                const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
+                const double *restrict inv_m, double *restrict theta) {
   const double vs_a = k->vs_a, vs_b = k->vs_b, d = k->theta_factor;
   for (pdk_index i = i0; i < i1; ++i) {
     const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
@@ -120,7 +128,7 @@ lps_theta_range(const int dim, const int has_state, pdk_index i0, pdk_index i1,
       const pdk_index j = bond_j[b];
       const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
       const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
-      const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+      const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(dX * dX + dY * dY + dZ * dZ);
       const double r = sqrt(dx * dx + dy * dy + dz * dz);
       const double on = has_state ? (double)bond_alive[b] : 1.0;
       sum += on * (r - r0) * partial_volume(volume[j], r0, vs_a, vs_b);
@@ -138,11 +146,11 @@ void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
                                   const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
                                   const double *restrict inv_m, double *restrict theta) {
   if (bond_alive)
-    lps_theta_range(3, 1, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, bond_alive,
-                    inv_m, theta);
+    lps_theta_range(3, 1, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k,
+                    bond_alive, inv_m, theta);
   else
-    lps_theta_range(3, 0, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, NULL, inv_m,
-                    theta);
+    lps_theta_range(3, 0, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, NULL,
+                    inv_m, theta);
 }
 
 void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
@@ -153,11 +161,31 @@ void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
                                   const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
                                   const double *restrict inv_m, double *restrict theta) {
   if (bond_alive)
-    lps_theta_range(2, 1, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, bond_alive,
-                    inv_m, theta);
+    lps_theta_range(2, 1, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
+                    bond_alive, inv_m, theta);
   else
-    lps_theta_range(2, 0, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, NULL,
+    lps_theta_range(2, 0, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k, NULL,
                     inv_m, theta);
+}
+
+void pdk_kernel_lps_dilation_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
+                                 pdk_index i1) {
+  const double *X = a->X[0], *Y = a->X[1], *Z = a->X[2], *x = a->x[0], *y = a->x[1], *z = a->x[2];
+  if (a->dim == 3) {
+    if (a->bond_alive)
+      lps_theta_range(3, 1, i0, i1, a->bond_start, a->bond_j, X, Y, Z, x, y, z, a->volume,
+                      a->bond_r0, k, a->bond_alive, a->inv_m, a->theta_out);
+    else
+      lps_theta_range(3, 0, i0, i1, a->bond_start, a->bond_j, X, Y, Z, x, y, z, a->volume,
+                      a->bond_r0, k, NULL, a->inv_m, a->theta_out);
+  } else {
+    if (a->bond_alive)
+      lps_theta_range(2, 1, i0, i1, a->bond_start, a->bond_j, X, Y, NULL, x, y, NULL, a->volume,
+                      a->bond_r0, k, a->bond_alive, a->inv_m, a->theta_out);
+    else
+      lps_theta_range(2, 0, i0, i1, a->bond_start, a->bond_j, X, Y, NULL, x, y, NULL, a->volume,
+                      a->bond_r0, k, NULL, a->inv_m, a->theta_out);
+  }
 }
 
 /* ---- force ----------------------------------------------------------------------------------- */
@@ -167,8 +195,9 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
         const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
         const double *restrict X, const double *restrict Y, const double *restrict Z,
         const double *restrict x, const double *restrict y, const double *restrict z,
-        const double *restrict volume, const pdk_lps_consts *k, const double *restrict theta,
-        const double *restrict inv_m, uint8_t *restrict bond_alive, const double *restrict s0,
+        const double *restrict volume, const float *restrict bond_r0, const pdk_lps_consts *k,
+        const double *restrict theta, const double *restrict inv_m,
+        uint8_t *restrict bond_alive, const double *restrict s0,
         double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict fz,
         double *restrict w) {
   const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
@@ -186,7 +215,7 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
     const pdk_index j = bond_j[b];
     const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
     const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
-    const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+    const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(dX * dX + dY * dY + dZ * dZ);
     const double r = sqrt(dx * dx + dy * dy + dz * dz);
     const double e = r - r0;                         /* extension */
     const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0; /* the one division */
@@ -223,18 +252,19 @@ lps_row(const int dim, const int has_state, const int commit, const int want_ene
 
 #define LPS_RANGE(dim, st, cm, en)                                                                 \
   for (pdk_index i = i0; i < i1; ++i)                                                              \
-  broken += lps_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, theta,    \
-                    inv_m, bond_alive, s0, s0_next, fx, fy, fz, w)
+  broken += lps_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, bond_r0, k,  \
+                    theta, inv_m, bond_alive, s0, s0_next, fx, fy, fz, w)
 
 static pdk_bond_index
 lps_force_range(const int dim, pdk_index i0, pdk_index i1,
                 const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
                 const double *restrict X, const double *restrict Y, const double *restrict Z,
                 const double *restrict x, const double *restrict y, const double *restrict z,
-                const double *restrict volume, const pdk_lps_consts *k,
-                const double *restrict theta, const double *restrict inv_m,
-                uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-                double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
+                const double *restrict volume, const float *restrict bond_r0,
+                const pdk_lps_consts *k, const double *restrict theta,
+                const double *restrict inv_m, uint8_t *restrict bond_alive,
+                const double *restrict s0, double *restrict s0_next, double *restrict fx,
+                double *restrict fy, double *restrict fz, double *restrict w) {
   pdk_bond_index broken = 0;
   const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
   const int want_energy = w != NULL;
@@ -284,8 +314,8 @@ pdk_bond_index pdk_kernel_lps_force3_ref(
     const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
     const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
     double *restrict fz, double *restrict w) {
-  return lps_force_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, theta, inv_m,
-                         bond_alive, s0, s0_next, fx, fy, fz, w);
+  return lps_force_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, theta,
+                         inv_m, bond_alive, s0, s0_next, fx, fy, fz, w);
 }
 
 pdk_bond_index pdk_kernel_lps_force2_ref(
@@ -295,6 +325,13 @@ pdk_bond_index pdk_kernel_lps_force2_ref(
     const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
     uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
     double *restrict fx, double *restrict fy, double *restrict w) {
-  return lps_force_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, theta,
-                         inv_m, bond_alive, s0, s0_next, fx, fy, NULL, w);
+  return lps_force_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
+                         theta, inv_m, bond_alive, s0, s0_next, fx, fy, NULL, w);
+}
+
+pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1) {
+  return lps_force_range(a->dim, i0, i1, a->bond_start, a->bond_j, a->X[0], a->X[1], a->X[2],
+                         a->x[0], a->x[1], a->x[2], a->volume, a->bond_r0, k, a->theta, a->inv_m,
+                         a->bond_alive, a->s0, a->s0_next, a->f[0], a->f[1], a->f[2], a->w);
 }

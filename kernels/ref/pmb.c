@@ -30,6 +30,8 @@
  * LAMMPS also sets |r - r0| < 2.2204e-16 (an absolute length) to 0; pdk does not, so the two differ
  * by round-off near the undeformed state only.
  *
+ * Float storage (table entries, bond_r0 != NULL): r0 = (double)bond_r0[b] instead of |xi|.
+ *
  * Contract: pure; no allocation, no OpenMP region; arrays are [n_pad] per component (positions,
  * volume, s0, s0_next, f, w), bond_start [n+1], bond_j and bond_alive [num_bonds]; the result for
  * particle i does not depend on i0, i1 (so it is the same for any thread partition).
@@ -62,9 +64,9 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
         const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
         const double *restrict X, const double *restrict Y, const double *restrict Z,
         const double *restrict x, const double *restrict y, const double *restrict z,
-        const double *restrict volume, const pdk_pmb_consts *k, uint8_t *restrict bond_alive,
-        const double *restrict s0, double *restrict s0_next, double *restrict fx,
-        double *restrict fy, double *restrict fz, double *restrict w) {
+        const double *restrict volume, const float *restrict bond_r0, const pdk_pmb_consts *k,
+        uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
+        double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
   const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
   const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
   const double c = k->c, vs_a = k->vs_a, vs_b = k->vs_b, s00 = k->s00, alpha = k->alpha;
@@ -77,7 +79,8 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
     const pdk_index j = bond_j[b];
     const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
     const double dx = x[j] - xi, dy = y[j] - yi, dz = dim == 3 ? z[j] - zi : 0.0;
-    const double r0 = sqrt(dX * dX + dY * dY + dZ * dZ);
+    /* bond_r0 is loop-invariant: the compiler unswitches the loop */
+    const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(dX * dX + dY * dY + dZ * dZ);
     const double r = sqrt(dx * dx + dy * dy + dz * dz);
     const double d = r - r0;                         /* extension */
     const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0; /* the one division: s / r = d q */
@@ -110,16 +113,17 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
 
 #define PMB_RANGE(dim, st, cm, en)                                                                 \
   for (pdk_index i = i0; i < i1; ++i)                                                              \
-  broken += pmb_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, k,           \
+  broken += pmb_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, bond_r0, k,  \
                     bond_alive, s0, s0_next, fx, fy, fz, w)
 
 static pdk_bond_index
 pmb_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
           const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
           const double *restrict Z, const double *restrict x, const double *restrict y,
-          const double *restrict z, const double *restrict volume, const pdk_pmb_consts *k,
-          uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-          double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
+          const double *restrict z, const double *restrict volume, const float *restrict bond_r0,
+          const pdk_pmb_consts *k, uint8_t *restrict bond_alive, const double *restrict s0,
+          double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict fz,
+          double *restrict w) {
   pdk_bond_index broken = 0;
   const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
   const int want_energy = w != NULL;
@@ -169,8 +173,8 @@ pdk_bond_index pdk_kernel_pmb_force3_ref(
     const double *restrict z, const double *restrict volume, const pdk_pmb_consts *k,
     uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
     double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
-  return pmb_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, k, bond_alive, s0,
-                   s0_next, fx, fy, fz, w);
+  return pmb_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, bond_alive,
+                   s0, s0_next, fx, fy, fz, w);
 }
 
 pdk_bond_index pdk_kernel_pmb_force2_ref(
@@ -179,6 +183,14 @@ pdk_bond_index pdk_kernel_pmb_force2_ref(
     const double *restrict x, const double *restrict y, const double *restrict volume,
     const pdk_pmb_consts *k, uint8_t *restrict bond_alive, const double *restrict s0,
     double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict w) {
-  return pmb_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, k, bond_alive, s0,
-                   s0_next, fx, fy, NULL, w);
+  return pmb_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
+                   bond_alive, s0, s0_next, fx, fy, NULL, w);
+}
+
+/* Table entry: the SoA arrays of a, and bond_r0 (float storage) when set. */
+pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                        pdk_index i0, pdk_index i1) {
+  return pmb_range(a->dim, i0, i1, a->bond_start, a->bond_j, a->X[0], a->X[1], a->X[2], a->x[0],
+                   a->x[1], a->x[2], a->volume, a->bond_r0, k, a->bond_alive, a->s0, a->s0_next,
+                   a->f[0], a->f[1], a->f[2], a->w);
 }
