@@ -361,6 +361,7 @@ int main(int argc, char **argv) {
       mo.density = rho;
       mo.lattice_constant = dx;
       mo.critical_stretch = s00;
+      if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {

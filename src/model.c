@@ -19,6 +19,7 @@ pdk_model_opts pdk_model_opts_default(void) {
   o.connectivity = PDK_CONNECTIVITY_TL;
   o.compact_fraction = 0.02;
   o.ul_skin = 0.25;
+  o.thickness = 1.0;
   return o;
 }
 
@@ -106,6 +107,10 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
               "the Johnson-Cook law needs the correspondence model (model kind is %s)", name);
     PDK_CALL(pdk_jc_params_check(ctx, &o->jc));
   }
+  PDK_CHECK(isfinite(o->thickness) && o->thickness > 0, ctx, PDK_ERR_ARG,
+            "thickness must be a finite length > 0 (2-D: the out-of-plane thickness the volumes "
+            "include; default 1), got %g",
+            o->thickness);
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob that every kind implements (PMB, LPS: bond lengths;

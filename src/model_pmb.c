@@ -10,8 +10,8 @@
  * A pair potential fixes the Poisson ratio: 1/4 in 3-D and in plane strain, so lambda = mu and
  * K = lambda + 2 mu/3 = 5 mu/3, lambda + mu = 6 K / 5 (the 2-D c is 48 E / (5 pi delta^3), the
  * known plane-strain value). The shear modulus option is ignored. In 2-D the sum over the family
- * uses the particle volumes as areas: the 2-D c is per unit thickness, so a 2-D PMB body must be
- * built with thickness 1 (the lattice default); LPS has no such restriction (its m normalises).
+ * runs over volumes V_j = area x t (t = opts.thickness), so the integral above carries a factor t
+ * and c is divided by it: c = 72 K / (5 pi delta^3 t) (LPS needs nothing: m normalises).
  *
  * Partial volumes: opts.lattice_constant > 0 turns on LAMMPS's vfrac_scale (kernels/ref/pmb.c).
  * Bond failure: opts.critical_stretch > 0 turns on the LAMMPS s0 rule; model.c owns bond_alive and
@@ -70,7 +70,7 @@ static int pmb_setup(pdk_model *m) {
             "pmb model: the families' horizon must be positive, got %g", delta);
   const double K = o->bulk_modulus;
   im->k.c = im->dim == 3 ? 18.0 * K / (M_PI * delta * delta * delta * delta)
-                         : 72.0 * K / (5.0 * M_PI * delta * delta * delta);
+                         : 72.0 * K / (5.0 * M_PI * delta * delta * delta * o->thickness);
   partial_volume_consts(delta, o->lattice_constant, &im->k.vs_a, &im->k.vs_b);
   im->k.s00 = o->critical_stretch;
   im->k.alpha = o->alpha;

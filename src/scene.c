@@ -1267,6 +1267,7 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
           "only acts with bond breaking; set model.critical_stretch > 0 or remove alpha");
   m->alpha = mo->alpha;
   m->lattice_constant = mo->partial_volume ? s->lattice.spacing : 0;
+  m->thickness = s->lattice.thickness; /* 2-D volumes include it (lattice default 1) */
   PDK_CALL(resolve_johnson_cook(ld, mat, mo));
   PDK_CALL(resolve_connectivity(ld, mo));
   return PDK_SUCCESS;

@@ -52,6 +52,8 @@ static void check_full_mapping(const pdk_scene *s, const char *path) {
   T_ASSERT(s->lattice.spacing == 1e-3 && s->lattice.thickness == 2e-3 && s->lattice.seed == 7 &&
                s->lattice.jitter == 0,
            "lattice values");
+  T_ASSERT(s->model.thickness == 2e-3, "model thickness %g: the 2-D volumes' thickness",
+           s->model.thickness);
   T_ASSERT(s->lattice.lo[0] == 0 && s->lattice.hi[0] == 0.02 && s->lattice.hi[1] == 0.04, "box");
   T_NEAR(s->horizon, 3.015e-3, 1e-15, 0, "horizon = factor x spacing");
   T_ASSERT(s->num_holes == 1 && s->holes[0].region.kind == PDK_REGION_BALL &&

@@ -171,6 +171,10 @@ typedef struct pdk_model_opts {
    * closer than delta (1 + ul_skin). 0: never rebuild (Bergel & Li's UL on the initial families).
    */
   double ul_skin;
+  /* 2-D: the out-of-plane thickness the particle volumes include (volume = area x thickness, as
+   * pdk_lattice_opts.thickness makes them) [length]; default 1, ignored in 3-D. PMB divides its
+   * plane-strain micromodulus by it, so forces and energy densities do not depend on it. */
+  double thickness;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
