@@ -116,6 +116,13 @@ static problem make_problem(int dim) {
   return P;
 }
 
+static void free_problem(problem *P) {
+  free(P->bj);
+  for (int c = 0; c < 3; ++c) free(P->X[c]), free(P->x[c]);
+  free(P->V), free(P->s0), free(P->theta), free(P->inv_m), free(P->ref4), free(P->cur4);
+  free(P->r0f), free(P->alive0);
+}
+
 typedef struct outputs {
   double *f[3], *w, *theta, *s0n;
   uint8_t *alive;
@@ -131,6 +138,11 @@ static outputs make_outputs(const problem *P) {
   o.alive = zalloc((size_t)P->nb);
   o.broken = 0;
   return o;
+}
+
+static void free_outputs(outputs *o) {
+  for (int c = 0; c < 3; ++c) free(o->f[c]);
+  free(o->w), free(o->theta), free(o->s0n), free(o->alive);
 }
 
 static void reset_outputs(const problem *P, outputs *o) {
@@ -319,6 +331,7 @@ static void kernel_tests(unsigned isa) {
             compare(what, &P, &ref, &opt, &M, state, energy, 1, 0, &kl);
           }
     }
+    free_outputs(&ref), free_outputs(&opt), free_problem(&P);
   }
   T_ASSERT(!(isa & PDK_ISA_AVX2) || ran > 0, "no variant ran on an AVX2 CPU");
   T_ASSERT(!ran || broke_some > 0, "the commit passes broke no bond: the failure path is untested");

@@ -69,7 +69,7 @@ BS_INLINE void bs_load(bs_step *st, const int dim, const int has_state, const in
     for (int l = 0; l < BS_W; ++l) st->j[l] = bj[b + (l < nv ? l : nv - 1)];
   }
   if (has_state || !full) {
-    const uint8_t *restrict al = a->bond_alive + b;
+    const uint8_t *restrict al = has_state ? a->bond_alive + b : NULL;
     double on[BS_W];
     for (int l = 0; l < BS_W; ++l)
       on[l] = full || l < nv ? (has_state ? (double)al[l] : 1.0) : 0.0;
