@@ -113,8 +113,14 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             o->thickness);
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
-  /* Float storage is a speed/accuracy knob that every kind implements (PMB, LPS: bond lengths;
-   * correspondence TL and semi-TL: pass-2 tensors); UL refuses it in its setup. */
+  /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
+   * than silently computing in double (PMB, LPS: bond lengths; correspondence TL and semi-TL:
+   * pass-2 tensors, UL refuses it in its setup). */
+  PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE || o->kind == PDK_MODEL_PMB ||
+                o->kind == PDK_MODEL_LPS || o->kind == PDK_MODEL_CORRESPONDENCE,
+            ctx, PDK_ERR_UNSUPPORTED,
+            "%s model: float storage is not implemented yet; use precision double",
+            pdk_model_kind_name(o->kind));
   return PDK_SUCCESS;
 }
 
