@@ -5,7 +5,9 @@
  *   - every registered particle field (x, v, f, the model's fields, sets, ...), generic over the
  *     registry, stored [num_comp][n] in the field's own type;
  *   - the model's bond state bond_alive [num_bonds] and critical stretches s0 [n], and its
- *     counters num_broken, num_flagged;
+ *     counters num_broken, num_flagged; for the ul connectivity the families of the last rebuild
+ *     (ul_bond_start [n+1], ul_bond_j) and the rebuild count (their weights and shape are
+ *     recomputed from the restored "ul_X" and "ul_volume", the data they were computed from);
  *   - the solver's time, step, dt, strain energy of the last pass and accumulated external work.
  * Everything else is rebuilt identically from the scene (families, constraint maps, reaction
  * masks) or is scratch that the next force pass overwrites (PMB/LPS s0_next, correspondence W).
@@ -21,6 +23,7 @@
 #include <string.h>
 
 #include "explicit_impl.h"
+#include "families_impl.h"
 #include "h5io.h"
 #include "pdk/output.h"
 
@@ -118,6 +121,19 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   if (m->bond_alive)
     PDK_CALL_GOTO(write_array(ctx, g, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
   if (m->s0) PDK_CALL_GOTO(write_array(ctx, g, "s0", PDK_F64, (hsize_t)n, m->s0));
+  if (m->ops == &pdk_model_ops_corr_ul) {
+    /* UL: the families of the last rebuild (none before the first) and the rebuild count. */
+    pdk_families *cur = pdk_model_current_families(m);
+    const int rebuilt = cur != m->fam;
+    PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "ul_rebuilt", rebuilt));
+    PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "ul_num_rebuilds", m->num_rebuilds));
+    if (rebuilt) {
+      PDK_CALL_GOTO(write_array(ctx, g, "ul_bond_start", PDK_I64, (hsize_t)n + 1,
+                                pdk_families_bond_start(cur)));
+      PDK_CALL_GOTO(write_array(ctx, g, "ul_bond_j", PDK_I32,
+                                (hsize_t)pdk_families_num_bonds(cur), pdk_families_bond_j(cur)));
+    }
+  }
   H5Gclose(g);
   g = -1;
 
@@ -273,6 +289,33 @@ cleanup:
   return err;
 }
 
+/* UL: the families of the last rebuild from /model/ul_bond_start and ul_bond_j (after the fields,
+ * whose "ul_X" the weights are computed from), or the initial families when none was stored. */
+static int restore_ul(pdk_ctx *ctx, hid_t gm, pdk_model *m, int64_t rebuilt, int64_t num_rebuilds) {
+  int err = PDK_SUCCESS;
+  pdk_bond_index *bs = NULL;
+  pdk_index *bj = NULL;
+  pdk_families *fam = NULL;
+  const pdk_index n = pdk_particles_count(m->p);
+  if (rebuilt) {
+    bs = malloc(((size_t)n + 1) * sizeof *bs);
+    PDK_CHECK_GOTO(bs, ctx, PDK_ERR_MEMORY, "out of memory reading ul families");
+    PDK_CALL_GOTO(read_array(ctx, gm, "ul_bond_start", PDK_I64, (hsize_t)n + 1, bs));
+    PDK_CHECK_GOTO(bs[n] >= 0, ctx, PDK_ERR_IO, "checkpoint: ul_bond_start ends at %lld",
+                   (long long)bs[n]);
+    bj = malloc(((size_t)bs[n] + 1) * sizeof *bj);
+    PDK_CHECK_GOTO(bj, ctx, PDK_ERR_MEMORY, "out of memory reading %lld ul bonds",
+                   (long long)bs[n]);
+    PDK_CALL_GOTO(read_array(ctx, gm, "ul_bond_j", PDK_I32, (hsize_t)bs[n], bj));
+    PDK_CALL_GOTO(pdk_families_from_csr(ctx, n, pdk_families_horizon(m->fam), bs, bj, &fam));
+  }
+  err = pdk_model_corr_ul_restore(m, fam, (long)num_rebuilds); /* takes fam */
+cleanup:
+  free(bs);
+  free(bj);
+  return err;
+}
+
 /* Particle geometry that must match bit for bit: the checkpoint's id, X and volume against p's. */
 static int check_geometry(pdk_ctx *ctx, const char *path, hid_t g, pdk_particles *p) {
   static const char *const names[3] = {"id", "X", "volume"};
@@ -345,6 +388,18 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
                   v ? "can" : "cannot", m->bond_alive ? "can" : "cannot");
   PDK_CHECK_GOTO(!m->s0 || H5Lexists(gm, "s0", H5P_DEFAULT) > 0, ctx, PDK_ERR_IO,
                  "checkpoint '%s' lacks /model/s0", path);
+  const int is_ul = m->ops == &pdk_model_ops_corr_ul;
+  int64_t ul_rebuilt = 0, ul_num_rebuilds = 0;
+  if (pdk_h5_attr_exists(gm, "ul_rebuilt")) {
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "ul_rebuilt", &ul_rebuilt));
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "ul_num_rebuilds", &ul_num_rebuilds));
+    if (!is_ul)
+      CKPT_MISMATCH(ctx, path, "it is of a ul (updated-Lagrangian) model, this simulation's "
+                               "connectivity is not ul");
+  } else if (is_ul) {
+    CKPT_MISMATCH(ctx, path, "this simulation's model is ul (updated-Lagrangian), the checkpoint's "
+                             "is not");
+  }
 
   PDK_H5_CALL_GOTO(ctx, gf, H5Gopen2(file, "fields", H5P_DEFAULT));
   for (int k = 0; k < pdk_particles_num_fields(p); ++k) {
@@ -407,6 +462,7 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
   if (m->bond_alive)
     PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
   if (m->s0) PDK_CALL_GOTO(read_array(ctx, gm, "s0", PDK_F64, (hsize_t)n, m->s0));
+  if (is_ul) PDK_CALL_GOTO(restore_ul(ctx, gm, m, ul_rebuilt, ul_num_rebuilds));
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_broken", &v));
   m->num_broken = (pdk_bond_index)v;
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_flagged", &v));

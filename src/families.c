@@ -41,6 +41,7 @@
 #endif
 
 #include "cells.h"
+#include "families_impl.h"
 #include "kernels.h"
 
 /* Orientation filters below bound the round-off of a specific sequence of roundings; fused
@@ -54,6 +55,9 @@ struct pdk_families {
   pdk_bond_index num_bonds;   /* directed bonds */
   pdk_bond_index *bond_start; /* [n+1] */
   pdk_index *bond_j;          /* [num_bonds] (allocated for at least one entry) */
+  int num_precracks;          /* the pre-cracks of the build, copied (src/families_impl.h) */
+  pdk_precrack *precracks;
+  double *precrack_vertices;
 };
 
 pdk_families_opts pdk_families_opts_default(void) {
@@ -782,6 +786,28 @@ static pdk_index *alloc_bond_j(size_t count) {
   return aligned_alloc(PDK_ALIGN, (bytes + PDK_ALIGN - 1) / PDK_ALIGN * PDK_ALIGN);
 }
 
+/* Keeps a copy of the pre-cracks in f (for rebuilds in another configuration). */
+static int copy_precracks(pdk_ctx *ctx, pdk_families *f, int dim, const pdk_families_opts *o) {
+  if (o->num_precracks <= 0) return PDK_SUCCESS;
+  size_t nv = 0;
+  for (int k = 0; k < o->num_precracks; ++k)
+    nv += (size_t)o->precracks[k].num_vertices;
+  f->precracks = calloc((size_t)o->num_precracks, sizeof *f->precracks);
+  f->precrack_vertices = malloc(nv * (size_t)dim * sizeof(double));
+  PDK_CHECK(f->precracks && f->precrack_vertices, ctx, PDK_ERR_MEMORY,
+            "out of memory keeping %d pre-cracks", o->num_precracks);
+  size_t at = 0;
+  for (int k = 0; k < o->num_precracks; ++k) {
+    const size_t len = (size_t)o->precracks[k].num_vertices * (size_t)dim;
+    memcpy(f->precrack_vertices + at, o->precracks[k].vertices, len * sizeof(double));
+    f->precracks[k].num_vertices = o->precracks[k].num_vertices;
+    f->precracks[k].vertices = f->precrack_vertices + at;
+    at += len;
+  }
+  f->num_precracks = o->num_precracks;
+  return PDK_SUCCESS;
+}
+
 /* ---- the driver ------------------------------------------------------------------------------ */
 
 /* Splits the cells (in `cells` order) into nblocks blocks of about equal particle counts:
@@ -973,6 +999,7 @@ int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts_in, pdk_f
     PDK_CALL_GOTO(scan_pass(ctx, &sh, cells, block_start, nblocks, count, f->bond_start, f->bond_j,
                             INT64_MAX, NULL));
   }
+  PDK_CALL_GOTO(copy_precracks(ctx, f, dim, &opts));
   *out = f;
   f = NULL;
 cleanup:
@@ -989,6 +1016,8 @@ void pdk_families_destroy(pdk_families **f) {
   if (!f || !*f) return;
   pdk_free_aligned((*f)->bond_start);
   pdk_free_aligned((*f)->bond_j);
+  free((*f)->precracks);
+  free((*f)->precrack_vertices);
   free(*f);
   *f = NULL;
 }
@@ -1006,4 +1035,89 @@ const pdk_index *pdk_families_bond_j(const pdk_families *f) { return f->bond_j; 
 double pdk_families_horizon(const pdk_families *f) { return f->horizon; }
 size_t pdk_families_memory_bytes(const pdk_families *f) {
   return (size_t)(f->n + 1) * sizeof *f->bond_start + (size_t)f->num_bonds * sizeof *f->bond_j;
+}
+
+int pdk_families_precracks(const pdk_families *f, const pdk_precrack **out) {
+  *out = f->num_precracks > 0 ? f->precracks : NULL;
+  return f->num_precracks;
+}
+
+int pdk_families_remove_cut(pdk_families *f, int dim, const double *const X[3],
+                            const pdk_precrack *precracks, int num_precracks) {
+  pdk_ctx *ctx = f->ctx;
+  if (num_precracks <= 0) return PDK_SUCCESS;
+  pdk_families_opts o = pdk_families_opts_default();
+  o.precracks = precracks;
+  o.num_precracks = num_precracks;
+  crack *cr = NULL;
+  PDK_CALL(cracks_prepare(ctx, dim, &o, &cr));
+  pdk_bond_index kept = 0, start = 0;
+  for (pdk_index i = 0; i < f->n; ++i) {
+    const pdk_bond_index end = f->bond_start[i + 1];
+    double xi[3] = {0, 0, 0};
+    for (int a = 0; a < dim; ++a)
+      xi[a] = X[a][i];
+    for (pdk_bond_index b = start; b < end; ++b) {
+      const pdk_index j = f->bond_j[b];
+      double xj[3] = {0, 0, 0};
+      for (int a = 0; a < dim; ++a)
+        xj[a] = X[a][j];
+      int cut = 0;
+      for (int k = 0; k < num_precracks && !cut; ++k) {
+        const crack *c = &cr[k];
+        int touch = 1;
+        for (int a = 0; a < dim; ++a)
+          touch = touch && min_d(xi[a], xj[a]) <= c->hi[a] && max_d(xi[a], xj[a]) >= c->lo[a];
+        if (!touch) continue;
+        const int si = crack_side(c, dim, xi), sj = crack_side(c, dim, xj);
+        if (si * sj > 0) continue;
+        if (i < j)
+          cut = dim == 2 ? crack_cuts2(c, xi, xj, si, sj) : crack_cuts3(c, xi, xj, si, sj);
+        else
+          cut = dim == 2 ? crack_cuts2(c, xj, xi, sj, si) : crack_cuts3(c, xj, xi, sj, si);
+      }
+      if (!cut) f->bond_j[kept++] = j;
+    }
+    start = end;
+    f->bond_start[i + 1] = kept;
+  }
+  f->num_bonds = kept;
+  free(cr);
+  return PDK_SUCCESS;
+}
+
+int pdk_families_from_csr(pdk_ctx *ctx, pdk_index n, double horizon,
+                          const pdk_bond_index *bond_start, const pdk_index *bond_j,
+                          pdk_families **out) {
+  *out = NULL;
+  PDK_CHECK(n >= 0 && bond_start[0] == 0, ctx, PDK_ERR_IO,
+            "families: bond_start[0] is %lld, expected 0", (long long)bond_start[0]);
+  for (pdk_index i = 0; i < n; ++i)
+    PDK_CHECK(bond_start[i + 1] >= bond_start[i], ctx, PDK_ERR_IO,
+              "families: bond_start decreases at particle %d (%lld then %lld)", (int)i,
+              (long long)bond_start[i], (long long)bond_start[i + 1]);
+  const pdk_bond_index nb = bond_start[n];
+  for (pdk_index i = 0; i < n; ++i)
+    for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b)
+      PDK_CHECK(bond_j[b] >= 0 && bond_j[b] < n && bond_j[b] != i, ctx, PDK_ERR_IO,
+                "families: bond %lld of particle %d names neighbour %d (particles 0..%d, no self "
+                "bonds)",
+                (long long)b, (int)i, (int)bond_j[b], (int)n - 1);
+  pdk_families *f = calloc(1, sizeof *f);
+  PDK_CHECK(f, ctx, PDK_ERR_MEMORY, "out of memory for families of %d particles", (int)n);
+  f->ctx = ctx;
+  f->n = n;
+  f->horizon = horizon;
+  f->num_bonds = nb;
+  f->bond_start = pdk_alloc_aligned((size_t)n + 1, sizeof *f->bond_start);
+  f->bond_j = alloc_bond_j((size_t)nb + 1);
+  if (!f->bond_start || !f->bond_j) {
+    pdk_families_destroy(&f);
+    return pdk_ctx_error_set(ctx, PDK_ERR_MEMORY, __func__,
+                             "out of memory for families of %lld bonds", (long long)nb);
+  }
+  memcpy(f->bond_start, bond_start, ((size_t)n + 1) * sizeof *bond_start);
+  if (nb) memcpy(f->bond_j, bond_j, (size_t)nb * sizeof *bond_j);
+  *out = f;
+  return PDK_SUCCESS;
 }

@@ -41,8 +41,8 @@
  * vanish at the horizon (constant, 1/r, 1/r^2) still switch bonds on and off at full weight as
  * pairs cross the horizon, and clump under rebuilds in tension: use linear or cubic with rebuilds.
  * A rebuild, at the positions x of the committing pass that just ran:
- *   1. families from x (pdk_families_build_coords, the same horizon, no pre-cracks), omega per
- *      bond as above;
+ *   1. families from x (pdk_families_build_coords, the same horizon), minus the bonds whose
+ *      initial segment crosses a pre-crack, omega per bond as above;
  *   2. per particle: F_ref <- F (this pass's total F), J_ref <- det F, V_r <- J_ref V0, X_r <- x.
  *      A flagged particle (SPAN or INVERTED) keeps its F_ref and J_ref;
  *   3. the rebuild shape (flag SPAN, m) over the new families.
@@ -51,15 +51,19 @@
  * so the law's stress and energy are too; the force changes, because the family and the
  * quadrature weights do, and so does the Silling term's energy (z restarts at 0).
  *
+ * Pre-cracks: the families keep the pre-cracks they were built with (in the initial
+ * configuration); a rebuild removes every new bond whose initial segment X_i X_j crosses one
+ * (pdk_families_remove_cut), so a pre-crack never heals (tests/t134_ul_precrack_restart.c).
+ * Checkpoints: src/checkpoint.c stores the rebuilt families (bond_start, bond_j) and the rebuild
+ * count; pdk_model_corr_ul_restore takes them back and recomputes the weights (from "ul_X", the
+ * positions they were weighed at) and the rebuild shape, so a restored run continues bitwise.
  * Not supported (refused at creation or documented): bond breaking (critical stretch, Johnson-
- * Cook failure breaking bonds): a rebuild would re-bond broken pairs; pre-cracks are not known to
- * a rebuild and heal at the first one; float storage; checkpoints do not store the rebuilt
- * families, so a restored UL run restarts from its initial families (run with ul_skin = 0, or
- * restart only before the first rebuild).
+ * Cook failure breaking bonds): a rebuild would re-bond broken pairs; float storage.
  */
 #include <math.h>
 #include <string.h>
 
+#include "families_impl.h"
 #include "kernels.h"
 #include "model_impl.h"
 
@@ -320,6 +324,19 @@ static int ul_rebuild_now(pdk_model *m) {
   pdk_families_opts fo = pdk_families_opts_default();
   fo.horizon = c->k.horizon;
   PDK_CALL(pdk_families_build_coords(ctx, dim, n, x, pdk_particles_id(p), &fo, &fam));
+  {
+    /* Pre-cracks live in the initial configuration: a pair whose initial segment crosses one is
+     * never bonded again, whatever its current distance. */
+    const pdk_precrack *pc = NULL;
+    const int num_pc = pdk_families_precracks(m->fam, &pc);
+    const double *X0[3] = {pdk_particles_X(p, 0), pdk_particles_X(p, 1),
+                           dim == 3 ? pdk_particles_X(p, 2) : NULL};
+    const int e = pdk_families_remove_cut(fam, dim, X0, pc, num_pc);
+    if (e) {
+      pdk_families_destroy(&fam);
+      return e;
+    }
+  }
   const pdk_bond_index nb = pdk_families_num_bonds(fam);
   omega = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
   if (!omega) {
@@ -480,6 +497,34 @@ static int ul_force(pdk_model *m, int commit, double *energy) {
     *energy = e;
   }
   if (commit && m->opts.ul_skin > 0.0 && ul_over_skin(m)) PDK_CALL(ul_rebuild_now(m));
+  return PDK_SUCCESS;
+}
+
+int pdk_model_corr_ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds) {
+  ul_impl *c = m->impl;
+  pdk_families *use = fam ? fam : m->fam;
+  const pdk_bond_index nb = pdk_families_num_bonds(use);
+  double *omega = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
+  if (!omega) {
+    pdk_families_destroy(&fam);
+    return pdk_ctx_error_set(m->ctx, PDK_ERR_MEMORY, __func__,
+                             "out of memory for the bond weights of restored ul families (%lld "
+                             "bonds)",
+                             (long long)nb);
+  }
+  pdk_particles *p = m->p;
+  const int dim = pdk_particles_dim(p);
+  /* The positions of the last rebuild: the "x" the rebuild weighed its bonds with. */
+  const double *xr[3] = {pdk_particles_field_data(p, "ul_X", 0),
+                         pdk_particles_field_data(p, "ul_X", 1),
+                         dim == 3 ? pdk_particles_field_data(p, "ul_X", 2) : NULL};
+  (void)ul_omega(m, use, fam ? xr : NULL, omega);
+  pdk_families_destroy(&c->own);
+  c->own = fam;
+  pdk_free_aligned(c->bond_omega);
+  c->bond_omega = omega;
+  (void)ul_shape(m);
+  m->num_rebuilds = num_rebuilds;
   return PDK_SUCCESS;
 }
 

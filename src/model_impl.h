@@ -44,6 +44,10 @@ extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connecti
 /* UL only (m->ops == &pdk_model_ops_corr_ul): rebuild the families at the current x now; the
  * families the passes walk now. */
 int pdk_model_corr_ul_rebuild(pdk_model *m);
+/* UL only: make `fam` (owned from now on; NULL: the families given at creation) the families the
+ * passes walk, as a rebuild left them: weights from "ul_X", rebuild shape; num_rebuilds set.
+ * Used by checkpoint restore after the fields were read. */
+int pdk_model_corr_ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds);
 pdk_families *pdk_model_corr_ul_families(const pdk_model *m);
 
 /* Influence function omega(r) for r <= delta (see pdk_influence). */

@@ -109,8 +109,9 @@ typedef enum pdk_connectivity {
                              (Kirchhoff) stress force states sigma M^-1 Y; the families are rebuilt
                              in the current configuration by a committing pass when particles
                              moved more than ul_skin delta / 2 since the last rebuild, and the
-                             reference data (positions, volumes, F) are updated there. No bond
-                             breaking, no pre-cracks across rebuilds, no float storage yet.
+                             reference data (positions, volumes, F) are updated there; a rebuild
+                             never bonds across a pre-crack. No bond breaking, no float storage
+                             yet.
                              Rebuilt bonds weigh omega(min(initial, current length)), which keeps
                              rebuilt runs stable in tension with an influence function that
                              vanishes at the horizon (linear, cubic; t133). docs/connectivity.md */

@@ -107,8 +107,10 @@ int pdk_output_close(pdk_output **o, int success);
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
  * dataset /scene); /solver attributes time, step, dt, strain, external_work;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
- * s0 f64 [n] when the model can break bonds; /fields/<name> [num_comp][n] in the field's type,
- * attributes type (pdk_type) and components. */
+ * s0 f64 [n] when the model can break bonds; with ul connectivity also attributes ul_rebuilt,
+ * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and
+ * ul_bond_j i32; /fields/<name> [num_comp][n] in the field's type, attributes type (pdk_type)
+ * and components. */
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text);
 /* Checks the checkpoint against the simulation first (dimension, particle count, bond count,
  * model kind, bond state, every field's type and shape, ids, reference positions and volumes)
