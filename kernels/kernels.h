@@ -76,6 +76,9 @@ typedef struct pdk_pmb_consts {
   double c;          /* micromodulus [pressure / length^(dim+1)] */
   double vs_a, vs_b; /* partial volume factor min(1, (vs_a - r0) * vs_b); vs_a = +inf: off */
   double s00, alpha; /* s0 rule: s0_next = max over intact bonds of (s00 - alpha s) */
+  /* Multi-material: per-particle micromodulus [n_pad]; bond i-j uses 2 c_i c_j / (c_i + c_j)
+   * instead of c. NULL: c for every bond. */
+  const double *c_particle;
 } pdk_pmb_consts;
 
 typedef struct pdk_lps_consts {
@@ -241,7 +244,21 @@ typedef struct pdk_corr_consts {
   double dt;                      /* step length passed to the update [time] (> 0) */
   int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
   int break_failed;               /* 1: bonds of failed particles break (both ends) */
+  /* Multi-material: per-particle lambda, mu and stab_modulus [n_pad]; NULL: the scalars above. */
+  const double *lambda_p, *mu_p, *stab_p;
 } pdk_corr_consts;
+
+/* The constants of particle i: k itself for a one-material body, else a copy in *tmp with i's
+ * lambda, mu and stab_modulus. */
+static inline const pdk_corr_consts *pdk_corr_consts_at(const pdk_corr_consts *k, pdk_index i,
+                                                         pdk_corr_consts *tmp) {
+  if (!k->mu_p) return k;
+  *tmp = *k;
+  tmp->lambda = k->lambda_p[i];
+  tmp->mu = k->mu_p[i];
+  tmp->stab_modulus = k->stab_p[i];
+  return tmp;
+}
 
 /* Arrays the kernels read and write. Per-particle arrays are [n_pad]; tensors are dim*dim such
  * arrays, component [a][c] at index a*dim + c. Kernels copy these into restrict locals. */

@@ -132,6 +132,8 @@ static void half_kick(pdk_explicit *e, double t) {
   const int dim = e->dim;
   const pdk_index n = e->n;
   const double h = 0.5 * e->dt / e->rho;
+  const double half_dt = 0.5 * e->dt;
+  const double *rho_p = e->m->mat_density; /* multi-material: per-particle density */
   const int nb = num_body_forces(e);
   const uint8_t *member[64] = {0};
   for (int k = 0; k < e->opts.num_bcs && k < 64; ++k)
@@ -142,11 +144,11 @@ static void half_kick(pdk_explicit *e, double t) {
     const int32_t *bc_of = e->bc_of[c];
     int nthreads = e->ctx->num_threads;
     const pdk_explicit *ec = e;
-#pragma omp parallel for default(none) shared(v, f, bc_of, n, h, nb, ec, member, c, t) schedule(static) num_threads(nthreads)
+#pragma omp parallel for default(none) shared(v, f, bc_of, n, h, half_dt, rho_p, nb, ec, member, c, t) schedule(static) num_threads(nthreads)
     for (pdk_index i = 0; i < n; ++i) {
       if (bc_of[i] >= 0) continue;
       double b = nb ? body_force(ec, member, i, c, t) : 0.0;
-      v[i] += h * (f[i] + b);
+      v[i] += (rho_p ? half_dt / rho_p[i] : h) * (f[i] + b);
     }
   }
 }
@@ -238,20 +240,21 @@ static double kinetic_energy(pdk_explicit *e) {
   double *part = malloc((size_t)nblk * sizeof *part);
   if (!part) return NAN;
   int nthreads = e->ctx->num_threads;
-#pragma omp parallel for default(none) shared(part, nblk, n, vol, v0, v1, v2, dim) schedule(static) num_threads(nthreads)
+  const double *rho_p = e->m->mat_density; /* multi-material: per-particle density */
+#pragma omp parallel for default(none) shared(part, nblk, n, vol, v0, v1, v2, dim, rho_p) schedule(static) num_threads(nthreads)
   for (pdk_index b = 0; b < nblk; ++b) {
     pdk_index lo = b * PDK_RED_BLOCK, hi = lo + PDK_RED_BLOCK < n ? lo + PDK_RED_BLOCK : n;
     double s = 0.0;
     for (pdk_index i = lo; i < hi; ++i) {
       double w2 = v0[i] * v0[i] + v1[i] * v1[i] + (dim == 3 ? v2[i] * v2[i] : 0.0);
-      s += vol[i] * w2;
+      s += (rho_p ? rho_p[i] * vol[i] : vol[i]) * w2;
     }
     part[b] = s;
   }
   double total = 0.0;
   for (pdk_index b = 0; b < nblk; ++b) total += part[b];
   free(part);
-  return 0.5 * e->rho * total;
+  return 0.5 * (rho_p ? 1.0 : e->rho) * total;
 }
 
 /* Reaction on a set: R = -sum_{i in set} V_i f_i, in index order (serial: sets are small). */
@@ -273,14 +276,15 @@ static void reactions(pdk_explicit *e, double out[][3]) {
 /* Kinetic energy of the prescribed components: the constraints supply its changes. */
 static double constrained_kinetic(pdk_explicit *e) {
   const double *vol = pdk_particles_volume(e->p);
+  const double *rho_p = e->m->mat_density;
   double s = 0.0;
   for (int c = 0; c < e->dim; ++c) {
     const double *v = field(e->p, "v", c);
     const int32_t *bc_of = e->bc_of[c];
     for (pdk_index i = 0; i < e->n; ++i)
-      if (bc_of[i] >= 0) s += vol[i] * v[i] * v[i];
+      if (bc_of[i] >= 0) s += (rho_p ? rho_p[i] * vol[i] : vol[i]) * v[i] * v[i];
   }
-  return 0.5 * e->rho * s;
+  return 0.5 * (rho_p ? 1.0 : e->rho) * s;
 }
 
 /* Power of the constraints and body forces on the body at the current state:
@@ -358,7 +362,7 @@ static int estimate_stable_dt(pdk_explicit *e) {
       h *= 0x94D049BB133111EBull;
       h ^= h >> 29;
       q[c][i] = ((double)(h >> 11) / 9007199254740992.0) - 0.5;
-      norm2 += e->rho * vol[i] * q[c][i] * q[c][i];
+      norm2 += pdk_model_density_of(e->m, i) * vol[i] * q[c][i] * q[c][i];
     }
   double inv = 1.0 / sqrt(norm2);
   for (int c = 0; c < dim; ++c)
@@ -381,8 +385,9 @@ static int estimate_stable_dt(pdk_explicit *e) {
     for (int c = 0; c < dim; ++c) {
       const double *f = field(e->p, "f", c);
       for (pdk_index i = 0; i < n; ++i) {
-        w[c][i] = -(f[i] - f0[c][i]) / (eps * e->rho);
-        a += e->rho * vol[i] * w[c][i] * q[c][i];
+        const double rho_i = pdk_model_density_of(e->m, i);
+        w[c][i] = -(f[i] - f0[c][i]) / (eps * rho_i);
+        a += rho_i * vol[i] * w[c][i] * q[c][i];
       }
     }
     alpha[k] = a;
@@ -390,7 +395,7 @@ static int estimate_stable_dt(pdk_explicit *e) {
     for (int c = 0; c < dim; ++c)
       for (pdk_index i = 0; i < n; ++i) {
         w[c][i] -= a * q[c][i] + beta[k] * qprev[c][i];
-        b2 += e->rho * vol[i] * w[c][i] * w[c][i];
+        b2 += pdk_model_density_of(e->m, i) * vol[i] * w[c][i] * w[c][i];
       }
     beta[k + 1] = sqrt(b2);
     if (!(beta[k + 1] > 1e-12 * fabs(a)) || k + 1 == kmax) {

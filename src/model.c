@@ -147,6 +147,86 @@ static int resolve_jc_constants(pdk_ctx *ctx, pdk_model_opts *o) {
   return PDK_SUCCESS;
 }
 
+/* Multi-material: checks the materials and the "material" field, copies the materials, and fills
+ * the per-particle constants. One-material bodies: nothing. */
+static int setup_materials(pdk_model *m, const pdk_model_opts *in) {
+  pdk_ctx *ctx = m->ctx;
+  const int nm = in->num_materials;
+  if (nm == 0) return PDK_SUCCESS;
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index n_pad = pdk_particles_count_padded(m->p);
+  pdk_type type;
+  int comp;
+  PDK_CHECK(pdk_particles_field_exists(m->p, "material"), ctx, PDK_ERR_ARG,
+            "%d materials given but the particle store has no \"material\" field; add an int32 "
+            "field \"material\" holding each particle's material index",
+            nm);
+  PDK_CALL(pdk_particles_field_info(m->p, "material", &type, &comp));
+  PDK_CHECK(type == PDK_I32 && comp == 1, ctx, PDK_ERR_ARG,
+            "the \"material\" field must be int32 with one component (type %d, %d components)",
+            (int)type, comp);
+  const int32_t *mat = pdk_particles_field_data(m->p, "material", 0);
+  for (pdk_index i = 0; i < n; ++i)
+    PDK_CHECK(mat[i] >= 0 && mat[i] < nm, ctx, PDK_ERR_ARG,
+              "particle id %lld has material %d; materials are 0 .. %d",
+              (long long)pdk_particles_id(m->p)[i], (int)mat[i], nm - 1);
+  m->materials = malloc((size_t)nm * sizeof *m->materials);
+  m->mat_bulk = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+  m->mat_shear = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+  m->mat_density = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+  PDK_CHECK(m->materials && m->mat_bulk && m->mat_shear && m->mat_density, ctx, PDK_ERR_MEMORY,
+            "out of memory for the per-particle material constants");
+  memcpy(m->materials, in->materials, (size_t)nm * sizeof *m->materials);
+  m->opts.materials = m->materials;
+  for (pdk_index i = 0; i < n; ++i) {
+    const pdk_material *q = &m->materials[mat[i]];
+    m->mat_bulk[i] = q->bulk_modulus;
+    m->mat_shear[i] = q->shear_modulus;
+    m->mat_density[i] = q->density;
+  }
+  if (in->kind == PDK_MODEL_CORRESPONDENCE) {
+    /* As the one-material drivers compute lambda and the stabilization modulus. */
+    const double c_d = pdk_particles_dim(m->p) == 3 ? 72.0 / 5.0 : 36.0 / 5.0;
+    m->mat_lambda = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+    m->mat_stab = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+    PDK_CHECK(m->mat_lambda && m->mat_stab, ctx, PDK_ERR_MEMORY,
+              "out of memory for the per-particle material constants");
+    for (pdk_index i = 0; i < n; ++i) {
+      m->mat_lambda[i] = m->mat_bulk[i] - 2.0 * m->mat_shear[i] / 3.0;
+      m->mat_stab[i] = in->stab_coefficient * c_d * m->mat_bulk[i];
+    }
+  }
+  return PDK_SUCCESS;
+}
+
+/* Multi-material options: each material's constants, and the models that support them. */
+static int check_materials(pdk_ctx *ctx, const pdk_model_opts *o) {
+  PDK_CHECK(o->num_materials >= 0 && o->num_materials <= 65536, ctx, PDK_ERR_ARG,
+            "num_materials must lie in [0, 65536], got %d", o->num_materials);
+  if (o->num_materials == 0) return PDK_SUCCESS;
+  PDK_CHECK(o->materials, ctx, PDK_ERR_ARG, "num_materials is %d but materials is NULL",
+            o->num_materials);
+  PDK_CHECK(o->kind != PDK_MODEL_LPS, ctx, PDK_ERR_UNSUPPORTED,
+            "lps model: several materials are not implemented; use pmb or correspondence, or one "
+            "material");
+  PDK_CHECK(o->law != PDK_LAW_JC || o->kind != PDK_MODEL_CORRESPONDENCE, ctx, PDK_ERR_UNSUPPORTED,
+            "the Johnson-Cook law takes one material (its parameters); several materials work "
+            "with the elastic laws");
+  for (int k = 0; k < o->num_materials; ++k) {
+    const pdk_material *q = &o->materials[k];
+    PDK_CHECK(isfinite(q->bulk_modulus) && q->bulk_modulus > 0, ctx, PDK_ERR_ARG,
+              "material %d: bulk modulus must be a positive finite pressure, got %g", k,
+              q->bulk_modulus);
+    PDK_CHECK(o->kind == PDK_MODEL_PMB || (isfinite(q->shear_modulus) && q->shear_modulus > 0),
+              ctx, PDK_ERR_ARG,
+              "material %d: shear modulus must be a positive finite pressure, got %g", k,
+              q->shear_modulus);
+    PDK_CHECK(isfinite(q->density) && q->density > 0, ctx, PDK_ERR_ARG,
+              "material %d: density must be positive and finite, got %g", k, q->density);
+  }
+  return PDK_SUCCESS;
+}
+
 /* Bonds can break: a critical stretch, or failed Johnson-Cook particles that break theirs. */
 static int model_can_break(const pdk_model_opts *o) {
   return o->critical_stretch > 0 ||
@@ -165,6 +245,12 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   if (resolved.law == PDK_LAW_JC && resolved.kind == PDK_MODEL_CORRESPONDENCE) {
     PDK_CALL(pdk_jc_params_check(ctx, &resolved.jc));
     PDK_CALL(resolve_jc_constants(ctx, &resolved));
+  }
+  PDK_CALL(check_materials(ctx, &resolved));
+  if (resolved.num_materials > 0) {
+    resolved.bulk_modulus = resolved.materials[0].bulk_modulus;
+    resolved.shear_modulus = resolved.materials[0].shear_modulus;
+    resolved.density = resolved.materials[0].density;
   }
   PDK_CALL(check_opts(ctx, opts));
   PDK_CHECK(pdk_families_num_particles(fam) == pdk_particles_count(p), ctx, PDK_ERR_ARG,
@@ -189,6 +275,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   }
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,
                  "model kind '%s' is not part of this build", pdk_model_kind_name(opts->kind));
+  PDK_CALL_GOTO(setup_materials(m, opts));
   const int dim = pdk_particles_dim(p);
   const pdk_index n = pdk_particles_count(p);
   if (!pdk_particles_field_exists(p, "x")) {
@@ -223,6 +310,12 @@ void pdk_model_destroy(pdk_model **mp) {
   if (m->ops && m->ops->destroy) m->ops->destroy(m);
   pdk_free_aligned(m->bond_alive);
   pdk_free_aligned(m->s0);
+  pdk_free_aligned(m->mat_bulk);
+  pdk_free_aligned(m->mat_shear);
+  pdk_free_aligned(m->mat_density);
+  pdk_free_aligned(m->mat_lambda);
+  pdk_free_aligned(m->mat_stab);
+  free(m->materials);
   free(m);
   *mp = NULL;
 }
@@ -239,6 +332,20 @@ const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m->bond_alive; 
 pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; }
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
+pdk_index pdk_model_num_isolated(const pdk_model *m) {
+  /* The bond state indexes the families given at creation; ul (no bond state) walks its own. */
+  const pdk_families *fam = m->bond_alive ? m->fam : pdk_model_current_families(m);
+  const pdk_bond_index *bs = pdk_families_bond_start(fam);
+  const pdk_index n = pdk_families_num_particles(fam);
+  pdk_index count = 0;
+  for (pdk_index i = 0; i < n; ++i) {
+    int intact = 0;
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1] && !intact; ++b)
+      intact = !m->bond_alive || m->bond_alive[b];
+    count += !intact;
+  }
+  return count;
+}
 long pdk_model_num_compactions(const pdk_model *m) { return m->num_compactions; }
 long pdk_model_num_rebuilds(const pdk_model *m) { return m->num_rebuilds; }
 

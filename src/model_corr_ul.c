@@ -296,6 +296,9 @@ static int ul_setup(pdk_model *m) {
   k->lambda = o->bulk_modulus - 2.0 * o->shear_modulus / 3.0;
   k->stab = (int)o->stabilization;
   k->stab_modulus = o->stab_coefficient * (dim == 3 ? 72.0 / 5.0 : 36.0 / 5.0) * o->bulk_modulus;
+  k->lambda_p = m->mat_lambda; /* multi-material (NULL for one material) */
+  k->mu_p = m->mat_lambda ? m->mat_shear : NULL;
+  k->stab_p = m->mat_stab;
   k->horizon = pdk_families_horizon(m->fam);
   k->span_rtol = PDK_CORR_SPAN_RTOL;
   k->jc = o->law == PDK_LAW_JC ? &m->opts.jc : NULL;

@@ -34,7 +34,16 @@ struct pdk_model {
   long num_compactions;  /* semi-TL bond-list compactions */
   long num_rebuilds;     /* UL family rebuilds */
   double dt;             /* time step for history updates; 0 until pdk_model_set_dt */
+  /* Multi-material (opts.num_materials > 0): per-particle constants [n_pad], else NULL. */
+  double *mat_bulk, *mat_shear, *mat_density;
+  double *mat_lambda, *mat_stab; /* correspondence: lambda = K - 2G/3, stabilization modulus */
+  pdk_material *materials; /* copy of opts.materials (opts.materials points here) */
 };
+
+/* Density of particle i: the material's, or opts.density for a one-material body. */
+static inline double pdk_model_density_of(const pdk_model *m, pdk_index i) {
+  return m->mat_density ? m->mat_density[i] : m->opts.density;
+}
 
 extern const pdk_model_ops pdk_model_ops_pmb;
 extern const pdk_model_ops pdk_model_ops_lps;

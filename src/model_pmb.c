@@ -42,6 +42,7 @@ typedef struct pmb_impl {
   double *w;            /* [n_pad] strain energy density, allocated on first request */
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows, float bond lengths */
+  double *c_particle;   /* [n_pad] multi-material micromodulus per particle, or NULL */
 } pmb_impl;
 
 /* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
@@ -56,6 +57,13 @@ static void partial_volume_consts(double delta, double lattice, double *vs_a, do
   }
 }
 
+/* The micromodulus of bulk modulus K (the header); 2-D divides by the out-of-plane thickness the
+ * particle volumes include. */
+static double pmb_micromodulus(int dim, double K, double delta, double thickness) {
+  return dim == 3 ? 18.0 * K / (M_PI * delta * delta * delta * delta)
+                  : 72.0 * K / (5.0 * M_PI * delta * delta * delta * thickness);
+}
+
 static int pmb_setup(pdk_model *m) {
   pdk_ctx *ctx = m->ctx;
   const pdk_model_opts *o = &m->opts;
@@ -68,9 +76,14 @@ static int pmb_setup(pdk_model *m) {
   const double delta = pdk_families_horizon(m->fam);
   PDK_CHECK(isfinite(delta) && delta > 0, ctx, PDK_ERR_ARG,
             "pmb model: the families' horizon must be positive, got %g", delta);
-  const double K = o->bulk_modulus;
-  im->k.c = im->dim == 3 ? 18.0 * K / (M_PI * delta * delta * delta * delta)
-                         : 72.0 * K / (5.0 * M_PI * delta * delta * delta * o->thickness);
+  im->k.c = pmb_micromodulus(im->dim, o->bulk_modulus, delta, o->thickness);
+  if (m->mat_bulk) { /* multi-material: bond i-j takes the series value of c_i and c_j */
+    im->c_particle = pdk_alloc_aligned((size_t)pdk_particles_count_padded(m->p), sizeof(double));
+    PDK_CHECK(im->c_particle, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for micromoduli");
+    for (pdk_index i = 0; i < im->n; ++i)
+      im->c_particle[i] = pmb_micromodulus(im->dim, m->mat_bulk[i], delta, o->thickness);
+    im->k.c_particle = im->c_particle;
+  }
   partial_volume_consts(delta, o->lattice_constant, &im->k.vs_a, &im->k.vs_b);
   im->k.s00 = o->critical_stretch;
   im->k.alpha = o->alpha;
@@ -103,8 +116,10 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   arrays.w = energy ? im->w : NULL;
   const pdk_bond_arrays *a = &arrays;
   const pdk_bond_data *bd = &im->bd;
-  const pdk_pmb_force_fn kernel = ctx->kernels.pmb_force;
-  const int pack = bd->cur4 != NULL;
+  /* A multi-material body takes the reference kernel: only it reads the per-particle micromoduli
+   * (the SIMD kernels use the one constant c). */
+  const pdk_pmb_force_fn kernel = im->c_particle ? pdk_kernel_pmb_force_ref : ctx->kernels.pmb_force;
+  const int pack = bd->cur4 != NULL && !im->c_particle;
   const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;
@@ -139,6 +154,7 @@ static void pmb_destroy(pdk_model *m) {
   if (!im) return;
   pdk_free_aligned(im->s0_next);
   pdk_free_aligned(im->w);
+  pdk_free_aligned(im->c_particle);
   free(im->block_energy);
   pdk_bond_data_free(&im->bd);
   free(im);

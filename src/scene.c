@@ -57,6 +57,8 @@ typedef struct sc_region {
   sc_halfspace *halfspace;
   sc_polygon *polygon;
   bool invert; /* notches and sets */
+  /* materials entries only */
+  double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
 } sc_region;
 typedef struct sc_precrack {
   double (*segment)[3];
@@ -135,6 +137,8 @@ typedef struct sc_scene {
   sc_model model;
   sc_region *sets;
   unsigned sets_count;
+  sc_region *materials;
+  unsigned materials_count;
   sc_bc *boundary_conditions;
   unsigned boundary_conditions_count;
   sc_initial initial_conditions;
@@ -193,11 +197,12 @@ static const cyaml_strval_t fd_scheme_names[] = {{"central", PDK_FD_CENTRAL},
 
 /* Built at run time because a point has `dim` entries; lives on the loader's stack. */
 typedef struct scene_schema {
-  cyaml_schema_value_t num, str, point, region_entry, notch_entry, set_entry, precrack_entry,
-      bc_entry, top;
+  cyaml_schema_value_t num, str, point, region_entry, notch_entry, set_entry, material_entry,
+      precrack_entry, bc_entry, top;
   cyaml_schema_field_t box[SC_MAX_FIELDS], ball[SC_MAX_FIELDS], halfspace[SC_MAX_FIELDS],
       polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
-      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS], jc[SC_MAX_FIELDS],
+      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
+      material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS],
       model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS], initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS],
       output[SC_MAX_FIELDS], scene[SC_MAX_FIELDS];
 } scene_schema;
@@ -252,6 +257,16 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(set, CYAML_FIELD_STRING_PTR("name", 0, sc_region, name, 1, 255));
   schema_region_kinds(sc, sc->set);
   ADD(set, CYAML_FIELD_BOOL("invert", OPT, sc_region, invert));
+  ADD(material_region, CYAML_FIELD_STRING_PTR("name", 0, sc_region, name, 1, 255));
+  schema_region_kinds(sc, sc->material_region);
+  ADD(material_region, CYAML_FIELD_BOOL("invert", OPT, sc_region, invert));
+  ADD(material_region, CYAML_FIELD_FLOAT("density", 0, sc_region, density));
+  ADD(material_region, CYAML_FIELD_FLOAT("youngs_modulus", OPT, sc_region, youngs_modulus));
+  ADD(material_region, CYAML_FIELD_FLOAT("poisson_ratio", OPT, sc_region, poisson_ratio));
+  ADD(material_region, CYAML_FIELD_FLOAT("bulk_modulus", OPT, sc_region, bulk_modulus));
+  ADD(material_region, CYAML_FIELD_FLOAT("shear_modulus", OPT, sc_region, shear_modulus));
+  sc->material_entry = (cyaml_schema_value_t){
+      CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->material_region)};
   /* Holes, notches and sets load into the same struct; each accepts its own keys. */
   sc->region_entry =
       (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_region, sc->hole)};
@@ -391,6 +406,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(scene, CYAML_FIELD_MAPPING("material", 0, sc_scene, material, sc->material));
   ADD(scene, CYAML_FIELD_MAPPING("model", OPT, sc_scene, model, sc->model));
   ADD(scene, CYAML_FIELD_SEQUENCE("sets", OPT_PTR, sc_scene, sets, &sc->set_entry, 0, 10000));
+  ADD(scene, CYAML_FIELD_SEQUENCE("materials", OPT_PTR, sc_scene, materials, &sc->material_entry,
+                                  0, 255));
   ADD(scene, CYAML_FIELD_SEQUENCE("boundary_conditions", OPT_PTR, sc_scene, boundary_conditions,
                                   &sc->bc_entry, 0, 64));
   ADD(scene,
@@ -1322,6 +1339,75 @@ static int resolve_sets(loader *ld, const sc_scene *d) {
   return PDK_SUCCESS;
 }
 
+/* materials: further materials over regions (material 0 is `material`). Each entry's elastic
+ * constants as `material`'s: E and nu, or K and G (pmb: K alone). */
+static int resolve_materials(loader *ld, const sc_scene *d) {
+  pdk_scene *s = ld->s;
+  pdk_model_opts *m = &s->model;
+  const int nm = (int)d->materials_count;
+  if (nm == 0) return PDK_SUCCESS;
+  REQUIRE(ld, m->kind != PDK_MODEL_LPS, "materials",
+          "several materials are implemented for pmb and correspondence, not lps; use one "
+          "material or model.kind pmb or correspondence");
+  REQUIRE(ld, m->law != PDK_LAW_JC, "materials",
+          "the Johnson-Cook law takes one material (material.johnson_cook); several materials "
+          "work with the elastic laws");
+  s->mat_regions = calloc((size_t)nm + 1, sizeof *s->mat_regions);
+  s->materials = calloc((size_t)nm + 2, sizeof *s->materials);
+  if (!s->mat_regions || !s->materials)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+  s->materials[0] = (pdk_material){m->bulk_modulus, m->shear_modulus, m->density};
+  for (int k = 0; k < nm; ++k) {
+    const sc_region *r = &d->materials[k];
+    const char *nk = K(ld, "materials[%d].name", k);
+    REQUIRE(ld, valid_name(r->name), nk,
+            "'%s' is not a valid material name; use 1 to %d letters, digits, '_', '-' or '.'",
+            r->name, SC_NAME_MAX);
+    for (int q = 0; q < k; ++q)
+      REQUIRE(ld, strcmp(s->mat_regions[q].name, r->name), nk,
+              "the material '%s' is already defined by materials[%d]; names are unique", r->name,
+              q);
+    pdk_scene_region *out = &s->mat_regions[k];
+    out->name = strdup(r->name);
+    s->num_mat_regions = k + 1;
+    if (!out->name)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+    PDK_CALL(region_resolve(ld, r, K(ld, "materials[%d]", k), 1, out));
+    snprintf(out->key, sizeof out->key, "materials[%d]", k);
+    pdk_material *q = &s->materials[k + 1];
+    REQUIRE(ld, isfinite(r->density) && r->density > 0, K(ld, "materials[%d].density", k),
+            "must be > 0, got %g (mass per volume)", r->density);
+    q->density = r->density;
+    const int hE = has(ld, K(ld, "materials[%d].youngs_modulus", k));
+    const int hnu = has(ld, K(ld, "materials[%d].poisson_ratio", k));
+    const int hK = has(ld, K(ld, "materials[%d].bulk_modulus", k));
+    const int hG = has(ld, K(ld, "materials[%d].shear_modulus", k));
+    REQUIRE(ld, (hE && hnu && !hK && !hG) || (!hE && !hnu && hK && (hG || m->kind == PDK_MODEL_PMB)),
+            K(ld, "materials[%d]", k),
+            "needs its elastic constants: youngs_modulus and poisson_ratio, or bulk_modulus and "
+            "shear_modulus (pmb: bulk_modulus alone), not a mix");
+    if (hE) {
+      const double E = r->youngs_modulus, nu = r->poisson_ratio;
+      REQUIRE(ld, isfinite(E) && E > 0, K(ld, "materials[%d].youngs_modulus", k),
+              "must be > 0, got %g", E);
+      REQUIRE(ld, isfinite(nu) && nu > -1 && nu < 0.5, K(ld, "materials[%d].poisson_ratio", k),
+              "must be in (-1, 0.5), got %g", nu);
+      q->bulk_modulus = E / (3 * (1 - 2 * nu));
+      q->shear_modulus = E / (2 * (1 + nu));
+    } else {
+      REQUIRE(ld, isfinite(r->bulk_modulus) && r->bulk_modulus > 0,
+              K(ld, "materials[%d].bulk_modulus", k), "must be > 0, got %g", r->bulk_modulus);
+      REQUIRE(ld, !hG || (isfinite(r->shear_modulus) && r->shear_modulus > 0),
+              K(ld, "materials[%d].shear_modulus", k), "must be > 0, got %g", r->shear_modulus);
+      q->bulk_modulus = r->bulk_modulus;
+      q->shear_modulus = hG ? r->shear_modulus : 0.0;
+    }
+  }
+  m->materials = s->materials;
+  m->num_materials = nm + 1;
+  return PDK_SUCCESS;
+}
+
 static int resolve_bcs(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   const int nb = (int)d->boundary_conditions_count;
@@ -1747,6 +1833,7 @@ static int scene_resolve(loader *ld, const sc_scene *d) {
   PDK_CALL(resolve_geometry(ld, &d->geometry));
   PDK_CALL(resolve_material_model(ld, &d->material, &d->model));
   PDK_CALL(resolve_sets(ld, d));
+  PDK_CALL(resolve_materials(ld, d));
   PDK_CALL(resolve_bcs(ld, d));
   PDK_CALL(resolve_solver(ld, d));
   PDK_CALL(resolve_output(ld, d));
@@ -1892,6 +1979,8 @@ void pdk_scene_destroy(pdk_scene **sp) {
   regions_free(s->holes, s->num_holes);
   regions_free(s->notches, s->num_notches);
   regions_free(s->sets, s->num_sets);
+  regions_free(s->mat_regions, s->num_mat_regions);
+  free(s->materials);
   free(s->precracks);
   free(s->crack_vertices);
   free(s->bcs);

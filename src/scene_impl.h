@@ -54,7 +54,10 @@ struct pdk_scene {
   double *crack_vertices;
   int num_precracks;
 
-  pdk_model_opts model;
+  pdk_model_opts model; /* model.materials points to materials below */
+  pdk_scene_region *mat_regions; /* [num_mat_regions] the materials list: material k + 1 */
+  int num_mat_regions;
+  pdk_material *materials; /* [num_mat_regions + 1]; 0 is `material` (NULL without a list) */
 
   pdk_solver_type solver_type;
   pdk_explicit_opts solver; /* bcs, reaction_sets point into the arrays below */

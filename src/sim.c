@@ -226,6 +226,31 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
     }
   }
 
+  /* Materials: "material" = 0 (`material`), then each entry of the materials list over its region
+   * (a later entry wins where regions overlap). */
+  if (s->num_mat_regions > 0) {
+    PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "material", PDK_I32, 1));
+    int32_t *mat = pdk_particles_field_data(sim->p, "material", 0);
+    const int dim = pdk_particles_dim(sim->p);
+    const pdk_index n = pdk_particles_count(sim->p);
+    for (int k = 0; k < s->num_mat_regions; ++k) {
+      pdk_index count = 0;
+      for (pdk_index i = 0; i < n; ++i) {
+        double x[3] = {0, 0, 0};
+        for (int a = 0; a < dim; ++a)
+          x[a] = pdk_particles_X(sim->p, a)[i];
+        if (pdk_region_contains(&s->mat_regions[k].region, dim, x)) mat[i] = k + 1, ++count;
+      }
+      if (!count) {
+        err = pdk_scene_error(s, ctx, PDK_ERR_ARG, s->mat_regions[k].key,
+                              "the region of material '%s' holds no particle of the body; move "
+                              "or enlarge it, or remove the entry",
+                              s->mat_regions[k].name);
+        goto cleanup;
+      }
+    }
+  }
+
   /* Order by the cells of the horizon, then families. */
   double edge = pdk_families_cell_edge(sim->p, s->horizon);
   if (edge <= 0) {
@@ -389,7 +414,8 @@ static int update_von_mises(pdk_sim *sim) {
   const int d = pdk_particles_dim(p);
   const pdk_index n = pdk_particles_count(p);
   const pdk_model_opts *mo = pdk_model_opts_get(sim->m);
-  const double mu = mo->shear_modulus, lambda = mo->bulk_modulus - 2.0 * mu / 3.0;
+  const double mu = mo->shear_modulus, lambda0 = mo->bulk_modulus - 2.0 * mu / 3.0;
+  const int32_t *mat = mo->num_materials > 0 ? pdk_particles_field_data(p, "material", 0) : NULL;
   /* the step of the last pass: the explicit time step, or the static load step's pseudo-time */
   const double dt = sim->e ? pdk_explicit_dt(sim->e) : pdk_model_get_dt(sim->m);
   double *vm = pdk_particles_field_data(p, "von_mises", 0);
@@ -478,6 +504,11 @@ static int update_von_mises(pdk_sim *sim) {
         }
     }
     if (d == 2) {
+      double lambda = lambda0; /* the particle's material's (multi-material bodies) */
+      if (mat) {
+        const pdk_material *q = &mo->materials[mat[i]];
+        lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
+      }
       switch (mo->law) {
       case PDK_LAW_LINEAR_ELASTIC: S[2][2] = lambda * (F[0][0] - 1.0 + F[1][1] - 1.0); break;
       case PDK_LAW_SVK: {

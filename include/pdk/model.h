@@ -129,6 +129,13 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
+/* One material of a multi-material body (pdk_model_opts.materials). */
+typedef struct pdk_material {
+  double bulk_modulus;  /* K [pressure] */
+  double shear_modulus; /* G [pressure] (PMB: ignored) */
+  double density;       /* rho [mass / length^3] */
+} pdk_material;
+
 typedef struct pdk_model_opts {
   pdk_model_kind kind;
   double bulk_modulus;  /* K [pressure], 3-D bulk modulus (plane strain uses lambda = K - 2G/3) */
@@ -176,6 +183,22 @@ typedef struct pdk_model_opts {
    * pdk_lattice_opts.thickness makes them) [length]; default 1, ignored in 3-D. PMB divides its
    * plane-strain micromodulus by it, so forces and energy densities do not depend on it. */
   double thickness;
+  /* Multi-material bodies (num_materials >= 1): particle i is made of materials[k], k its entry in
+   * the store's int32 field "material" (the caller fills it, values 0 .. num_materials - 1; the
+   * scene does it from the regions of its materials list). bulk_modulus, shear_modulus and
+   * density above are then ignored (pdk_model_opts_get shows materials[0]'s). How each model
+   * uses them:
+   *   PMB: bond i-j has the micromodulus c_ij = 2 c_i c_j / (c_i + c_j), c_k from material k's
+   *        bulk modulus: half of the bond lies in each material, and two springs of half the
+   *        length in series have this stiffness;
+   *   correspondence (tl, semi_tl, ul; elastic laws): each particle's law uses its own lambda
+   *        and mu, its stabilization modulus its own bulk modulus (the force stays conservative:
+   *        particle i's energy is its own law's);
+   *   LPS and law jc: refused (PDK_ERR_UNSUPPORTED).
+   * The explicit solver takes each particle's density from its material, so its stable time step
+   * follows the stiffest and lightest material. 0 (default): one material, the values above. */
+  const pdk_material *materials;
+  int num_materials;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
@@ -204,6 +227,10 @@ const uint8_t *pdk_model_bond_alive(const pdk_model *m);
 pdk_bond_index pdk_model_num_broken(const pdk_model *m); /* directed bonds broken so far */
 /* Particles whose family no longer spans the space (correspondence): count, after a force pass. */
 pdk_index pdk_model_num_flagged(const pdk_model *m);
+/* Particles without an intact bond (every bond broken, or an empty family from the start): they
+ * move freely and carry no force. Counted on demand over the bond state (one pass over the
+ * bonds), after the last force pass. */
+pdk_index pdk_model_num_isolated(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 pdk_index pdk_model_num_failed(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */

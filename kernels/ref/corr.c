@@ -347,7 +347,7 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
 /* Stabilization coefficient k of particle p (0 when flagged or without a weighted volume). */
 static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
   if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
-  return k->stab_modulus / a->m[p];
+  return (k->stab_p ? k->stab_p[p] : k->stab_modulus) / a->m[p];
 }
 
 /* The pass-2 data of particle i (kst, B, G and their float copies, whichever the arrays have),
@@ -372,6 +372,8 @@ static void store_pair(const int d, const pdk_corr_consts *k, const pdk_corr_arr
 
 void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
                                const double N[3][3]) {
+  pdk_corr_consts k_i; /* multi-material: particle i's lambda, mu, stabilization modulus */
+  k = pdk_corr_consts_at(k, i, &k_i);
   const int d = k->dim;
   if (a->flag[i] & PDK_CORR_FLAG_SPAN) {
     store_zero_d(d, a->F, i);
@@ -689,6 +691,8 @@ pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_
  * work it would do) plus the Silling term. */
 static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
                          pdk_index i) {
+  pdk_corr_consts k_i;
+  k = pdk_corr_consts_at(k, i, &k_i);
   const pdk_bond_index *restrict bond_start = a->bond_start;
   const pdk_index *restrict bond_j = a->bond_j;
   const double *restrict omega = a->bond_omega;

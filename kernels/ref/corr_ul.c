@@ -238,6 +238,8 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
 
 static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_arrays *ua,
                       pdk_index i) {
+  pdk_corr_consts k_i;
+  k = pdk_corr_consts_at(k, i, &k_i);
   const pdk_corr_arrays *a = &ua->base;
   const pdk_bond_index *restrict bond_start = a->bond_start;
   const pdk_index *restrict bond_j = a->bond_j;
@@ -323,7 +325,7 @@ void pdk_kernel_corr_ul_pass1_ref(const pdk_corr_consts *k, const pdk_corr_ul_ar
 
 static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
   if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
-  return k->stab_modulus / a->m[p];
+  return (k->stab_p ? k->stab_p[p] : k->stab_modulus) / a->m[p];
 }
 
 static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_arrays *ua,

@@ -10,7 +10,8 @@
  *   W_i  = sum_b alive_b * c * s^2 * r0 * beta * V_j / 4             strain energy density
  *
  * c is the micromodulus (3-D: 18 K / (pi delta^4); 2-D plane strain: 72 K / (5 pi delta^3), see
- * src/model_pmb.c). beta is LAMMPS's vfrac_scale: with h = lattice/2, beta = (delta + h - r0)/(2h)
+ * src/model_pmb.c); in a multi-material body (k->c_particle != NULL) bond i-j uses
+ * c_ij = 2 c_i c_j / (c_i + c_j), the same from both ends (the product and sum commute). beta is LAMMPS's vfrac_scale: with h = lattice/2, beta = (delta + h - r0)/(2h)
  * when r0 >= delta - h and 1 otherwise, written branch-free as min(1, (vs_a - r0) * vs_b) with
  * vs_a = delta + h, vs_b = 1/(2h); vs_a = +inf turns it off. Each bond is stored from both ends,
  * so f_i is a gather over i's own row: a call writes only entries i in [i0, i1).
@@ -60,7 +61,8 @@ static inline __attribute__((always_inline)) double min1(double t) { return t < 
 /* One particle's row; the flags are compile-time constants in every caller, so each combination
  * compiles to its own loop without branches on them. */
 static inline __attribute__((always_inline)) pdk_bond_index
-pmb_row(const int dim, const int has_state, const int commit, const int want_energy, pdk_index i,
+pmb_row(const int dim, const int has_state, const int commit, const int want_energy,
+        const int multi, pdk_index i,
         const pdk_bond_index *restrict bond_start, const pdk_index *restrict bond_j,
         const double *restrict X, const double *restrict Y, const double *restrict Z,
         const double *restrict x, const double *restrict y, const double *restrict z,
@@ -70,6 +72,8 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
   const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
   const double xi = x[i], yi = y[i], zi = dim == 3 ? z[i] : 0.0;
   const double c = k->c, vs_a = k->vs_a, vs_b = k->vs_b, s00 = k->s00, alpha = k->alpha;
+  const double *restrict cp = k->c_particle;
+  const double c_i = multi ? cp[i] : 0.0;
   const double s0_i = has_state && commit ? s0[i] : 0.0;
   double f0 = 0.0, f1 = 0.0, f2 = 0.0, wi = 0.0, s0_max = -DBL_MAX;
   pdk_bond_index broken = 0;
@@ -86,7 +90,8 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
     const double q = r > 0.0 ? 1.0 / (r0 * r) : 0.0; /* the one division: s / r = d q */
     const double vol = volume[j] * min1((vs_a - r0) * vs_b);
     const double on = has_state ? (double)bond_alive[b] : 1.0;
-    const double g = on * c * vol * d * q; /* c s beta V_j / r */
+    const double c_b = multi ? 2.0 * (c_i * cp[j]) / (c_i + cp[j]) : c;
+    const double g = on * c_b * vol * d * q; /* c s beta V_j / r */
     f0 += g * dx;
     f1 += g * dy;
     if (dim == 3) f2 += g * dz;
@@ -112,9 +117,16 @@ pmb_row(const int dim, const int has_state, const int commit, const int want_ene
 }
 
 #define PMB_RANGE(dim, st, cm, en)                                                                 \
-  for (pdk_index i = i0; i < i1; ++i)                                                              \
-  broken += pmb_row(dim, st, cm, en, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, bond_r0, k,  \
-                    bond_alive, s0, s0_next, fx, fy, fz, w)
+  do {                                                                                             \
+    if (k->c_particle)                                                                             \
+      for (pdk_index i = i0; i < i1; ++i)                                                          \
+        broken += pmb_row(dim, st, cm, en, 1, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, bond_r0, k, \
+                          bond_alive, s0, s0_next, fx, fy, fz, w);                                 \
+    else                                                                                           \
+      for (pdk_index i = i0; i < i1; ++i)                                                          \
+        broken += pmb_row(dim, st, cm, en, 0, i, bond_start, bond_j, X, Y, Z, x, y, z, volume, bond_r0, k, \
+                          bond_alive, s0, s0_next, fx, fy, fz, w);                                 \
+  } while (0)
 
 static pdk_bond_index
 pmb_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
