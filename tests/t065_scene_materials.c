@@ -29,7 +29,7 @@ static void load_fails(pdk_ctx *ctx, const char *ov, const char *key, const char
 
 int main(void) {
   const char *src = getenv("PDK_SOURCE_DIR");
-  snprintf(path, sizeof path, "%s/tests/scenes/t064_bimaterial.yaml", src ? src : "..");
+  snprintf(path, sizeof path, "%s/tests/scenes/t065_bimaterial.yaml", src ? src : "..");
   pdk_ctx *ctx = t_ctx(2);
   pdk_scene *s = load(ctx, NULL, 0);
   const pdk_model_opts *mo = &s->model;
