@@ -39,3 +39,14 @@ endif()
 
 find_library(PDK_LIBM m)
 
+# An optimized BLAS for CHOLMOD's supernodal factorization (optional). CHOLMOD calls the BLAS
+# through libblas.so.3, which Debian's alternatives point at OpenBLAS once libopenblas-dev is
+# installed (the README's first command installs it), so nothing links differently. Without it
+# the reference (netlib) BLAS factors the Newton tangents several times slower (measured in
+# bench/README.md, "Static solvers").
+find_library(PDK_OPENBLAS NAMES openblas)
+if(NOT PDK_OPENBLAS)
+  message(STATUS "pdk: OpenBLAS not found: CHOLMOD will run on the reference BLAS (Newton "
+                 "factorizations several times slower). Install it with:\n"
+                 "  apt-get install -y libopenblas-dev")
+endif()
