@@ -19,10 +19,10 @@
  *     smaller for 0.5 m/s than for 2 m/s;
  *   - the peaks agree within 10%;
  *   - the ADR force falls below 10% of its peak (the plate separates) before the last step.
- * Writes t122_curves.csv (u_mm, F_kN for each run, NaN-padded) and, when gnuplot is on the PATH,
- * t122_plate_two_holes_quasistatic.png; PDK_TEST_VERBOSE=1 prints the numbers.
+ * Writes t123_curves.csv (u_mm, F_kN for each run, NaN-padded) and, when gnuplot is on the PATH,
+ * t123_plate_two_holes_quasistatic.png; PDK_TEST_VERBOSE=1 prints the numbers.
  * Long (minutes): label slow. Command:
- *   PDK_TEST_VERBOSE=1 ctest --test-dir build -R t122 -V
+ *   PDK_TEST_VERBOSE=1 ctest --test-dir build -R t123 -V
  * labels: physics slow
  */
 #include <math.h>
@@ -156,8 +156,8 @@ int main(void) {
   run(scene, 2.0, 0, &fast);
   run(scene, 0.5, 0, &slow);
 
-  FILE *f = fopen("t122_curves.csv", "w");
-  T_ASSERT(f, "writing t122_curves.csv");
+  FILE *f = fopen("t123_curves.csv", "w");
+  T_ASSERT(f, "writing t123_curves.csv");
   fprintf(f, "# u_mm F_kN: adr (%d points), explicit 2 m/s (%d), explicit 0.5 m/s (%d)\n", adr.n,
           fast.n, slow.n);
   const int rows =
@@ -191,19 +191,19 @@ int main(void) {
            100 * d_slow / adr.peak);
   }
   if (system("command -v gnuplot > /dev/null 2>&1") == 0) {
-    FILE *g = fopen("t122_plot.gp", "w");
+    FILE *g = fopen("t123_plot.gp", "w");
     T_ASSERT(g, "writing the gnuplot script");
     fprintf(g,
             "set terminal pngcairo size 900,600\n"
-            "set output 't122_plate_two_holes_quasistatic.png'\n"
+            "set output 't123_plate_two_holes_quasistatic.png'\n"
             "set title 'Plate with two holes, 1 mm: quasi-static (ADR) vs explicit'\n"
             "set xlabel 'grip displacement [mm]'\nset ylabel 'reaction on the top grip [kN]'\n"
             "set grid\nset key top right\n"
-            "plot 't122_curves.csv' u 3:4 w l lw 1 lc rgb '#999999' t 'explicit, 2 m/s', \\\n"
+            "plot 't123_curves.csv' u 3:4 w l lw 1 lc rgb '#999999' t 'explicit, 2 m/s', \\\n"
             "     '' u 5:6 w l lw 1.5 lc rgb '#1f77b4' t 'explicit, 0.5 m/s', \\\n"
             "     '' u 1:2 w lp pt 7 ps 0.5 lw 2 lc rgb '#d62728' t 'ADR load steps (0.05 mm)'\n");
     fclose(g);
-    T_ASSERT(system("gnuplot t122_plot.gp") == 0, "gnuplot failed");
+    T_ASSERT(system("gnuplot t123_plot.gp") == 0, "gnuplot failed");
   }
   T_ASSERT(adr.u_sep > 0 && adr.u_sep < U_END, "ADR: the force falls below 10%% of its peak");
   T_NEAR(slow.peak, adr.peak, 0.10, 0, "peak force, 0.5 m/s vs ADR");
