@@ -56,7 +56,11 @@ for L in $sides; do
       pair=$(awk '/^Pair / {print $5}' "$log")
       natoms=$(awk '/^Loop time of/ {print $NF=="atoms" ? $(NF-1) : $12}' "$log")
       lbonds=$(awk '/total # of bonds/ {print $NF; exit}' "$log")
-      read -r pn pbonds pstep < <(awk -v p="$p" -v s="$style" '$1 == s && $5 == p {print $2, $3, $6}' pdk.$style.$L.txt)
+      # bench_forces' columns by their header names (model, n, bonds, thr, s/step)
+      read -r pn pbonds pstep < <(awk -v p="$p" -v s="$style" '
+        /^# model/ {for (k = 2; k <= NF; ++k) col[$k] = k - 1; next}
+        /^#/ {next}
+        $col["model"] == s && $col["thr"] == p {print $col["n"], $col["bonds"], $col["s/step"]}' pdk.$style.$L.txt)
       [ "$pn" = "$natoms" ] || echo "# warning: particle counts differ: LAMMPS $natoms, pdk $pn"
       [ "$pbonds" = "$lbonds" ] || echo "# warning: bond counts differ: LAMMPS $lbonds, pdk $pbonds"
       awk -v s="$style" -v n="$pn" -v b="$pbonds" -v p="$p" -v loop="$loop" -v pair="$pair" -v steps="$steps" \
