@@ -288,6 +288,20 @@ typedef struct pdk_corr_arrays {
   double *G[9];
   float *Bf[9];
   float *Gf[9];
+  /* Packed rows of the optimized variants without hourglass stabilization (layout bit 32; all
+   * NULL otherwise), so a bond's neighbour data is a few aligned vector loads instead of one
+   * emulated gather per value (kernels/opt/corr_simd.h):
+   *   ref4 [4 n_pad] (X, Y, Z, V) of each particle, 0 for Z in 2-D; written at setup
+   *   cur4 [4 n_pad] (u_x, u_y, u_z, 1), u = x - X the displacement (u_z = 0 in 2-D); written by
+   *        the driver before pass 1 (pdk_corr_pack_cur)
+   *   row  [n_pad]   (double storage) or rowf [n_pad] (float storage): B_i and k_i of
+   *        pdk_corr_row / pdk_corr_rowf, written by pass 1 for its neighbours' pass 2
+   *   own  [4 n_pad] i's own terms from pass 1 for its pass 2: (B_i s_i + k_i u_i, zz_i), see
+   *        corr_simd.h */
+  const double *ref4, *cur4;
+  struct pdk_corr_row *row;
+  struct pdk_corr_rowf *rowf;
+  double *own;
   double *m;                        /* weighted volume sum w V |xi|^2 [length^5]; NULL if unused */
   uint8_t *flag;                    /* PDK_CORR_FLAG_* bits */
   int32_t *num_alive;               /* intact bonds when K^-1 was computed; NULL if no failure */
@@ -311,13 +325,42 @@ typedef struct pdk_corr_arrays {
   uint8_t *detach;  /* [n] semi-TL: particle detached in this round; NULL in TL */
 } pdk_corr_arrays;
 
-/* Which pass-2 arrays (pdk_corr_arrays kst, B, G, Bf, Gf) a pass needs: bit 1 kst, 2 B, 4 G,
- * 8 Bf, 16 Gf, for stabilization `stab`, float storage `fl`, optimized variant `opt`. */
+/* Pass-2 row of particle i (double storage), 96 bytes, 32-byte aligned: the three columns of
+ * B_i (B = A - k (F - I) for Silling, A without stabilization) in c[0..2], c[4..6], c[8..10]
+ * (column c of the d x d tensor, rows 0..d-1, zeros beyond), k_i in c[3], c[7] = c[11] = 0. */
+typedef struct pdk_corr_row {
+  double c[12];
+} pdk_corr_row;
+/* The same in float storage, 64 bytes (one cache line): the columns as floats (the values of
+ * Bf), k_i in double (it multiplies the relative displacement, as the double kst does). */
+typedef struct pdk_corr_rowf {
+  float c[12];
+  double k;
+  double pad;
+} pdk_corr_rowf;
+
+/* Which pass-2 arrays (pdk_corr_arrays kst, B, G, Bf, Gf, rows) a pass needs: bit 1 kst, 2 B, 4 G,
+ * 8 Bf, 16 Gf, 32 the packed rows (ref4, cur4, own and row or, with fl, rowf), for stabilization
+ * `stab`, float storage `fl`, optimized variant `opt`. The optimized variants use the rows except
+ * with hourglass stabilization. */
 static inline unsigned pdk_corr_pair_layout(int stab, int fl, int opt) {
   const unsigned k = stab != 0 ? 1u : 0u; /* PDK_STAB_NONE is 0 */
-  if (fl) return k | 8u | (stab == 2 ? 16u : 0u); /* 2: PDK_STAB_HOURGLASS */
+  if (opt && stab != 2) return 32u;               /* 2: PDK_STAB_HOURGLASS */
+  if (fl) return k | 8u | (stab == 2 ? 16u : 0u);
   if (!opt) return 0u;
-  return k | (stab == 1 ? 2u : 0u) | (stab == 2 ? 4u : 0u);
+  return k | 4u;
+}
+
+/* cur4 rows of particles [i0, i1) from x and X (pdk_corr_arrays cur4). */
+static inline void pdk_corr_pack_cur(int dim, const double *const *X, const double *const *x,
+                                     double *restrict cur4, pdk_index i0, pdk_index i1) {
+  for (pdk_index i = i0; i < i1; ++i) {
+    double *r = cur4 + 4 * (size_t)i;
+    r[0] = x[0][i] - X[0][i];
+    r[1] = x[1][i] - X[1][i];
+    r[2] = dim == 3 ? x[2][i] - X[2][i] : 0.0;
+    r[3] = 1.0;
+  }
 }
 
 /* Shape: K^-1, m, flag bit SPAN, num_alive for i in [i0, i1); returns how many do not span. */
@@ -338,6 +381,10 @@ int pdk_kernel_corr_shape_point_ref(const pdk_corr_consts *k, const pdk_corr_arr
                                     pdk_index i, const double K[3][3], double m, int32_t count);
 void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
                                const double N[3][3]);
+/* The same end from D = sum w V (Y - xi) (x) xi instead of N: F = I + D K^-1 (which keeps F - I
+ * to the relative precision of the displacements). */
+void pdk_kernel_corr_point_disp_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i, const double D[3][3]);
 
 /* Optimized variants of shape, pass 1 and pass 2 (kernels/opt/corr_avx2.c, corr_avx512.c: one
  * source, kernels/opt/corr_simd.h, compiled for each ISA). Same contract and results as the

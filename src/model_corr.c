@@ -15,6 +15,11 @@
  *           bonds (LAMMPS s0 rule, the same as PMB) and swaps s0; the next pass 1 recomputes K^-1
  *           of every particle whose intact-bond count changed (broken bonds carry weight 0 in K,
  *           N, the force and the stabilization).
+ *   Optimized kernels without hourglass stabilization (pdk_corr_pair_layout bit 32) read packed
+ *   rows instead of gathering: ref4 (X, V) written here at setup, cur4 (x - X, 1) packed at the
+ *   start of each force pass (its own barrier: both passes read neighbours' rows), and the
+ *   pass-2 rows and own terms pass 1 writes (kernels/opt/corr_simd.h): 96 + 96 bytes per
+ *   particle in double storage, 64 + 96 in float, replacing the 80 (40) bytes of kst and B.
  *   num_flagged counts particles with flag bit SPAN or INVERTED after a force pass (after setup:
  *   those whose family does not span). A flagged particle has F = A = 0 (F = 0 for SPAN only) and
  *   W = 0.
@@ -111,6 +116,10 @@ typedef struct corr_impl {
   double *kst, *B[9], *G[9];
   float *Bf[9], *Gf[9];
   void *pair_d, *pair_f; /* the allocations behind kst, B, G and Bf, Gf */
+  /* Packed rows (layout bit 32, pdk_corr_arrays): ref4, cur4, own [4 n_pad]; row or rowf [n_pad] */
+  double *ref4, *cur4, *own;
+  pdk_corr_row *row;
+  pdk_corr_rowf *rowf;
 } corr_impl;
 
 /* Points the kernel arrays at the current fields. */
@@ -148,6 +157,11 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
     a->Bf[t] = c->Bf[t];
     a->Gf[t] = c->Gf[t];
   }
+  a->ref4 = c->ref4;
+  a->cur4 = c->cur4;
+  a->own = c->own;
+  a->row = c->row;
+  a->rowf = c->rowf;
   a->m = c->m;
   a->flag = pdk_particles_field_data(p, "flag", 0);
   a->num_alive = c->num_alive;
@@ -194,6 +208,11 @@ static void corr_destroy(pdk_model *m) {
   pdk_free_aligned(c->detach);
   pdk_free_aligned(c->pair_d);
   pdk_free_aligned(c->pair_f);
+  pdk_free_aligned(c->ref4);
+  pdk_free_aligned(c->cur4);
+  pdk_free_aligned(c->own);
+  pdk_free_aligned(c->row);
+  pdk_free_aligned(c->rowf);
   free_compacted(c);
   free(c);
   m->impl = NULL;
@@ -264,6 +283,26 @@ static int corr_setup(pdk_model *m) {
         c->Bf[t] = q, q += n_pad;
       for (int t = 0; t < dd && (layout & 16u); ++t)
         c->Gf[t] = q, q += n_pad;
+    }
+  }
+  if (layout & 32u) {
+    c->ref4 = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
+    c->cur4 = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
+    c->own = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
+    if (o->precision == PDK_PRECISION_FLOAT)
+      c->rowf = pdk_alloc_aligned((size_t)n_pad, sizeof(pdk_corr_rowf));
+    else
+      c->row = pdk_alloc_aligned((size_t)n_pad, sizeof(pdk_corr_row));
+    ok = ok && c->ref4 && c->cur4 && c->own && (c->rowf || c->row);
+    if (ok) {
+      const double *V = pdk_particles_volume(p);
+      for (int d = 0; d < dim; ++d) {
+        const double *X = pdk_particles_X(p, d);
+        for (pdk_index i = 0; i < n; ++i)
+          c->ref4[4 * (size_t)i + (size_t)d] = X[i];
+      }
+      for (pdk_index i = 0; i < n; ++i)
+        c->ref4[4 * (size_t)i + 3] = V[i];
     }
   }
   c->c_len = nb;
@@ -585,11 +624,21 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       c->pass1;
   void (*const pass2)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index) =
       c->pass2;
+  const int dim = k->dim;
+  double *cur4 = c->cur4;
 
 #pragma omp parallel default(none)                                                              \
-    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2)            \
+    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2, dim, cur4)  \
     reduction(+ : flagged, num_failed) num_threads(nt)
   {
+    if (cur4) {
+      /* the displacement rows pass 1 and pass 2 read from neighbours (implicit barrier) */
+#pragma omp for schedule(static)
+      for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+        CORR_BLOCK_RANGE(blk, n, i0, i1);
+        pdk_corr_pack_cur(dim, a.X, a.x, cur4, i0, i1);
+      }
+    }
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);

@@ -7,7 +7,10 @@
  * random length make every row start at a different alignment. Also: the table installs the
  * variant for the CPU and PDK_KERNELS=ref installs the reference; a variant's result for a row
  * does not depend on how the particle range is split (1 call or 2 ranges, as 1 or 2 threads
- * would split it): bitwise.
+ * would split it): bitwise. Without hourglass stabilization the variants run over packed rows
+ * (kernels/opt/corr_simd.h): their pass 1 leaves rows and i's own terms for their pass 2, so pass 2
+ * is checked from the variant's own pass-1 state, the reference's pass 2 run on a copy of it (pass
+ * 1 itself is checked against the reference's pass 1 as before).
  *
  * Tolerances, from the sums the kernels compute (u = 2^-53). Both versions sum the same n terms,
  * the variant in another order (SIMD lanes, own terms factored out) and with FMA, so a sum
@@ -22,7 +25,10 @@
  *   pass 2  f: 2 (n + 8) u S_f, S_f = sum_b w V (sum_c (|A_i| + |A_j| + k_i |F_i| + k_j |F_j|)
  *           |xi_c| + (k_i + k_j) (|Y| + |xi|) + hourglass: the magnitudes in g times |Y|) +
  *           |B_i| |sum w V xi| (the factored own term), |.| 1-norms of vectors and largest
- *           entries of tensors; W: 2 (n + 8) u k_i sum w V |z|^2 plus its own value's rounding.
+ *           entries of tensors; W: 2 (n + 8) u k_i sum w V |z|^2 plus its own value's rounding
+ *           (the packed-row variant takes sum w V |z|^2 = sum w V |Y - xi|^2 - H : D from pass 1's
+ *           sums, H = F - I, D = sum w V (Y - xi) (x) xi: its round-off is of the size of the
+ *           first sum, below the bound, which counts |Y| + |F| |xi| for |z|).
  * labels: unit */
 #include <stdint.h>
 
@@ -53,6 +59,8 @@ typedef struct set {
   float *pf[18];
   uint8_t *flag;
   int32_t *num_alive;
+  double *rows[3]; /* ref4, cur4, own */
+  void *row;       /* pdk_corr_row or pdk_corr_rowf [NPAD] */
   pdk_corr_arrays a;
 } set;
 
@@ -88,6 +96,24 @@ static void set_init(set *s, int d, unsigned layout, const pdk_bond_index *bs, c
   a->w_damage = s->pd[q++] = dalloc();
   a->flag = s->flag = calloc(NPAD, 1);
   if (alive) a->num_alive = s->num_alive = calloc(NPAD, sizeof(int32_t));
+  if (layout & 32u) { /* packed rows: ref4 (X, V) and cur4 (x - X, 1) filled as the driver does */
+    for (int r = 0; r < 3; ++r)
+      s->rows[r] = aligned_alloc(64, 4 * NPAD * sizeof(double)), memset(s->rows[r], 0, 4 * NPAD * 8);
+    for (pdk_index i = 0; i < NPAD; ++i) {
+      for (int c = 0; c < d; ++c)
+        s->rows[0][4 * i + c] = X[c][i];
+      s->rows[0][4 * i + 3] = V[i];
+    }
+    pdk_corr_pack_cur(d, (const double *const *)X, (const double *const *)x, s->rows[1], 0, NPAD);
+    a->ref4 = s->rows[0], a->cur4 = s->rows[1], a->own = s->rows[2];
+    if (layout & 8u) {
+      s->row = aligned_alloc(64, NPAD * sizeof(pdk_corr_rowf));
+      a->rowf = s->row;
+    } else {
+      s->row = aligned_alloc(64, NPAD * sizeof(pdk_corr_row));
+      a->row = s->row;
+    }
+  }
 }
 
 static void set_free(set *s) {
@@ -97,6 +123,9 @@ static void set_free(set *s) {
     free(s->pf[k]);
   free(s->flag);
   free(s->num_alive);
+  for (int r = 0; r < 3; ++r)
+    free(s->rows[r]);
+  free(s->row);
 }
 
 /* Copies every per-particle output of src into dst (same layout). */
@@ -237,7 +266,11 @@ int main(void) {
               k.stab_modulus = 0.1 * (d == 3 ? 72.0 / 5.0 : 36.0 / 5.0) * 2.0;
               k.horizon = horizon;
               k.span_rtol = PDK_CORR_SPAN_RTOL;
-              const unsigned layout = pdk_corr_pair_layout(stab, fl, 1);
+              /* The arrays of both kinds: the variant's (packed rows except for hourglass) and
+               * the reference's (kst, and Bf, Gf in float storage), so either pass 2 can run on
+               * one pass-1 state. */
+              const unsigned layout = pdk_corr_pair_layout(stab, fl, 1) |
+                                      pdk_corr_pair_layout(stab, fl, 0) | (stab ? 1u : 0u);
               uint8_t *al = with_alive ? alive : NULL;
               set ref, var, var2;
               set_init(&ref, d, layout, bs, bj, omega, al, X, x, V);
@@ -308,9 +341,13 @@ int main(void) {
                     T_ASSERT(var2.a.A[c][i] == var.a.A[c][i] && var2.a.F[c][i] == var.a.F[c][i],
                              "%s: pass 1 depends on the range split (particle %d)", vn, (int)i);
                 }
-                /* pass 2 from the same pass-1 state */
-                set_copy(&var, &ref1, d);
-                set_copy(&var2, &ref1, d);
+                /* pass 2 from the same pass-1 state: the variant's own (its pass 1 leaves data
+                 * for its pass 2 that the reference does not make: the packed rows, i's own
+                 * terms), the reference's pass 2 on a copy of it. var2 continues from its split
+                 * pass 1, bitwise the same state (checked above). */
+                set_free(&ref1);
+                set_init(&ref1, d, layout, bs, bj, omega, al, X, x, V);
+                set_copy(&ref1, &var, d);
                 pdk_kernel_corr_pass2_ref(&k, &ref1.a, 0, NP);
                 variants[v].pass2(&k, &var.a, 0, NP);
                 variants[v].pass2(&k, &var2.a, 0, 61);

@@ -1,7 +1,14 @@
-/* Correspondence shape, pass 1 and pass 2, vectorized across a family's bonds: one source for
- * every ISA. kernels/opt/corr_avx2.c and corr_avx512.c each set a target (#pragma GCC target)
- * and CORR_SFX, then include this file, so the same loops are compiled once per ISA and
- * src/kernels.c installs the one the CPU runs.
+/* Correspondence shape, pass 1 and pass 2, vectorized: one source for every ISA.
+ * kernels/opt/corr_avx2.c and corr_avx512.c each set a target (#pragma GCC target) and CORR_SFX,
+ * then include this file, so the same loops are compiled once per ISA and src/kernels.c installs
+ * the one the CPU runs.
+ *
+ * Two forms of pass 1 and pass 2:
+ *   - packed rows (the driver provides pdk_corr_arrays own, ref4, cur4, row or rowf: no or
+ *     Silling stabilization): each bond is a step of 4-lane vectors over whole particle rows, no
+ *     gathers; described at "Packed-row passes" below;
+ *   - gathers (hourglass stabilization, or no rows): every bond loop an `omp simd` reduction
+ *     across a family's bonds, as described next.
  *
  * Formulas and contract: kernels/ref/corr.c (pdk_kernel_corr_*_ref). What differs is the order
  * of the sums, not the terms:
@@ -95,6 +102,255 @@ pdk_index CORR_FN(pdk_kernel_corr_shape_)(const pdk_corr_consts *k, const pdk_co
   return k->dim == 2 ? shape_rows(2, k, a, i0, i1) : shape_rows(3, k, a, i0, i1);
 }
 
+/* ---- Packed-row passes (pdk_corr_arrays own set: no or Silling stabilization) ---------------
+ * The neighbour data of a bond are whole rows: ref4 (X, V), cur4 (u = x - X, 1), and pass 1's
+ * pdk_corr_row / pdk_corr_rowf (B_j, k_j). A bond is one step of 4-lane vectors whose
+ * lanes are a row's components (within the bond, not across bonds): the neighbour's X_c and the
+ * scalars come as broadcast loads and its vectors as aligned loads, so there is no gather and no
+ * transpose. Two accumulator sets (intact bonds alternately) halve the dependency chains.
+ *
+ * Pass 1 of i, per intact bond (broken bonds are skipped; w = omega V_j, e = xi, v = u_j - u_i = Y - xi, and the 4th lane
+ * of v equal to 1 from cur4):
+ *   D_c += w v e_c (c < d)   lanes 0..d-1: D = sum w v (x) xi,  lane 3: s_c = sum w e_c
+ *   U   += w v               lanes 0..d-1: u = sum w v
+ *   Q   += w v v             lanes 0..d-1 summed: vv = sum w |v|^2
+ * then the reference's per-particle end from D (pdk_kernel_corr_point_disp_ref: F = I + D K^-1,
+ * the law, A, W, flags) and i's rows: B_i, k_i for the neighbours, and for itself
+ *   own = (B_i s + k_i u, zz),  zz = sum w |v - H e|^2 = vv - H : D,  H = D K^-1
+ * (the identity holds because H K = D, K = sum w e (x) e with the same weights; zz is clamped at
+ * 0 against round-off). B = A - k (F - I) (Silling) or A, k = stab_modulus_i / m_i (0 when
+ * flagged), as the reference's store_pair.
+ * Pass 2 of i: f_i = own_i + sum_b w (B_j e + k_j v), and the Silling energy
+ * W_i += k_i/2 zz_i (or, in the commit pass where i fails, w_damage_i += (stab_modulus/m_i)/2 zz_i)
+ * as the reference's pass 2. The reference's pair term sum w [(B_i + B_j) e + (k_i + k_j) v] is
+ * the same sum with i's part factored out. */
+
+typedef double corr_v4 __attribute__((vector_size(32)));
+typedef double corr_v4a __attribute__((vector_size(32), aligned(32), may_alias));
+typedef float corr_v4f __attribute__((vector_size(16), aligned(16), may_alias));
+
+CORR_INLINE corr_v4 cv_set1(double s) { return (corr_v4){s, s, s, s}; }
+CORR_INLINE corr_v4 cv_load(const double *p) { return *(const corr_v4a *)(const void *)p; }
+CORR_INLINE corr_v4 cv_loadf(const float *p) {
+  return __builtin_convertvector(*(const corr_v4f *)(const void *)p, corr_v4);
+}
+
+/* Stabilization coefficient of particle i (the reference's stab_coef). */
+CORR_INLINE double rows_kst(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
+  if (k->stab == PDK_STAB_NONE || a->flag[i] || !(a->m[i] > 0.0)) return 0.0;
+  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) / a->m[i];
+}
+
+/* The intact bonds of row i in order, alternately into the accumulators p and q (BOND(b, acc)):
+ * broken bonds are skipped, so a row with broken bonds gives bit for bit what the same row
+ * without them gives (semi-TL's compacted list against the full one). */
+#define ROWS_WALK(has_alive, a, i, BOND, p, q)                                                     \
+  do {                                                                                             \
+    const pdk_bond_index b1_ = (a)->bond_start[(i) + 1];                                           \
+    pdk_bond_index b_ = (a)->bond_start[i];                                                        \
+    if (has_alive) {                                                                               \
+      const uint8_t *restrict al_ = (a)->bond_alive;                                               \
+      for (;;) {                                                                                   \
+        while (b_ < b1_ && !al_[b_])                                                               \
+          ++b_;                                                                                    \
+        if (b_ >= b1_) break;                                                                      \
+        BOND(b_, p);                                                                               \
+        ++b_;                                                                                      \
+        while (b_ < b1_ && !al_[b_])                                                               \
+          ++b_;                                                                                    \
+        if (b_ >= b1_) break;                                                                      \
+        BOND(b_, q);                                                                               \
+        ++b_;                                                                                      \
+      }                                                                                            \
+    } else {                                                                                       \
+      for (; b_ + 2 <= b1_; b_ += 2) {                                                             \
+        BOND(b_, p);                                                                               \
+        BOND(b_ + 1, q);                                                                           \
+      }                                                                                            \
+      if (b_ < b1_) BOND(b_, p);                                                                   \
+    }                                                                                              \
+  } while (0)
+
+/* One intact bond of pass 1 into acc[0..4] = D_0, D_1, D_2, U, Q. */
+CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index b,
+                          const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc, int32_t *count) {
+  const pdk_index j = a->bond_j[b];
+  const double *restrict rj = a->ref4 + 4 * (size_t)j;
+  const double om = a->bond_omega[b];
+  ++*count;
+  const corr_v4 v = cv_load(a->cur4 + 4 * (size_t)j) - ui;
+  const corr_v4 wv = (cv_set1(om) * cv_set1(rj[3])) * v;
+  acc[0] += wv * (cv_set1(rj[0]) - Xi[0]);
+  acc[1] += wv * (cv_set1(rj[1]) - Xi[1]);
+  if (d == 3) acc[2] += wv * (cv_set1(rj[2]) - Xi[2]);
+  acc[3] += wv;
+  acc[4] += wv * v;
+}
+
+/* i's rows after the per-particle end: row / rowf for the neighbours, own for itself. The float
+ * row holds (float) B, the reference's Bf. */
+CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
+                            const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
+                            const corr_v4 *acc) {
+  const int silling = k->stab == PDK_STAB_SILLING;
+  const double ki = rows_kst(k, a, i);
+  double B[3][3] = {{0}};
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c) {
+      const double A = a->A[r * d + c][i];
+      B[r][c] = silling ? A - ki * (a->F[r * d + c][i] - (r == c ? 1.0 : 0.0)) : A;
+    }
+  double *restrict own = a->own + 4 * (size_t)i;
+  for (int r = 0; r < 3; ++r) {
+    double f = 0.0;
+    if (r < d) {
+      f = ki * acc[3][r];
+      for (int c = 0; c < d; ++c)
+        f += B[r][c] * acc[c][3];
+    }
+    own[r] = f;
+  }
+  double zz = 0.0;
+  if (silling) {
+    double HD = 0.0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) {
+        double h = 0.0;
+        for (int e = 0; e < d; ++e)
+          h += D[r][e] * a->Kinv[e * d + c][i];
+        HD += h * D[r][c];
+      }
+    zz = (acc[4][0] + acc[4][1] + acc[4][2]) - HD;
+    zz = zz > 0.0 ? zz : 0.0;
+  }
+  own[3] = zz;
+  if (fl) {
+    pdk_corr_rowf *restrict R = a->rowf + i;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 4; ++r)
+        R->c[4 * c + r] = r < 3 ? (float)B[r][c] : 0.0f;
+    R->k = ki;
+    R->pad = 0.0;
+  } else {
+    pdk_corr_row *restrict R = a->row + i;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 4; ++r)
+        R->c[4 * c + r] = r < 3 ? B[r][c] : 0.0;
+    R->c[3] = ki;
+  }
+}
+
+CORR_INLINE void rp1_row(const int d, const int has_alive, const int fl, const pdk_corr_consts *k,
+                         const pdk_corr_arrays *a, pdk_index i) {
+  const double *restrict ri = a->ref4 + 4 * (size_t)i, *restrict ci = a->cur4 + 4 * (size_t)i;
+  const corr_v4 Xi[3] = {cv_set1(ri[0]), cv_set1(ri[1]), cv_set1(ri[2])};
+  const corr_v4 ui = {ci[0], ci[1], ci[2], 0.0};
+  const corr_v4 z = cv_set1(0.0);
+  corr_v4 p[5] = {z, z, z, z, z}, q[5] = {z, z, z, z, z};
+  int32_t count = 0;
+#define RP1_BOND(b, acc) rp1_bond(d, a, b, Xi, ui, acc, &count)
+  ROWS_WALK(has_alive, a, i, RP1_BOND, p, q);
+#undef RP1_BOND
+  for (int t = 0; t < 5; ++t)
+    p[t] += q[t];
+  /* The reference's shape where bonds broke since K^-1 (see pass1_row below). */
+  if (has_alive && a->num_alive && count != a->num_alive[i])
+    pdk_kernel_corr_shape_ref(k, a, i, i + 1);
+  double D[3][3] = {{0}};
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c)
+      D[r][c] = p[c][r];
+  pdk_kernel_corr_point_disp_ref(k, a, i, D);
+  rows_store(d, fl, k, a, i, D, p);
+}
+
+/* One intact bond of pass 2 into *acc (lanes 0..d-1 of the force). */
+CORR_INLINE void rp2_bond(const int d, const int fl, const int stab, const pdk_corr_arrays *a,
+                          pdk_bond_index b, const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc) {
+  const pdk_index j = a->bond_j[b];
+  const double *restrict rj = a->ref4 + 4 * (size_t)j;
+  const double om = a->bond_omega[b];
+  corr_v4 g;
+  if (fl) {
+    const pdk_corr_rowf *restrict R = a->rowf + j;
+    g = cv_loadf(R->c) * (cv_set1(rj[0]) - Xi[0]) + cv_loadf(R->c + 4) * (cv_set1(rj[1]) - Xi[1]);
+    if (d == 3) g += cv_loadf(R->c + 8) * (cv_set1(rj[2]) - Xi[2]);
+    if (stab) g += cv_set1(R->k) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
+  } else {
+    const pdk_corr_row *restrict R = a->row + j;
+    g = cv_load(R->c) * (cv_set1(rj[0]) - Xi[0]) + cv_load(R->c + 4) * (cv_set1(rj[1]) - Xi[1]);
+    if (d == 3) g += cv_load(R->c + 8) * (cv_set1(rj[2]) - Xi[2]);
+    if (stab) g += cv_set1(R->c[3]) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
+  }
+  *acc += (cv_set1(om) * cv_set1(rj[3])) * g;
+}
+
+CORR_INLINE void rp2_row(const int d, const int has_alive, const int fl, const int stab,
+                         const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
+  const double *restrict ri = a->ref4 + 4 * (size_t)i, *restrict ci = a->cur4 + 4 * (size_t)i;
+  const corr_v4 Xi[3] = {cv_set1(ri[0]), cv_set1(ri[1]), cv_set1(ri[2])};
+  const corr_v4 ui = {ci[0], ci[1], ci[2], 0.0};
+  corr_v4 p = cv_set1(0.0), q = p;
+#define RP2_BOND(b, acc) rp2_bond(d, fl, stab, a, b, Xi, ui, &acc)
+  ROWS_WALK(has_alive, a, i, RP2_BOND, p, q);
+#undef RP2_BOND
+  p += q;
+  const double *restrict own = a->own + 4 * (size_t)i;
+  for (int r = 0; r < d; ++r)
+    a->f[r][i] = own[r] + p[r];
+  if (stab) {
+    const double zz = own[3];
+    a->W[i] += 0.5 * rows_kst(k, a, i) * zz;
+    if ((a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
+      a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+  }
+}
+
+CORR_INLINE void rp1_rows(const int d, const int fl, const pdk_corr_consts *k,
+                          const pdk_corr_arrays *a, pdk_index i0, pdk_index i1) {
+  if (a->bond_alive)
+    for (pdk_index i = i0; i < i1; ++i)
+      rp1_row(d, 1, fl, k, a, i);
+  else
+    for (pdk_index i = i0; i < i1; ++i)
+      rp1_row(d, 0, fl, k, a, i);
+}
+
+CORR_INLINE void rp2_rows(const int d, const int fl, const int stab, const pdk_corr_consts *k,
+                          const pdk_corr_arrays *a, pdk_index i0, pdk_index i1) {
+  if (a->bond_alive)
+    for (pdk_index i = i0; i < i1; ++i)
+      rp2_row(d, 1, fl, stab, k, a, i);
+  else
+    for (pdk_index i = i0; i < i1; ++i)
+      rp2_row(d, 0, fl, stab, k, a, i);
+}
+
+static void rows_pass1(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                       pdk_index i1) {
+  const int fl = a->rowf != NULL;
+  if (k->dim == 2)
+    fl ? rp1_rows(2, 1, k, a, i0, i1) : rp1_rows(2, 0, k, a, i0, i1);
+  else
+    fl ? rp1_rows(3, 1, k, a, i0, i1) : rp1_rows(3, 0, k, a, i0, i1);
+}
+
+static void rows_pass2(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                       pdk_index i1) {
+  const int fl = a->rowf != NULL, st = k->stab == PDK_STAB_SILLING;
+  if (k->dim == 2) {
+    if (fl)
+      st ? rp2_rows(2, 1, 1, k, a, i0, i1) : rp2_rows(2, 1, 0, k, a, i0, i1);
+    else
+      st ? rp2_rows(2, 0, 1, k, a, i0, i1) : rp2_rows(2, 0, 0, k, a, i0, i1);
+  } else {
+    if (fl)
+      st ? rp2_rows(3, 1, 1, k, a, i0, i1) : rp2_rows(3, 1, 0, k, a, i0, i1);
+    else
+      st ? rp2_rows(3, 0, 1, k, a, i0, i1) : rp2_rows(3, 0, 0, k, a, i0, i1);
+  }
+}
+
 /* Pass 1 of row i: N = sum w V Y (x) xi and the intact count in one sweep; the shape again if the
  * count changed; then the reference's per-particle end. */
 CORR_INLINE void pass1_row(const int d, const int has_alive, const pdk_corr_consts *k,
@@ -155,7 +411,9 @@ CORR_INLINE void pass1_rows(const int d, const pdk_corr_consts *k, const pdk_cor
 
 void CORR_FN(pdk_kernel_corr_pass1_)(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                      pdk_index i0, pdk_index i1) {
-  if (k->dim == 2)
+  if (a->own && k->stab != PDK_STAB_HOURGLASS)
+    rows_pass1(k, a, i0, i1);
+  else if (k->dim == 2)
     pass1_rows(2, k, a, i0, i1);
   else
     pass1_rows(3, k, a, i0, i1);
@@ -327,7 +585,9 @@ CORR_INLINE void pass2_rows(const int stab, const pdk_corr_consts *k, const pdk_
 
 void CORR_FN(pdk_kernel_corr_pass2_)(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                      pdk_index i0, pdk_index i1) {
-  if (k->stab == PDK_STAB_SILLING)
+  if (a->own && k->stab != PDK_STAB_HOURGLASS)
+    rows_pass2(k, a, i0, i1);
+  else if (k->stab == PDK_STAB_SILLING)
     pass2_rows(1, k, a, i0, i1);
   else if (k->stab == PDK_STAB_HOURGLASS)
     pass2_rows(2, k, a, i0, i1);

@@ -370,8 +370,10 @@ static void store_pair(const int d, const pdk_corr_consts *k, const pdk_corr_arr
   }
 }
 
-void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
-                               const double N[3][3]) {
+/* The per-particle end of pass 1 from N (disp = 0: F = N K^-1) or from D (disp = 1:
+ * F = I + D K^-1). */
+static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                      const double N[3][3], int disp) {
   pdk_corr_consts k_i; /* multi-material: particle i's lambda, mu, stabilization modulus */
   k = pdk_corr_consts_at(k, i, &k_i);
   const int d = k->dim;
@@ -386,6 +388,9 @@ void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *
   double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
   load_d(d, a->Kinv, i, Kinv);
   mul_d(d, N, Kinv, F);
+  if (disp)
+    for (int c = 0; c < d; ++c)
+      F[c][c] += 1.0;
   store_d(d, a->F, i, F);
   if (k->law == PDK_LAW_JC) {
     pass1_jc(d, k, a, i, F, Kinv);
@@ -400,6 +405,16 @@ void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *
     a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
   }
   store_pair(d, k, a, i);
+}
+
+void pdk_kernel_corr_point_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                               const double N[3][3]) {
+  point_end(k, a, i, N, 0);
+}
+
+void pdk_kernel_corr_point_disp_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                    pdk_index i, const double D[3][3]) {
+  point_end(k, a, i, D, 1);
 }
 
 static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
