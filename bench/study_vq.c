@@ -6,7 +6,7 @@
  *                                                     omega 0..4 = Const Inv Linear Quadr Cubic)
  *   study_vq table3|table4|table5|vq7|table7|table8  one table, Markdown on stdout
  *   options: --np a,b,c (NP list of the convergence fits), --threads N
- * docs/validation/queiruga.md lists the commands and their output; tools/run_vq_study.sh runs all.
+ * docs/validation/queiruga.md lists the commands and their output; bench/run_vq_study.sh runs all.
  */
 #include "../tests/vq_util.h"
 

@@ -5,9 +5,9 @@
 #   bench/tradeoff/run.sh [BUILD_DIR]
 #
 # BUILD_DIR defaults to ./build (a Release build: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release).
-# Two processes run side by side, one thread each, on two halves of the problems (about 5 minutes
-# of CPU each); the cost of a run is its own process CPU time, so the other process does not
-# count in it. Their CSVs are concatenated, then the Pareto flags and the plots are made.
+# Two processes run side by side, one thread each, on two halves of the problems; the cost of a
+# run is its own process CPU time, so the other process does not count in it. Their CSVs are
+# concatenated, then the Pareto flags and the plots are made (run.txt states the wall time).
 # Only the plots, from the committed CSV: build/bench/bench_tradeoff --plot-only --out-dir docs/tradeoff
 # One problem into another directory:     build/bench/bench_tradeoff --problem wave --out-dir /tmp/t
 set -eu
@@ -21,10 +21,18 @@ fi
 cmake --build "$build" -j2 --target bench_tradeoff
 exe="$build/bench/bench_tradeoff"
 out="$src/docs/tradeoff"
+mkdir -p "$out"
+# Everything is made in a staging directory beside docs/tradeoff and moved in (a rename per file)
+# only when the whole study and its plots are done: a failed or interrupted run leaves
+# docs/tradeoff as it was.
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out" "$work/a" "$work/b"
+stage=$(mktemp -d "$src/docs/.tradeoff.XXXXXX")
+pid_a= pid_b=
+trap 'rm -rf "$work" "$stage"' EXIT
+trap 'kill $pid_a $pid_b 2>/dev/null; exit 130' INT TERM
+mkdir -p "$work/a" "$work/b"
 start="$(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
+t0=$(date +%s)
 "$exe" --plan full --no-plot --out-dir "$work/a" --problem mms --problem hole 2> "$work/a/log" &
 pid_a=$!
 "$exe" --plan full --no-plot --out-dir "$work/b" --problem vq_uniaxial --problem vq_isotropic \
@@ -38,13 +46,24 @@ if [ $status -ne 0 ]; then
   echo "run.sh: the study failed; docs/tradeoff is unchanged" >&2
   exit 1
 fi
-{ cat "$work/a/tradeoff.csv"; tail -n +2 "$work/b/tradeoff.csv"; } > "$out/tradeoff.csv"
-"$exe" --plot-only --out-dir "$out"
+{ cat "$work/a/tradeoff.csv"; tail -n +2 "$work/b/tradeoff.csv"; } > "$stage/tradeoff.csv"
+if ! "$exe" --plot-only --out-dir "$stage"; then
+  echo "run.sh: plotting failed; docs/tradeoff is unchanged" >&2
+  exit 1
+fi
 {
   echo "command: bench/tradeoff/run.sh (bench_tradeoff --plan full, two processes of 1 thread)"
   echo "commit: $(git -C "$src" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "start: $start"
   echo "end: $(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
-  tail -n 1 "$work/a/log" "$work/b/log"
-} > "$out/run.txt"
+  echo "wall time: $(( $(date +%s) - t0 )) s"
+  echo "cpu: $(awk -F, 'NR > 1 { s += $19 } END { printf "%.0f s summed over the runs", s }' "$stage/tradeoff.csv")"
+  tail -n 1 "$work/a/log" "$work/b/log" | sed "s#$work#WORK#g"
+} > "$stage/run.txt"
+for f in "$out"/*.png; do # plots of problems the new study no longer has
+  [ -e "$f" ] && [ ! -e "$stage/$(basename "$f")" ] && rm -f "$f"
+done
+for f in "$stage"/*; do
+  mv -f "$f" "$out/"
+done
 echo "results in $out (tradeoff.csv, *.png, run.txt)"

@@ -8,8 +8,11 @@
  *            with f, g built from sin^4(pi t) (zero with three derivatives outside [0, 1]), so the
  *            body force b = -Div sigma(u*) is a sum of a function of X and one of Y and u* = 0
  *            beyond the square except along the collar rows and columns. A collar of width 2
- *            delta around the square holds u* exactly (state-based neighbours then have full
- *            families); every particle of the square carries b. Solved by Newton (or ADR).
+ *            delta around the square holds u* exactly (a prescribed displacement with a
+ *            per-particle scale field, pdk_bc.scale_field; 2 delta, not delta, so that the
+ *            collar particles a square particle's state-based force reads have full families);
+ *            every particle of the square carries b (a body force with a scale field). Solved
+ *            by Newton (or ADR).
  *            Error: relative L2 norm of u - u* over the square's particles.
  *   vq_uniaxial, vq_isotropic, vq_shear
  *            the V-Q constant-strain tests (VALIDATION.md, seeds/notes/002 section 4.1): 10 mm
@@ -50,7 +53,9 @@
  * Output (--out-dir DIR): DIR/tradeoff.csv, one row per run with the Pareto flag (no other run of
  * the same problem is at most as costly and at most as wrong, and better in one of the two), and
  * DIR/tradeoff.gp, which gnuplot turns into DIR/<problem>.png (run by this program unless
- * --no-plot). --plot-only rereads DIR/tradeoff.csv and redoes the flags and plots.
+ * --no-plot). --plot-only rereads DIR/tradeoff.csv and redoes the flags and plots. DIR is created
+ * with its parents; every output is written under a temporary name (.part) and renamed when
+ * complete, so a failed or interrupted run leaves no file that looks finished.
  *
  * Usage: tradeoff [--plan tiny|full] [--problem NAME]... [--out-dir DIR] [--threads T]
  *                 [--no-plot] [--plot-only] [--list]
@@ -62,6 +67,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 
 #include "model_impl.h" /* pdk_influence_eval: the stress post-processing of the hole */
 #include "pdk/pdk.h"
@@ -232,6 +238,23 @@ static pdk_index count_set(pdk_particles *p, const char *set) {
   return c;
 }
 
+/* Newton's default tolerance (1e-10 of the load norm) lies below the round-off of a residual
+ * computed with float storage: correspondence rounds the pass-2 tensors to float, a relative
+ * 6e-8 of the stress, and Newton's line search stalls at 1e-9 to 3e-9 of the load norm (mms,
+ * N = 16 and 32). Correspondence float rows solved by Newton therefore use rtol 1e-7 (noted in
+ * the row); ADR's default 1e-6 is above it. PMB and LPS round only the reference bond lengths, a
+ * fixed perturbation of the body that leaves the residual smooth: their default stands. */
+#define FLOAT_NEWTON_RTOL 1e-7
+static pdk_static_opts static_opts(const knobs *k, row *r) {
+  pdk_static_opts so = pdk_static_opts_default(k->method);
+  if (k->precision == PDK_PRECISION_FLOAT && k->method == PDK_STATIC_NEWTON &&
+      k->kind == PDK_MODEL_CORRESPONDENCE) {
+    so.rtol = FLOAT_NEWTON_RTOL;
+    snprintf(r->note, sizeof r->note, "Newton rtol %g (float round-off)", so.rtol);
+  }
+  return so;
+}
+
 static void finish_static(row *r, pdk_static *s) {
   const pdk_static_stats *st = pdk_static_stats_get(s);
   r->work = st->iterations;
@@ -311,7 +334,7 @@ static void run_vq(pdk_ctx *ctx, problem_id prob, const knobs *k, int np, row *r
     }
   }
   TRY(build_model(p, k, h, K, G, 1.0, &fam, &m));
-  pdk_static_opts so = pdk_static_opts_default(k->method);
+  pdk_static_opts so = static_opts(k, r);
   so.bcs = bcs;
   so.num_bcs = nb;
   TRY(pdk_static_create(m, &so, &s));
@@ -408,23 +431,38 @@ static void run_mms(pdk_ctx *ctx, const knobs *k, int N, row *r) {
   collar.invert = 1;
   TRY(pdk_particles_set_define(p, "collar", &collar, NULL));
   TRY(build_model(p, k, h, K, G, 1.0, &fam, &m));
+  {
+    /* Per-particle condition values (pdk_bc.scale_field), filled after the Morton reorder: the
+     * collar's prescribed displacement u* and the square's body force b = -Div sigma(u*). */
+    TRY(pdk_particles_field_add(p, "mms_u", PDK_F64, 2));
+    TRY(pdk_particles_field_add(p, "mms_b", PDK_F64, 2));
+    const pdk_index n = pdk_particles_count(p);
+    const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
+    const uint8_t *in_collar = pdk_particles_field_data(p, "set:collar", 0);
+    double *uf[2] = {pdk_particles_field_data(p, "mms_u", 0), pdk_particles_field_data(p, "mms_u", 1)};
+    double *bf[2] = {pdk_particles_field_data(p, "mms_b", 0), pdk_particles_field_data(p, "mms_b", 1)};
+    for (pdk_index i = 0; i < n; ++i) {
+      double u[2], b[2];
+      mms_u(X[i], Y[i], u);
+      mms_b(X[i], Y[i], lambda, mu, b);
+      for (int c = 0; c < 2; ++c) {
+        uf[c][i] = in_collar[i] ? u[c] : 0.0;
+        bf[c][i] = in_collar[i] ? 0.0 : b[c];
+      }
+    }
+  }
   pdk_bc bcs[2];
   memset(bcs, 0, sizeof bcs);
-  bcs[0] = (pdk_bc){.kind = PDK_BC_DISPLACEMENT, .set = "set:collar", .components = 3};
-  bcs[1] = (pdk_bc){.kind = PDK_BC_BODY_FORCE, .set = NULL, .components = 3};
-  pdk_static_opts so = pdk_static_opts_default(k->method);
+  bcs[0] = (pdk_bc){.kind = PDK_BC_DISPLACEMENT, .set = "set:collar", .components = 3,
+                    .scale_field = "mms_u"};
+  bcs[1] = (pdk_bc){.kind = PDK_BC_BODY_FORCE, .set = NULL, .components = 3,
+                    .scale_field = "mms_b"};
+  for (int c = 0; c < 2; ++c)
+    bcs[0].value[c] = bcs[1].value[c] = pdk_tfun_constant(1.0);
+  pdk_static_opts so = static_opts(k, r);
   so.bcs = bcs;
   so.num_bcs = 2;
-  /* The field needs per-particle prescribed values and body forces. The study measured it
-   * (docs/tradeoff/, commit 5eee83a) by writing the static solver's condition arrays; the solver
-   * now recomputes them from the conditions at every level, and pdk_bc has no per-particle scale
-   * yet, so this build cannot pose the problem: reported, not faked. */
-  (void)mms_b;
-  (void)so;
-  err = pdk_ctx_error_set(ctx, PDK_ERR_UNSUPPORTED, "mms",
-                          "the manufactured field needs per-particle boundary values and body "
-                          "forces, which pdk_bc does not offer in this build");
-  goto cleanup;
+  TRY(pdk_static_create(m, &so, &s));
   TRY(pdk_static_solve(s));
   r->wall = pdk_wtime() - w0;
   r->cpu = cpu_seconds() - c0;
@@ -604,7 +642,7 @@ static void run_hole(pdk_ctx *ctx, const knobs *k, int N, row *r) {
   bcs[3] = (pdk_bc){.kind = PDK_BC_BODY_FORCE, .set = "set:bottom", .components = 2};
   bcs[3].value[1] = pdk_tfun_constant(-sigma0 * W / (n_bottom * V));
   TRY(build_model(p, k, h, K, G, 1.0, &fam, &m));
-  pdk_static_opts so = pdk_static_opts_default(k->method);
+  pdk_static_opts so = static_opts(k, r);
   so.bcs = bcs;
   so.num_bcs = 4;
   TRY(pdk_static_create(m, &so, &s));
@@ -767,8 +805,8 @@ static void plan_problem(plan *pl, problem_id prob, const ladders *ld, int full)
   for (int i = 0; i < (full ? 7 : 3); ++i)
     add(pl, prob, "model", with_model(base, full ? models[i] : tiny_models[i]), ld);
   if (!full) {
-    /* tiny: the precision knob, so that float shows up the day it lands; for V-Q also the
-     * paper's setting (no stabilization, cubic influence, RF 1.5), whose order is known */
+    /* tiny: the precision knob (correspondence, float storage, Newton at rtol 1e-7); for V-Q also
+     * the paper's setting (no stabilization, cubic influence, RF 1.5), whose order is known */
     knobs k = base;
     k.precision = PDK_PRECISION_FLOAT;
     add(pl, prob, "precision", k, ld);
@@ -798,13 +836,27 @@ static void plan_problem(plan *pl, problem_id prob, const ladders *ld, int full)
       add(pl, prob, "influence-rf1.5", k, ld);
     }
   }
-  const char *p_models[] = {"pmb", "lps", "corr-silling"};
-  for (int a = 0; a < 3; ++a)
+  /* precision: each model that has float storage, at the baseline m and (correspondence) at
+   * m 1.5, where the errors are smallest and round-off would show first; ADR beside Newton for
+   * the static problems; UL, which refuses float storage, once, so the CSV records why */
+  const char *p_models[] = {"pmb", "lps", "corr-silling", "corr-silling"};
+  for (int a = 0; a < 4; ++a)
     for (int fl = 0; fl < 2; ++fl) {
       knobs k = with_model(base, p_models[a]);
+      if (a == 3) k.m = 1.5;
       k.precision = fl ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
       add(pl, prob, "precision", k, ld);
+      if (prob != P_WAVE && a >= 2) {
+        k.method = PDK_STATIC_ADR;
+        add(pl, prob, "precision", k, ld);
+      }
     }
+  {
+    knobs k = base;
+    k.precision = PDK_PRECISION_FLOAT;
+    k.connectivity = PDK_CONNECTIVITY_UL;
+    add(pl, prob, "precision", k, ld);
+  }
   if (prob == P_VQ_ISOTROPIC) return; /* the uniaxial and shear tests cover the other knobs */
   for (int c = 0; c < 3; ++c) {
     knobs k = base;
@@ -1014,7 +1066,9 @@ static void series_label(const row *r, const char *sweep, char *buf, size_t len)
   else if (!strcmp(sweep, "m")) snprintf(buf, len, "%s m %.4g", model, r->k.m);
   else if (!strncmp(sweep, "influence", 9)) snprintf(buf, len, "%s", influence_name[r->k.influence]);
   else if (!strcmp(sweep, "precision"))
-    snprintf(buf, len, "%s %s", model, r->k.precision ? "float" : "double");
+    snprintf(buf, len, "%s m %.4g%s %s", model, r->k.m,
+             r->k.method == PDK_STATIC_ADR && r->problem != P_WAVE ? " adr" : "",
+             r->k.precision ? "float" : "double");
   else if (!strcmp(sweep, "connectivity")) snprintf(buf, len, "%s", conn_name[r->k.connectivity]);
   else if (!strcmp(sweep, "dt")) snprintf(buf, len, "%s safety %.2g", model, r->k.safety);
   else if (!strcmp(sweep, "order"))
@@ -1041,11 +1095,12 @@ static int cmp_cpu(const void *a, const void *b) {
  * grey, the sweep's series in colour (one line per series through its resolutions), the Pareto
  * front in black. The data are inline, so the script needs nothing but gnuplot. */
 static int write_gnuplot(const char *dir, row *rows, int n) {
-  char path[1024];
+  char path[1024], part[1100];
   snprintf(path, sizeof path, "%s/tradeoff.gp", dir);
-  FILE *f = fopen(path, "w");
+  snprintf(part, sizeof part, "%s.part", path);
+  FILE *f = fopen(part, "w");
   if (!f) {
-    fprintf(stderr, "tradeoff: cannot create '%s': %s\n", path, strerror(errno));
+    fprintf(stderr, "tradeoff: cannot create '%s': %s\n", part, strerror(errno));
     return 1;
   }
   row **sorted = malloc((size_t)(n > 0 ? n : 1) * sizeof *sorted);
@@ -1086,7 +1141,7 @@ static int write_gnuplot(const char *dir, row *rows, int n) {
               model_label(&sorted[i]->k));
     fprintf(f, "EOD\n");
     fprintf(f, "set terminal term size %d,%d noenhanced font ',9'\n", 520 * cols, 420 * lines);
-    fprintf(f, "set output '%s.png'\n", problem_name[pb]);
+    fprintf(f, "set output '%s.png.part'\n", problem_name[pb]); /* renamed when all are done */
     fprintf(f, "set logscale xy\nset grid\nset format x '%%g'\nset format y '%%g'\n"
                "set key outside right top Left reverse samplen 2 spacing 0.9 font ',8'\n"
                "set xlabel 'cost: CPU time [s], 1 thread'\nset ylabel 'relative error'\n");
@@ -1129,10 +1184,13 @@ static int write_gnuplot(const char *dir, row *rows, int n) {
     fprintf(f, "unset multiplot\nset output\n");
   }
   free(sorted);
-  const int bad = ferror(f);
-  fclose(f);
-  if (bad) fprintf(stderr, "tradeoff: cannot write '%s'\n", path);
-  return bad;
+  const int bad = ferror(f) | (fclose(f) != 0);
+  if (bad || rename(part, path) != 0) {
+    fprintf(stderr, "tradeoff: cannot write '%s'\n", path);
+    remove(part);
+    return 1;
+  }
+  return 0;
 }
 
 static int write_csv(const char *dir, row *rows, int n) {
@@ -1156,15 +1214,67 @@ static int write_csv(const char *dir, row *rows, int n) {
   return 0;
 }
 
+/* Runs gnuplot on DIR/tradeoff.gp, which writes DIR/<problem>.png.part; only when it succeeds are
+ * they renamed to <problem>.png, so a failed or interrupted plot leaves no PNG that looks
+ * complete. A <problem>.png of a problem without runs in the CSV is removed (stale). */
 static int plot(const char *dir, row *rows, int n, int run_gnuplot) {
   if (write_gnuplot(dir, rows, n)) return 1;
   if (!run_gnuplot) return 0;
-  char cmd[1200];
+  char cmd[1200], path[1100], part[1200];
   snprintf(cmd, sizeof cmd, "cd '%s' && gnuplot tradeoff.gp", dir);
   const int rc = system(cmd);
-  if (rc != 0) {
-    fprintf(stderr, "tradeoff: gnuplot failed (exit %d) on %s/tradeoff.gp\n", rc, dir);
+  int bad = rc != 0;
+  if (bad) fprintf(stderr, "tradeoff: gnuplot failed (exit %d) on %s/tradeoff.gp\n", rc, dir);
+  for (int pb = 0; pb < P_COUNT; ++pb) {
+    int any = 0;
+    for (int i = 0; i < n; ++i)
+      any |= rows[i].problem == pb && row_ok(&rows[i]);
+    snprintf(path, sizeof path, "%s/%s.png", dir, problem_name[pb]);
+    snprintf(part, sizeof part, "%s.part", path);
+    if (!any) {
+      remove(path);
+      continue;
+    }
+    if (bad) {
+      remove(part);
+    } else if (rename(part, path) != 0) {
+      fprintf(stderr, "tradeoff: gnuplot wrote no '%s': %s\n", part, strerror(errno));
+      bad = 1;
+    }
+  }
+  if (bad) /* the PNGs renamed before the failure are complete; the .part files are removed */
+    for (int pb = 0; pb < P_COUNT; ++pb) {
+      snprintf(part, sizeof part, "%s/%s.png.part", dir, problem_name[pb]);
+      remove(part);
+    }
+  return bad;
+}
+
+/* mkdir -p: creates DIR and its missing parents (mode 0777 before the umask). */
+static int make_dirs(const char *dir) {
+  char buf[1024];
+  const size_t len = strlen(dir);
+  if (len == 0 || len >= sizeof buf) {
+    fprintf(stderr, "tradeoff: --out-dir '%s': give a path of 1 to %zu characters\n", dir,
+            sizeof buf - 1);
     return 1;
+  }
+  memcpy(buf, dir, len + 1);
+  for (size_t i = 1; i <= len; ++i) {
+    if (buf[i] != '/' && buf[i] != '\0') continue;
+    const char keep = buf[i];
+    buf[i] = '\0';
+    struct stat st;
+    if (stat(buf, &st) != 0) {
+      if (mkdir(buf, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "tradeoff: --out-dir: cannot create '%s': %s\n", buf, strerror(errno));
+        return 1;
+      }
+    } else if (!S_ISDIR(st.st_mode)) {
+      fprintf(stderr, "tradeoff: --out-dir: '%s' exists and is not a directory\n", buf);
+      return 1;
+    }
+    buf[i] = keep;
   }
   return 0;
 }
@@ -1260,6 +1370,8 @@ int main(int argc, char **argv) {
     free(pl.s);
     return 0;
   }
+  /* the output directory before the study, not after it: a bad path fails in a second */
+  if (make_dirs(dir)) return 1;
   pdk_ctx_opts co = pdk_ctx_opts_default();
   co.num_threads = threads;
   char why[512];
