@@ -39,6 +39,7 @@
 #error "define CORR_SFX before including corr_simd.h"
 #endif
 
+#include <immintrin.h>
 #include <math.h>
 
 #include "kernels.h"
@@ -126,13 +127,16 @@ pdk_index CORR_FN(pdk_kernel_corr_shape_)(const pdk_corr_consts *k, const pdk_co
  * the same sum with i's part factored out. */
 
 typedef double corr_v4 __attribute__((vector_size(32)));
-typedef double corr_v4a __attribute__((vector_size(32), aligned(32), may_alias));
-typedef float corr_v4f __attribute__((vector_size(16), aligned(16), may_alias));
 
 CORR_INLINE corr_v4 cv_set1(double s) { return (corr_v4){s, s, s, s}; }
-CORR_INLINE corr_v4 cv_load(const double *p) { return *(const corr_v4a *)(const void *)p; }
-CORR_INLINE corr_v4 cv_loadf(const float *p) {
-  return __builtin_convertvector(*(const corr_v4f *)(const void *)p, corr_v4);
+CORR_INLINE corr_v4 cv_load(const double *p) { return (corr_v4)_mm256_load_pd(p); }
+CORR_INLINE corr_v4 cv_loadf(const float *p) { return (corr_v4)_mm256_cvtps_pd(_mm_load_ps(p)); }
+/* *p in every lane, as a broadcast load: the empty asm keeps GCC from folding a difference of two
+ * broadcasts into a scalar difference and a register broadcast (one more shuffle uop). */
+CORR_INLINE corr_v4 cv_bcast(const double *p) {
+  __m256d v = _mm256_broadcast_sd(p);
+  __asm__("" : "+x"(v));
+  return (corr_v4)v;
 }
 
 /* Stabilization coefficient of particle i (the reference's stab_coef). */
@@ -176,13 +180,12 @@ CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index 
                           const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc, int32_t *count) {
   const pdk_index j = a->bond_j[b];
   const double *restrict rj = a->ref4 + 4 * (size_t)j;
-  const double om = a->bond_omega[b];
   ++*count;
   const corr_v4 v = cv_load(a->cur4 + 4 * (size_t)j) - ui;
-  const corr_v4 wv = (cv_set1(om) * cv_set1(rj[3])) * v;
-  acc[0] += wv * (cv_set1(rj[0]) - Xi[0]);
-  acc[1] += wv * (cv_set1(rj[1]) - Xi[1]);
-  if (d == 3) acc[2] += wv * (cv_set1(rj[2]) - Xi[2]);
+  const corr_v4 wv = (cv_bcast(a->bond_omega + b) * cv_bcast(rj + 3)) * v;
+  acc[0] += wv * (cv_bcast(rj) - Xi[0]);
+  acc[1] += wv * (cv_bcast(rj + 1) - Xi[1]);
+  if (d == 3) acc[2] += wv * (cv_bcast(rj + 2) - Xi[2]);
   acc[3] += wv;
   acc[4] += wv * v;
 }
@@ -269,20 +272,19 @@ CORR_INLINE void rp2_bond(const int d, const int fl, const int stab, const pdk_c
                           pdk_bond_index b, const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc) {
   const pdk_index j = a->bond_j[b];
   const double *restrict rj = a->ref4 + 4 * (size_t)j;
-  const double om = a->bond_omega[b];
   corr_v4 g;
   if (fl) {
     const pdk_corr_rowf *restrict R = a->rowf + j;
-    g = cv_loadf(R->c) * (cv_set1(rj[0]) - Xi[0]) + cv_loadf(R->c + 4) * (cv_set1(rj[1]) - Xi[1]);
-    if (d == 3) g += cv_loadf(R->c + 8) * (cv_set1(rj[2]) - Xi[2]);
-    if (stab) g += cv_set1(R->k) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
+    g = cv_loadf(R->c) * (cv_bcast(rj) - Xi[0]) + cv_loadf(R->c + 4) * (cv_bcast(rj + 1) - Xi[1]);
+    if (d == 3) g += cv_loadf(R->c + 8) * (cv_bcast(rj + 2) - Xi[2]);
+    if (stab) g += cv_bcast(&R->k) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
   } else {
     const pdk_corr_row *restrict R = a->row + j;
-    g = cv_load(R->c) * (cv_set1(rj[0]) - Xi[0]) + cv_load(R->c + 4) * (cv_set1(rj[1]) - Xi[1]);
-    if (d == 3) g += cv_load(R->c + 8) * (cv_set1(rj[2]) - Xi[2]);
-    if (stab) g += cv_set1(R->c[3]) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
+    g = cv_load(R->c) * (cv_bcast(rj) - Xi[0]) + cv_load(R->c + 4) * (cv_bcast(rj + 1) - Xi[1]);
+    if (d == 3) g += cv_load(R->c + 8) * (cv_bcast(rj + 2) - Xi[2]);
+    if (stab) g += cv_bcast(R->c + 3) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
   }
-  *acc += (cv_set1(om) * cv_set1(rj[3])) * g;
+  *acc += (cv_bcast(a->bond_omega + b) * cv_bcast(rj + 3)) * g;
 }
 
 CORR_INLINE void rp2_row(const int d, const int has_alive, const int fl, const int stab,
