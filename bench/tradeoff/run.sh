@@ -2,8 +2,10 @@
 # Regenerates the speed-accuracy study: docs/tradeoff/tradeoff.csv, tradeoff.gp, one PNG per
 # problem and run.txt (commit, date, machine load); docs/tradeoff.md reads them.
 #
-#   bench/tradeoff/run.sh [BUILD_DIR]
+#   bench/tradeoff/run.sh [BUILD_DIR] [SWEEP]
 #
+# SWEEP (optional, e.g. precision): only that sweep's series, into docs/tradeoff/SWEEP/ (same
+# files); the full study in docs/tradeoff/ is left as it is.
 # BUILD_DIR defaults to ./build (a Release build: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release).
 # Two processes run side by side, one thread each, on two halves of the problems; the cost of a
 # run is its own process CPU time, so the other process does not count in it. Their CSVs are
@@ -13,6 +15,7 @@
 set -eu
 src=$(cd "$(dirname "$0")/../.." && pwd)
 build=${1:-"$src/build"}
+sweep=${2:-}
 if [ ! -f "$build/CMakeCache.txt" ]; then
   echo "run.sh: '$build' is not a CMake build directory; configure first:" >&2
   echo "  cmake -S '$src' -B '$build' -DCMAKE_BUILD_TYPE=Release" >&2
@@ -20,7 +23,8 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
 fi
 cmake --build "$build" -j2 --target bench_tradeoff
 exe="$build/bench/bench_tradeoff"
-out="$src/docs/tradeoff"
+out="$src/docs/tradeoff${sweep:+/$sweep}"
+only=${sweep:+--sweep $sweep}
 mkdir -p "$out"
 # Everything is made in a staging directory beside docs/tradeoff and moved in (a rename per file)
 # only when the whole study and its plots are done: a failed or interrupted run leaves
@@ -33,9 +37,9 @@ trap 'kill $pid_a $pid_b 2>/dev/null; exit 130' INT TERM
 mkdir -p "$work/a" "$work/b"
 start="$(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
 t0=$(date +%s)
-"$exe" --plan full --no-plot --out-dir "$work/a" --problem mms --problem hole 2> "$work/a/log" &
+"$exe" --plan full $only --no-plot --out-dir "$work/a" --problem mms --problem hole 2> "$work/a/log" &
 pid_a=$!
-"$exe" --plan full --no-plot --out-dir "$work/b" --problem vq_uniaxial --problem vq_isotropic \
+"$exe" --plan full $only --no-plot --out-dir "$work/b" --problem vq_uniaxial --problem vq_isotropic \
   --problem vq_shear --problem wave 2> "$work/b/log" &
 pid_b=$!
 status=0
@@ -52,7 +56,7 @@ if ! "$exe" --plot-only --out-dir "$stage"; then
   exit 1
 fi
 {
-  echo "command: bench/tradeoff/run.sh (bench_tradeoff --plan full, two processes of 1 thread)"
+  echo "command: bench/tradeoff/run.sh ${sweep:+build $sweep }(bench_tradeoff --plan full $only, two processes of 1 thread)"
   echo "commit: $(git -C "$src" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "start: $start"
   echo "end: $(date -u +%Y-%m-%dT%H:%M:%SZ), load average $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"

@@ -57,8 +57,10 @@
  * with its parents; every output is written under a temporary name (.part) and renamed when
  * complete, so a failed or interrupted run leaves no file that looks finished.
  *
- * Usage: tradeoff [--plan tiny|full] [--problem NAME]... [--out-dir DIR] [--threads T]
- *                 [--no-plot] [--plot-only] [--list]
+ * Usage: tradeoff [--plan tiny|full] [--problem NAME]... [--sweep NAME] [--out-dir DIR]
+ *                 [--threads T] [--no-plot] [--plot-only] [--list]
+ * --sweep NAME runs only the series of one sweep (model, m, influence, influence-rf1.5, precision,
+ * connectivity, dt, order, solver); series keep their numbers in the whole plan.
  */
 #include <ctype.h>
 #include <errno.h>
@@ -157,6 +159,7 @@ typedef struct series {
   knobs k;
   int levels[6];
   int num_levels;
+  int selected; /* run by this invocation (--problem, --sweep) */
 } series;
 
 static double cpu_seconds(void) {
@@ -1076,15 +1079,18 @@ static void series_label(const row *r, const char *sweep, char *buf, size_t len)
   else snprintf(buf, len, "%s %s", model, pdk_static_method_name(r->k.method));
 }
 
-static int has_sweep(const row *r, const char *sweep) {
-  const char *s = r->sweeps;
+/* 1 if the space-separated list `sweeps` names `sweep`. */
+static int lists_sweep(const char *sweeps, const char *sweep) {
+  const char *s = sweeps;
   const size_t len = strlen(sweep);
   while ((s = strstr(s, sweep))) {
-    if ((s == r->sweeps || s[-1] == ' ') && (s[len] == ' ' || s[len] == '\0')) return 1;
+    if ((s == sweeps || s[-1] == ' ') && (s[len] == ' ' || s[len] == '\0')) return 1;
     s += len;
   }
   return 0;
 }
+
+static int has_sweep(const row *r, const char *sweep) { return lists_sweep(r->sweeps, sweep); }
 
 static int cmp_cpu(const void *a, const void *b) {
   const row *x = *(row *const *)a, *y = *(row *const *)b;
@@ -1283,7 +1289,7 @@ static int make_dirs(const char *dir) {
 
 static void usage(FILE *out) {
   fprintf(out, "usage: tradeoff [--plan tiny|full] [--problem NAME]... [--out-dir DIR] "
-               "[--threads T] [--no-plot] [--plot-only] [--list]\n  problems:");
+               "[--sweep NAME] [--threads T] [--no-plot] [--plot-only] [--list]\n  problems:");
   for (int p = 0; p < P_COUNT; ++p)
     fprintf(out, " %s", problem_name[p]);
   fprintf(out, "\n");
@@ -1292,7 +1298,7 @@ static void usage(FILE *out) {
 int main(int argc, char **argv) {
   int full = 1, threads = 1, want[P_COUNT] = {0}, any_want = 0, no_plot = 0, plot_only = 0,
       list = 0;
-  const char *dir = ".";
+  const char *dir = ".", *only_sweep = NULL;
   for (int a = 1; a < argc; ++a) {
     const char *o = argv[a];
     const int more = a + 1 < argc;
@@ -1311,6 +1317,18 @@ int main(int argc, char **argv) {
         return 2;
       }
       want[p] = any_want = 1;
+    } else if (!strcmp(o, "--sweep") && more) {
+      only_sweep = argv[++a];
+      int known = 0;
+      for (int k = 0; k < NUM_SWEEPS; ++k)
+        known |= !strcmp(only_sweep, sweep_names[k]);
+      if (!known) {
+        fprintf(stderr, "tradeoff: --sweep %s: unknown sweep; the sweeps are", only_sweep);
+        for (int k = 0; k < NUM_SWEEPS; ++k)
+          fprintf(stderr, " %s", sweep_names[k]);
+        fprintf(stderr, "\n");
+        return 2;
+      }
     } else if (!strcmp(o, "--out-dir") && more) dir = argv[++a];
     else if (!strcmp(o, "--threads") && more) {
       threads = atoi(argv[++a]);
@@ -1352,10 +1370,13 @@ int main(int argc, char **argv) {
   long total_runs = 0;
   int total_series = 0;
   for (int i = 0; i < pl.n; ++i)
-    if (want[pl.s[i].problem]) total_runs += pl.s[i].num_levels, ++total_series;
+    pl.s[i].selected =
+        want[pl.s[i].problem] && (!only_sweep || lists_sweep(pl.s[i].sweeps, only_sweep));
+  for (int i = 0; i < pl.n; ++i)
+    if (pl.s[i].selected) total_runs += pl.s[i].num_levels, ++total_series;
   if (list) {
     for (int i = 0; i < pl.n; ++i) {
-      if (!want[pl.s[i].problem]) continue;
+      if (!pl.s[i].selected) continue;
       row r;
       memset(&r, 0, sizeof r);
       r.problem = pl.s[i].problem;
@@ -1389,7 +1410,7 @@ int main(int argc, char **argv) {
   const double t_start = pdk_wtime();
   for (int i = 0; i < pl.n; ++i) {
     const series *s = &pl.s[i];
-    if (!want[s->problem]) continue;
+    if (!s->selected) continue;
     int stop = 0; /* after an unsupported setting, the finer levels are skipped */
     for (int l = 0; l < s->num_levels; ++l) {
       row *r = &rows[n++];
