@@ -735,6 +735,11 @@ void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
   fprintf(out, "levels %d, iterations %ld, force passes %ld (+%ld commits), re-solves %d\n",
           st->levels_done, st->iterations, st->force_passes, st->commit_passes, st->break_rounds);
   fprintf(out, "residual %.3e of load %.3e\n", st->residual, st->load_norm);
+  if (st->storage_floor_levels)
+    fprintf(out,
+            "%d level(s) stopped at the float-storage round-off of the residual (%.2e of the "
+            "load; precision double goes below it)\n",
+            st->storage_floor_levels, st->load_norm > 0 ? st->residual / st->load_norm : 0.0);
   if (st->num_colors)
     fprintf(out, "coloring: %d colors (coupling %d hops), %ld passes per difference tangent\n",
             st->num_colors, st->coupling_hops, st->passes_per_tangent);

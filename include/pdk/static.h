@@ -15,6 +15,10 @@
  * about eps |x|_max ||K||_F (K = -dr/dx); no iteration gets below that. A level is also converged
  * when ||r|| reaches this floor (stats.residual_floor; Newton measures ||K||_F on its tangent, ADR
  * bounds it by the row sums of its mass): at small strains (1e-6) it can lie above rtol ||F_ext||.
+ * Float storage (model precision float) adds round-off noise to every residual evaluation, far
+ * above that floor for correspondence: Newton accepts a level whose residual lies below
+ * FLT_EPSILON ||F_ext|| + atol when its last step no longer halved ||r|| or its line search
+ * stalled (stats.storage_floor_levels counts such levels; residual_floor is raised to the residual).
  *
  * Load stepping. The levels lambda_1 < lambda_2 < ... (default: num_levels equal steps up to 1)
  * are the load steps, in one of two modes:
@@ -235,7 +239,11 @@ typedef struct pdk_static_stats {
   double asymmetry;       /* ||K - K^T||_F / ||K||_F of the last difference tangent */
   double min_pivot_ratio; /* smallest pivot / largest diagonal of the last factorization */
   double min_eig_ratio;   /* inverse-iteration estimate of lambda_min / largest diagonal */
-  double residual_floor;  /* round-off floor of ||r||: eps |x|_max ||K||_F [force] */
+  double residual_floor;  /* round-off floor of ||r||: eps |x|_max ||K||_F [force], raised to
+                             the stalled residual on a level accepted at the float-storage floor */
+  int storage_floor_levels; /* Newton levels whose line search stalled at the round-off of float
+                               storage (precision float, residual <= FLT_EPSILON ||F_ext|| + atol)
+                               and were accepted there rather than failed */
   double null_nonaffine;  /* singular tangent: non-affine fraction of its near-null vector
                              (~1 zero-energy mode, ~0 rigid motion of a loose part; -1 n/a) */
   int assemblies, analyses, factorizations, solves, line_search_cuts, tangent_reuses;
