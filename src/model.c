@@ -332,6 +332,38 @@ const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m->bond_alive; 
 pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; }
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
+
+double pdk_model_float_stretch_ratio(const pdk_model *m) {
+  if (m->opts.precision != PDK_PRECISION_FLOAT ||
+      (m->ops != &pdk_model_ops_pmb && m->ops != &pdk_model_ops_lps))
+    return -1.0;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const pdk_index n = pdk_families_num_particles(m->fam);
+  const int dim = pdk_particles_dim(m->p);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const uint8_t *alive = m->bond_alive;
+  double smax = 0.0;
+#pragma omp parallel for default(none) shared(bs, bj, n, dim, X, x, alive) reduction(max : smax)     \
+    num_threads(m->ctx->num_threads) schedule(static)
+  for (pdk_index i = 0; i < n; ++i)
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      if (alive && !alive[b]) continue;
+      const pdk_index j = bj[b];
+      double r0 = 0.0, r = 0.0;
+      for (int c = 0; c < dim; ++c) {
+        const double d0 = X[c][j] - X[c][i], d = x[c][j] - x[c][i];
+        r0 += d0 * d0;
+        r += d * d;
+      }
+      smax = fmax(smax, fabs(sqrt(r) / sqrt(r0) - 1.0));
+    }
+  return smax / 0x1p-24;
+}
 pdk_index pdk_model_num_isolated(const pdk_model *m) {
   /* The bond state indexes the families given at creation; ul (no bond state) walks its own. */
   const pdk_families *fam = m->bond_alive ? m->fam : pdk_model_current_families(m);

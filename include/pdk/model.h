@@ -231,6 +231,16 @@ pdk_index pdk_model_num_flagged(const pdk_model *m);
  * move freely and carry no force. Counted on demand over the bond state (one pass over the
  * bonds), after the last force pass. */
 pdk_index pdk_model_num_isolated(const pdk_model *m);
+/* Float storage of bond lengths (PMB and LPS with precision float) rounds each reference length
+ * to a relative 2^-24, a stretch error of up to 2^-24 = 6.0e-8 on every bond whatever the
+ * deformation, so round-off, not discretization, dominates the forces when the stretches are
+ * small. Returns max |stretch| / 2^-24 over the intact bonds at the current positions (one pass
+ * over the bonds): the float error of the forces is up to 1/ratio of the largest bond force. 0
+ * for a body at rest. Returns -1 when the model stores nothing that bounds the stretch resolution
+ * (precision double; correspondence, whose float tensors carry a relative 2^-24 of the stress
+ * instead). The CLI warns at the end of a run when 0 <= ratio < PDK_FLOAT_STRETCH_WARN. */
+#define PDK_FLOAT_STRETCH_WARN 1e4
+double pdk_model_float_stretch_ratio(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 pdk_index pdk_model_num_failed(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */
