@@ -34,6 +34,22 @@ int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *
 void pdk_bond_pack_cur(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_index i0,
                        pdk_index i1);
 
+/* The bond j -> i stored in j's family (families are sorted by neighbour, so a binary search),
+ * or -1 if there is none. The analytic tangents read the state of the bond from the other end. */
+static inline pdk_bond_index pdk_bond_reverse(const pdk_bond_index *bond_start,
+                                              const pdk_index *bond_j, pdk_index i, pdk_index j) {
+  pdk_bond_index lo = bond_start[j], hi = bond_start[j + 1] - 1;
+  while (lo <= hi) {
+    const pdk_bond_index mid = lo + (hi - lo) / 2;
+    if (bond_j[mid] == i) return mid;
+    if (bond_j[mid] < i)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
+  }
+  return -1;
+}
+
 /* sum_i V_i W_i over one block [i0, i1), in index order. */
 static inline double pdk_bond_block_energy(const double *volume, const double *w, pdk_index i0,
                                            pdk_index i1) {

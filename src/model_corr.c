@@ -698,4 +698,4 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
-const pdk_model_ops pdk_model_ops_corr = {corr_setup, corr_force, corr_destroy};
+const pdk_model_ops pdk_model_ops_corr = {corr_setup, corr_force, corr_destroy, NULL, NULL};

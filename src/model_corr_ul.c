@@ -536,4 +536,4 @@ int pdk_model_corr_ul_rebuild(pdk_model *m) {
   return ul_rebuild_now(m);
 }
 
-const pdk_model_ops pdk_model_ops_corr_ul = {ul_setup, ul_force, ul_destroy};
+const pdk_model_ops pdk_model_ops_corr_ul = {ul_setup, ul_force, ul_destroy, NULL, NULL};

@@ -240,4 +240,4 @@ static int dil2_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
-const pdk_model_ops pdk_model_ops_dil2 = {dil2_setup, dil2_force, dil2_destroy};
+const pdk_model_ops pdk_model_ops_dil2 = {dil2_setup, dil2_force, dil2_destroy, NULL, NULL};

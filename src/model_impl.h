@@ -17,6 +17,18 @@ typedef struct pdk_model_ops {
    * nothing but "f" (and the kind's scratch fields). */
   int (*force)(pdk_model *m, int commit, double *energy);
   void (*destroy)(pdk_model *m);
+  /* Analytic tangent for the Newton solver (both NULL when the kind has none; it then differences
+   * trial passes). tangent_prepare (may be NULL) computes, at the current "x", the per-particle
+   * quantities the columns read (LPS: dilatations). tangent_column adds the column block of
+   * particle i of the full tangent K = -d(V f)/dx:
+   *   block[(loc[a] dim + e) dim + c] += K[(a,e),(i,c)] = -V_a d f_ae / d x_ic
+   * for every particle a coupled to i (within the kind's coupling hops: 1 for PMB, 2 for LPS);
+   * loc[a] is a's index in the caller's list of those particles (set for all of them), block is
+   * zeroed by the caller. It reads the model and writes only block: any number of threads may
+   * call it at once, and a column's bits do not depend on which thread computes it. The derivative
+   * is that of the trial pass (bond states as stored, nothing breaks). */
+  int (*tangent_prepare)(pdk_model *m);
+  void (*tangent_column)(const pdk_model *m, pdk_index i, const pdk_index *loc, double *block);
 } pdk_model_ops;
 
 struct pdk_model {

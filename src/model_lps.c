@@ -41,6 +41,10 @@ typedef struct lps_impl {
   double *w;            /* [n_pad] strain energy density, allocated on first request */
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows (extra column: 1/m), float bond lengths */
+  /* analytic tangent, allocated on first use: q_i = theta_i / m_i and
+   * s_i = sum_b alive_b beta V_j eta_b / |eta_b| at the x of the last tangent_prepare */
+  double *tan_q;    /* [n] */
+  double *tan_s[3]; /* [n] per component */
 } lps_impl;
 
 static int64_t block_count(pdk_index n) { return ((int64_t)n + PDK_LPS_BLOCK - 1) / PDK_LPS_BLOCK; }
@@ -190,12 +194,203 @@ static void lps_destroy(pdk_model *m) {
   pdk_free_aligned(im->s0_next);
   pdk_free_aligned(im->w);
   free(im->block_energy);
+  free(im->tan_q);
+  for (int c = 0; c < 3; ++c) free(im->tan_s[c]);
   pdk_bond_data_free(&im->bd);
   free(im);
   m->impl = NULL;
 }
 
-const pdk_model_ops pdk_model_ops_lps = {lps_setup, lps_force, lps_destroy};
+/* ---- analytic tangent (the Newton solver's, see pdk_model_ops) --------------------------------
+ *
+ * For a bond b of particle a to j (kernels/ref/lps.c): nu_b = alive_b beta V_j, eta = x_j - x_a,
+ * r = |eta|, n = eta / r, e = r - r0, q_a = theta_a / m_a, P = 1/m_a + 1/m_j,
+ *   f_a = sum_b nu_b T_b n / r0,   T_b = c_dil (q_a + q_j) r0 + c_dev P e,
+ *   theta_a = d / m_a sum_b nu_b e.
+ * Differentiating, with dn = (I - n n^T) deta / r:
+ *   df_a = sum_b nu_b H_b deta_b + c_dil (s_a / m_a) dtheta_a + c_dil sum_b nu_b n_b dtheta_j / m_j,
+ *   H_b = (c_dev P n n^T + T_b / r (I - n n^T)) / r0,   s_a = sum_b nu_b n_b,
+ *   dtheta_a = d / m_a sum_b nu_b n_b . deta_b.
+ * The column of particle i (K = -d(V f)/dx, deta_b = dx_j - dx_a):
+ *   local, per bond b of i to j:  K[i,i] += V_i nu_b H_b,  K[j,i] -= V_j nu'_b H_b (nu'_b: the bond
+ *     j -> i from j's end, beta V_i and its own state; H is the same from both ends);
+ *   dilatation, per particle p whose theta depends on x_i (p = i, and every j whose bond j -> i is
+ *     intact) with g_p = dtheta_p / dx_i (g_i = -d s_i / m_i, g_j = d nu'_b n_ji / m_j):
+ *     K[p, i] -= V_p c_dil s_p g_p^T / m_p,  and for every bond p -> a, with nu_ap the bond a -> p
+ *     from a's end (beta V_p, its state): K[a, i] += V_a c_dil nu_ap n_pa g_p^T / m_p
+ *   (a bond a -> p pulls a along n_ap = -n_pa). Rows reach 2 hops: the coupling of the pattern.
+ * Bonds with r = 0 carry no force and no dilatation derivative (n undefined), as in the pass. */
+static int lps_tangent_prepare(pdk_model *m) {
+  pdk_ctx *ctx = m->ctx;
+  lps_impl *im = m->impl;
+  const int dim = im->dim;
+  const pdk_index n = im->n;
+  if (!im->tan_q) {
+    im->tan_q = malloc((size_t)(n > 0 ? n : 1) * sizeof(double));
+    for (int c = 0; c < dim; ++c)
+      im->tan_s[c] = malloc((size_t)(n > 0 ? n : 1) * sizeof(double));
+    PDK_CHECK(im->tan_q && im->tan_s[0] && im->tan_s[1] && (dim < 3 || im->tan_s[2]), ctx,
+              PDK_ERR_MEMORY, "lps model: out of memory for the tangent of %d particles", (int)n);
+  }
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const double *V = pdk_particles_volume(m->p);
+  const float *bond_r0 = im->bd.bond_r0;
+  const uint8_t *alive = m->bond_alive;
+  const pdk_lps_consts *k = &im->k;
+  const double *inv_m = im->inv_m;
+  double *tq = im->tan_q, *ts0 = im->tan_s[0], *ts1 = im->tan_s[1], *ts2 = im->tan_s[2];
+#pragma omp parallel for default(none) schedule(static) num_threads(ctx->num_threads)              \
+    shared(n, dim, bs, bj, X, x, V, bond_r0, alive, k, inv_m, tq, ts0, ts1, ts2)
+  for (pdk_index i = 0; i < n; ++i) {
+    double sum = 0.0, sv[3] = {0, 0, 0};
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      const pdk_index j = bj[b];
+      double xi2 = 0.0, r2 = 0.0, eta[3] = {0, 0, 0};
+      for (int c = 0; c < dim; ++c) {
+        const double dX = X[c][j] - X[c][i];
+        eta[c] = x[c][j] - x[c][i];
+        xi2 += dX * dX;
+        r2 += eta[c] * eta[c];
+      }
+      const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(xi2);
+      const double r = sqrt(r2);
+      const double nu = (alive ? (double)alive[b] : 1.0) * V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
+      sum += nu * (r - r0);
+      if (r > 0.0)
+        for (int c = 0; c < dim; ++c)
+          sv[c] += nu * eta[c] / r;
+    }
+    tq[i] = k->theta_factor * inv_m[i] * sum * inv_m[i];
+    ts0[i] = sv[0];
+    ts1[i] = sv[1];
+    if (dim == 3) ts2[i] = sv[2];
+  }
+  return PDK_SUCCESS;
+}
+
+/* Bond b of particle a (neighbour j): unit vector n, lengths, and nu from a's end. */
+typedef struct lps_bond_geom {
+  double n[3], r, r0, nu;
+} lps_bond_geom;
+
+static inline void lps_bond(const lps_impl *im, const pdk_model *m, const double *const *X,
+                            const double *const *x, pdk_index a, pdk_bond_index b, pdk_index j,
+                            lps_bond_geom *g) {
+  const int dim = im->dim;
+  double xi2 = 0.0, r2 = 0.0;
+  g->n[0] = g->n[1] = g->n[2] = 0.0;
+  for (int c = 0; c < dim; ++c) {
+    const double dX = X[c][j] - X[c][a];
+    g->n[c] = x[c][j] - x[c][a];
+    xi2 += dX * dX;
+    r2 += g->n[c] * g->n[c];
+  }
+  g->r0 = im->bd.bond_r0 ? (double)im->bd.bond_r0[b] : sqrt(xi2);
+  g->r = sqrt(r2);
+  if (g->r > 0.0)
+    for (int c = 0; c < dim; ++c)
+      g->n[c] /= g->r;
+  g->nu = (m->bond_alive ? (double)m->bond_alive[b] : 1.0) * pdk_particles_volume(m->p)[j] *
+          fmin(1.0, (im->k.vs_a - g->r0) * im->k.vs_b);
+}
+
+/* State of the bond j -> i seen from j (1 without bond state; 0 if j's family lacks i). */
+static inline double lps_reverse_on(const pdk_model *m, const pdk_bond_index *bs,
+                                    const pdk_index *bj, pdk_index i, pdk_index j) {
+  if (!m->bond_alive) return 1.0;
+  const pdk_bond_index rb = pdk_bond_reverse(bs, bj, i, j);
+  return rb >= 0 ? (double)m->bond_alive[rb] : 0.0;
+}
+
+/* K[p, i] and K[a, i] of the dilatation of p (gradient g with respect to x_i), see above. */
+static void lps_dilatation_rows(const lps_impl *im, const pdk_model *m, const double *const *X,
+                                const double *const *x, pdk_index p, const double *g,
+                                const pdk_index *loc, double *block) {
+  const int dim = im->dim;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *V = pdk_particles_volume(m->p);
+  const double c_dil = im->k.c_dil, inv_m_p = im->inv_m[p];
+  const double sp[3] = {im->tan_s[0][p], im->tan_s[1][p], dim == 3 ? im->tan_s[2][p] : 0.0};
+  double *Kp = block + (size_t)loc[p] * dim * dim;
+  const double wp = -V[p] * c_dil * inv_m_p;
+  for (int e = 0; e < dim; ++e)
+    for (int c = 0; c < dim; ++c)
+      Kp[e * dim + c] += wp * sp[e] * g[c];
+  for (pdk_bond_index b = bs[p]; b < bs[p + 1]; ++b) {
+    const pdk_index a = bj[b];
+    lps_bond_geom gb;
+    lps_bond(im, m, X, x, p, b, a, &gb);
+    if (!(gb.r > 0.0)) continue;
+    /* nu of the bond a -> p from a's end: beta (same r0) V_p and the state of that bond */
+    const double nu_ap = lps_reverse_on(m, bs, bj, p, a) * V[p] *
+                         fmin(1.0, (im->k.vs_a - gb.r0) * im->k.vs_b);
+    const double wa = V[a] * c_dil * nu_ap * inv_m_p;
+    double *Ka = block + (size_t)loc[a] * dim * dim;
+    for (int e = 0; e < dim; ++e)
+      for (int c = 0; c < dim; ++c)
+        Ka[e * dim + c] += wa * gb.n[e] * g[c];
+  }
+}
+
+static void lps_tangent_column(const pdk_model *m, pdk_index i, const pdk_index *loc,
+                               double *block) {
+  const lps_impl *im = m->impl;
+  const int dim = im->dim;
+  const pdk_lps_consts *k = &im->k;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const double *V = pdk_particles_volume(m->p);
+  const double *inv_m = im->inv_m, *q = im->tan_q, d = k->theta_factor;
+  double *Kii = block + (size_t)loc[i] * dim * dim;
+  /* local terms and the dilatations of the neighbours */
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    const pdk_index j = bj[b];
+    lps_bond_geom gb;
+    lps_bond(im, m, X, x, i, b, j, &gb);
+    if (!(gb.r > 0.0)) continue;
+    const double on_j = lps_reverse_on(m, bs, bj, i, j);
+    const double nu_j = on_j * V[i] * fmin(1.0, (k->vs_a - gb.r0) * k->vs_b); /* j -> i */
+    const double P = inv_m[i] + inv_m[j];
+    const double T = k->c_dil * (q[i] + q[j]) * gb.r0 + k->c_dev * P * (gb.r - gb.r0);
+    const double a_nn = (k->c_dev * P - T / gb.r) / gb.r0, a_id = T / (gb.r * gb.r0);
+    const double wi = V[i] * gb.nu, wj = -V[j] * nu_j;
+    double *Kji = block + (size_t)loc[j] * dim * dim;
+    for (int e = 0; e < dim; ++e)
+      for (int c = 0; c < dim; ++c) {
+        const double H = (e == c ? a_id : 0.0) + a_nn * gb.n[e] * gb.n[c];
+        Kii[e * dim + c] += wi * H;
+        Kji[e * dim + c] += wj * H;
+      }
+    if (k->c_dil != 0.0 && nu_j != 0.0) {
+      /* theta_j depends on x_i through its bond j -> i: n_ji = -n */
+      double g[3];
+      for (int c = 0; c < dim; ++c)
+        g[c] = -d * inv_m[j] * nu_j * gb.n[c];
+      lps_dilatation_rows(im, m, X, x, j, g, loc, block);
+    }
+  }
+  if (k->c_dil != 0.0) { /* theta_i depends on x_i through every bond of i */
+    double g[3];
+    for (int c = 0; c < dim; ++c)
+      g[c] = -d * inv_m[i] * im->tan_s[c][i];
+    lps_dilatation_rows(im, m, X, x, i, g, loc, block);
+  }
+}
+
+const pdk_model_ops pdk_model_ops_lps = {lps_setup, lps_force, lps_destroy, lps_tangent_prepare,
+                                         lps_tangent_column};
 
 const double *pdk_model_lps_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return NULL;

@@ -161,7 +161,67 @@ static void pmb_destroy(pdk_model *m) {
   m->impl = NULL;
 }
 
-const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy};
+/* Analytic tangent (the Newton solver's, see pdk_model_ops). For a bond b of i to j with
+ * eta = x_j - x_i, r = |eta|, e = r - r0, the force term is g eta with g = on c_b beta V_j e / (r0 r)
+ * (kernels/ref/pmb.c), whose derivative with respect to eta is
+ *   M_b = on c_b beta V_j H,   H = e / (r0 r) I + eta eta^T / r^3
+ * (the second term from dg/deta = on c_b beta V_j eta^T / r^3). f_i depends on x_i through every
+ * bond of i and on x_j through bond b only, so the column of particle i holds
+ *   K[i, i] = V_i sum_b M_b,   K[j, i] = -V_j M'_b   (M'_b: bond j -> i, seen from j: V_i, its
+ *                                                   own bond state, the same r0, c_b and H).
+ * A bond with r = 0 contributes nothing (the force pass sets its force to 0). Float storage reads
+ * r0 from bond_r0 as the force pass does; a multi-material body uses c_b = 2 c_i c_j / (c_i + c_j). */
+static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index *loc,
+                               double *block) {
+  const pmb_impl *im = m->impl;
+  const int dim = im->dim;
+  const pdk_pmb_consts *k = &im->k;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const double *V = pdk_particles_volume(m->p);
+  const float *bond_r0 = im->bd.bond_r0;
+  const uint8_t *alive = m->bond_alive;
+  const double *cp = k->c_particle;
+  double *Kii = block + (size_t)loc[i] * dim * dim;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    const pdk_index j = bj[b];
+    double xi[3] = {0, 0, 0}, eta[3] = {0, 0, 0};
+    for (int c = 0; c < dim; ++c) {
+      xi[c] = X[c][j] - X[c][i];
+      eta[c] = x[c][j] - x[c][i];
+    }
+    const double r0 = bond_r0 ? (double)bond_r0[b]
+                              : sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+    const double r = sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
+    if (!(r > 0.0)) continue;
+    const double beta = fmin(1.0, (k->vs_a - r0) * k->vs_b);
+    const double c_b = cp ? 2.0 * (cp[i] * cp[j]) / (cp[i] + cp[j]) : k->c;
+    const double on_i = alive ? (double)alive[b] : 1.0;
+    double on_j = 1.0;
+    if (alive) {
+      const pdk_bond_index rb = pdk_bond_reverse(bs, bj, i, j);
+      on_j = rb >= 0 ? (double)alive[rb] : 0.0;
+    }
+    const double a1 = (r - r0) / (r0 * r), a2 = 1.0 / (r * r * r);
+    const double wi = V[i] * on_i * c_b * beta * V[j]; /* K[i,i] += wi H */
+    const double wj = -V[j] * on_j * c_b * beta * V[i]; /* K[j,i] += wj H */
+    double *Kji = block + (size_t)loc[j] * dim * dim;
+    for (int e = 0; e < dim; ++e)
+      for (int c = 0; c < dim; ++c) {
+        const double H = (e == c ? a1 : 0.0) + a2 * eta[e] * eta[c];
+        Kii[e * dim + c] += wi * H;
+        Kji[e * dim + c] += wj * H;
+      }
+  }
+}
+
+const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy, NULL,
+                                         pmb_tangent_column};
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;

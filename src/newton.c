@@ -63,6 +63,10 @@ typedef struct newton_state {
   double k_ref;
   double kfro; /* ||K||_F of the last tangent */
   int hyperelastic;
+  int analytic; /* 1: the model's analytic tangent (opts.tangent), 0: differences */
+  pdk_index *col_scratch; /* [num_threads][3 n] analytic assembly: stamp, list, loc */
+  double *col_block;      /* [num_threads][n dim^2] analytic assembly: one column's blocks */
+  pdk_index block_capacity; /* particles per thread in col_block */
   int use_lu; /* 1 after CHOLMOD found the tangent not positive definite */
   cholmod_common cc;
   int cc_started;
@@ -414,10 +418,20 @@ int pdk_newton_setup(pdk_static *s) {
         ns->dof_comp[ns->dof_of[c][i]] = (uint8_t)c;
       }
   ns->hyperelastic = model_hyperelastic(s->m);
+  {
+    const int has = s->m->ops->tangent_column != NULL;
+    PDK_CHECK(s->opts.tangent != PDK_TANGENT_ANALYTIC || has, ctx, PDK_ERR_UNSUPPORTED,
+              "newton: tangent analytic was requested but model '%s'%s has no analytic tangent "
+              "(PMB and LPS with the default influence have one); use tangent auto or difference",
+              pdk_model_kind_name(s->m->opts.kind),
+              s->m->opts.kind == PDK_MODEL_LPS ? " with an influence function" : "");
+    ns->analytic = has && s->opts.tangent != PDK_TANGENT_DIFFERENCE;
+  }
+  s->stats.analytic_tangent = ns->analytic;
   s->stats.num_unknowns = nf;
   if (nf == 0) return PDK_SUCCESS; /* everything prescribed: nothing to solve */
   PDK_CALL(check_held(s));
-  PDK_CALL(pdk_static_color(s));
+  if (!ns->analytic) PDK_CALL(pdk_static_color(s)); /* the analytic tangent needs no coloring */
   PDK_CALL(build_pattern(s));
   cholmod_start(&ns->cc);
   ns->cc_started = 1;
@@ -429,8 +443,9 @@ int pdk_newton_setup(pdk_static *s) {
   s->stats.tangent_nnz_per_row = (double)ns->nnz / (double)nf;
   s->stats.tangent_bytes =
       ((size_t)nf + 1) * sizeof(int) + (size_t)ns->nnz * (2 * sizeof(int) + sizeof(double));
-  s->stats.passes_per_tangent = s->opts.fd_scheme == PDK_FD_CENTRAL ? 2L * dim * s->num_colors
-                                                                    : (long)dim * s->num_colors + 1;
+  s->stats.passes_per_tangent = ns->analytic                         ? 0
+                                : s->opts.fd_scheme == PDK_FD_CENTRAL ? 2L * dim * s->num_colors
+                                                                      : (long)dim * s->num_colors + 1;
   s->stats.time_setup += pdk_wtime() - t0;
   return PDK_SUCCESS;
 }
@@ -464,6 +479,8 @@ void pdk_newton_free(pdk_static *s) {
   free(ns->dx);
   free(ns->ident_start);
   free(ns->ident);
+  free(ns->col_scratch);
+  free(ns->col_block);
   free(ns);
   s->newton = NULL;
 }
@@ -570,14 +587,101 @@ static int assemble(pdk_static *s, int num_groups, const pdk_index *group_start,
   return PDK_SUCCESS;
 }
 
+/* Analytic tangent at the current x (the model's tangent_column, see model_impl.h): one column
+ * particle per iteration of a static parallel loop; each column is computed whole by one thread
+ * into a dense block over its coupled particles (the pattern's list, same order), then copied to
+ * the free entries. No sums cross columns, so the bits do not depend on the thread count. */
+static int assemble_analytic(pdk_static *s) {
+  newton_state *ns = s->newton;
+  pdk_ctx *ctx = s->ctx;
+  pdk_model *m = s->m;
+  const int dim = s->dim, hops = s->hops, nt = ctx->num_threads;
+  const pdk_index n = s->n;
+  const double t0 = pdk_wtime();
+  if (m->ops->tangent_prepare) PDK_CALL(m->ops->tangent_prepare(m));
+  const pdk_bond_index *bs = pdk_families_bond_start(s->fam);
+  const pdk_index *bj = pdk_families_bond_j(s->fam);
+  if (!ns->col_scratch) {
+    /* largest coupled list: bounds the dense column block */
+    pdk_index fmax_ = 0;
+    for (pdk_index i = 0; i < n; ++i)
+      fmax_ = bs[i + 1] - bs[i] > fmax_ ? (pdk_index)(bs[i + 1] - bs[i]) : fmax_;
+    double cap = 1.0 + (double)fmax_ + (hops > 1 ? (double)fmax_ * (double)fmax_ : 0.0);
+    ns->block_capacity = cap < (double)n ? (pdk_index)cap : n;
+    ns->col_scratch = malloc((size_t)nt * 3 * (size_t)n * sizeof *ns->col_scratch);
+    ns->col_block = malloc((size_t)nt * (size_t)ns->block_capacity * (size_t)(dim * dim) *
+                           sizeof *ns->col_block);
+    PDK_CHECK(ns->col_scratch && ns->col_block, ctx, PDK_ERR_MEMORY,
+              "newton: out of memory for the analytic tangent's scratch (%d threads, %d particles)",
+              nt, (int)n);
+  }
+  pdk_index *scratch = ns->col_scratch;
+  double *blocks = ns->col_block;
+  const size_t cap = (size_t)ns->block_capacity;
+  const int *Ap = ns->Ap;
+  double *Ax = ns->Ax;
+  int32_t *const *dof_of = ns->dof_of;
+  double *const *diag_full = ns->diag_full;
+  void (*column)(const pdk_model *, pdk_index, const pdk_index *, double *) =
+      m->ops->tangent_column;
+  const pdk_model *mc = m;
+#pragma omp parallel default(none) shared(n, dim, hops, bs, bj, scratch, blocks, cap, Ap, Ax,                                                   dof_of, diag_full, column, mc) num_threads(nt)
+  {
+    const size_t tid = (size_t)omp_get_thread_num();
+    pdk_index *stamp = scratch + 3 * (size_t)n * tid;
+    pdk_index *list = stamp + n, *loc = list + n;
+    double *block = blocks + cap * (size_t)(dim * dim) * tid;
+    for (pdk_index k = 0; k < n; ++k) /* marks of the last assembly would hide neighbours */
+      stamp[k] = -1;
+#pragma omp for schedule(static)
+    for (pdk_index i = 0; i < n; ++i) {
+      const pdk_index cnt = coupled(bs, bj, hops, i, stamp, list);
+      for (pdk_index q = 0; q < cnt; ++q)
+        loc[list[q]] = q;
+      memset(block, 0, (size_t)cnt * (size_t)(dim * dim) * sizeof *block);
+      column(mc, i, loc, block);
+      const double *Kii = block + (size_t)loc[i] * (size_t)(dim * dim);
+      for (int c = 0; c < dim; ++c) {
+        diag_full[c][i] = Kii[c * dim + c];
+        const int col = dof_of[c][i];
+        if (col < 0) continue;
+        int k = Ap[col];
+        for (pdk_index q = 0; q < cnt; ++q)
+          for (int e = 0; e < dim; ++e)
+            if (dof_of[e][list[q]] >= 0) Ax[k++] = block[((size_t)q * dim + e) * dim + c];
+      }
+    }
+  }
+  double kmax = 0.0;
+  for (int c = 0; c < dim; ++c)
+    for (pdk_index i = 0; i < n; ++i)
+      kmax = fmax(kmax, fabs(ns->diag_full[c][i]));
+  ns->k_ref = kmax;
+  s->stats.assemblies++;
+  s->stats.time_assembly += pdk_wtime() - t0;
+  return PDK_SUCCESS;
+}
+
+/* The solver's tangent: analytic or colored differences (opts.tangent). */
+static int assemble_tangent(pdk_static *s) {
+  newton_state *ns = s->newton;
+  if (ns->analytic) return assemble_analytic(s);
+  return assemble(s, s->num_colors, s->color_start, s->color_members);
+}
+
 int pdk_newton_tangent(pdk_static *s, int colored, int *num_cols, const int **col_start,
                        const int **row_index, const double **values) {
   newton_state *ns = s->newton;
   PDK_CHECK(ns && ns->Ap, s->ctx, PDK_ERR_ARG,
             "newton: no tangent (not a Newton solver, or no unknowns)");
-  if (colored)
+  PDK_CHECK(colored != 2 || s->m->ops->tangent_column, s->ctx, PDK_ERR_UNSUPPORTED,
+            "newton: model '%s' has no analytic tangent", pdk_model_kind_name(s->m->opts.kind));
+  if (colored == 2)
+    PDK_CALL(assemble_analytic(s));
+  else if (colored) {
+    PDK_CALL(pdk_static_color(s));
     PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
-  else {
+  } else {
     if (!ns->ident) {
       ns->ident_start = malloc(((size_t)s->n + 1) * sizeof *ns->ident_start);
       ns->ident = malloc((size_t)s->n * sizeof *ns->ident);
@@ -1146,7 +1250,10 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
   if (!isfinite(s->rnorm) || !isfinite(s->fnorm)) return pdk_static_nonfinite(s, "newton", 0, hint);
   int reuse = 0; /* never across rounds or levels: bonds broke or the load moved */
   double previous = INFINITY; /* ||r|| before the last step */
+  s->stats.residual_history_len = 0;
   for (long it = 0;; ++it) {
+    if (s->stats.residual_history_len < 16)
+      s->stats.residual_history[s->stats.residual_history_len++] = s->rnorm;
     if (pdk_static_converged(s) || at_storage_floor(s, previous)) return PDK_SUCCESS;
     previous = s->rnorm;
     if (it == s->opts.max_iterations)
@@ -1163,7 +1270,7 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
       PDK_CALL(solve_linear(s));
       s->stats.tangent_reuses++;
     } else {
-      PDK_CALL(assemble(s, s->num_colors, s->color_start, s->color_members));
+      PDK_CALL(assemble_tangent(s));
       PDK_CALL(factor_and_solve(s));
     }
     /* Backtracking line search on ||r||. */

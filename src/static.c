@@ -23,6 +23,7 @@ pdk_static_opts pdk_static_opts_default(pdk_static_method method) {
   o.extrapolate = 1;
   o.adr_mass = PDK_ADR_MASS_AUTO;
   o.adr_safety = 1.0;
+  o.tangent = PDK_TANGENT_AUTO;
   o.fd_scheme = PDK_FD_CENTRAL;
   o.fd_step = 0.0;
   o.linear_solver = PDK_LINEAR_AUTO;
@@ -68,6 +69,9 @@ static int check_opts(pdk_ctx *ctx, const pdk_static_opts *o) {
             "%s: adr_mass %d is not auto (0), row_sum (1) or lanczos (2)", name, (int)o->adr_mass);
   PDK_CHECK(isfinite(o->adr_safety) && o->adr_safety > 0, ctx, PDK_ERR_ARG,
             "%s: adr_safety must be > 0, got %g", name, o->adr_safety);
+  PDK_CHECK((unsigned)o->tangent <= PDK_TANGENT_DIFFERENCE, ctx, PDK_ERR_ARG,
+            "%s: tangent %d is not auto (0), analytic (1) or difference (2)", name,
+            (int)o->tangent);
   PDK_CHECK((unsigned)o->fd_scheme <= PDK_FD_FORWARD, ctx, PDK_ERR_ARG,
             "%s: fd_scheme %d is not central (0) or forward (1)", name, (int)o->fd_scheme);
   PDK_CHECK(isfinite(o->fd_step) && o->fd_step >= 0 && o->fd_step < 0.1, ctx, PDK_ERR_ARG,
@@ -743,6 +747,8 @@ void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
   if (st->num_colors)
     fprintf(out, "coloring: %d colors (coupling %d hops), %ld passes per difference tangent\n",
             st->num_colors, st->coupling_hops, st->passes_per_tangent);
+  if (st->analytic_tangent)
+    fprintf(out, "analytic tangent (coupling %d hops): no force passes\n", st->coupling_hops);
   if (st->mass_max > 0)
     fprintf(out, "ADR mass (%s): %.3e .. %.3e\n",
             st->adr_mass == PDK_ADR_MASS_ROW_SUM ? "row sums" : "Lanczos", st->mass_min,

@@ -78,11 +78,20 @@
  * list when that search would be too costly) gives the groups, and one assembly costs 2 dim colors
  * trial passes (central differences) or dim colors (forward), independent of the number of
  * unknowns.
+ * Analytic tangent (opts.tangent auto, the default, or analytic): PMB and LPS (default influence
+ * omega = 1/r0, 2-D and 3-D, partial volumes, float storage, broken bonds) bring the exact
+ * derivative of their trial force at the current x (src/model_pmb.c, src/model_lps.c), assembled
+ * column by column in the same compressed-column pattern (so CHOLMOD/UMFPACK and the symbolic
+ * reuse are unchanged) in one sweep over the particles: no force passes (passes_per_tangent 0, no
+ * coloring), no difference error, and a nonlinear (large-stretch) problem converges
+ * quadratically. The other models (correspondence, the 2-D dilatation laws with an influence
+ * function, Oterkus) use the difference tangent, which tangent difference also forces for PMB and
+ * LPS.
  * Prescribed components are eliminated (their rows and columns dropped), which keeps a symmetric
- * tangent symmetric. An analytic tangent for the linear models would be a later speed-up.
+ * tangent symmetric.
  *   - Symmetry: a hyperelastic model (PMB, LPS, correspondence with an elastic law and no or
  *     Silling stabilization) has a symmetric tangent, but a difference tangent is symmetric only to
- *     its truncation and round-off error. If the measured asymmetry ||K - K^T||_F / ||K||_F is at
+ *     its truncation and round-off error (the analytic one to round-off). If the measured asymmetry ||K - K^T||_F / ||K||_F is at
  *     most sym_rtol, K is replaced by (K + K^T)/2 and factorized by CHOLMOD (supernodal Cholesky);
  *     otherwise, or when CHOLMOD reports the matrix not positive definite, by UMFPACK (LU).
  *   - The symbolic analysis (ordering) is done once and reused while the coupling pattern is
@@ -136,6 +145,12 @@ typedef enum pdk_fd_scheme {
   PDK_FD_FORWARD = 1  /* dim colors passes (+1), error O(h) */
 } pdk_fd_scheme;
 
+typedef enum pdk_tangent_kind {
+  PDK_TANGENT_AUTO = 0,      /* analytic when the model has one (PMB, LPS), else difference */
+  PDK_TANGENT_ANALYTIC = 1,  /* the model's exact derivative; refused when it has none */
+  PDK_TANGENT_DIFFERENCE = 2 /* colored finite differences of trial passes (any model) */
+} pdk_tangent_kind;
+
 typedef enum pdk_linear_solver {
   PDK_LINEAR_AUTO = 0,    /* CHOLMOD if symmetric and positive definite, else UMFPACK */
   PDK_LINEAR_CHOLMOD = 1, /* symmetric tangents only; not positive definite is an error */
@@ -187,6 +202,7 @@ typedef struct pdk_static_opts {
   pdk_adr_mass adr_mass;
   double adr_safety; /* multiplies the fictitious mass (default 1; > 1 is safer, slower) */
   /* Newton */
+  pdk_tangent_kind tangent; /* default auto (see "Newton" above) */
   pdk_fd_scheme fd_scheme;
   double fd_step; /* perturbation relative to the horizon; 0: 1e-5 central, 1e-7 forward */
   pdk_linear_solver linear_solver;
@@ -222,8 +238,9 @@ typedef struct pdk_static_stats {
   int num_colors;
   int coupling_hops;       /* 1 (bond-based) or 2 (state-based) */
   int coloring_geometric;  /* 1: colored by distance (R = 2 hops delta), not by the graph */
-  long passes_per_tangent; /* trial passes of one difference tangent: 2 dim colors or dim colors + 1
-                            */
+  long passes_per_tangent; /* trial passes of one difference tangent: 2 dim colors or dim colors + 1;
+                              0 for the analytic tangent */
+  int analytic_tangent;    /* 1: Newton assembles the model's analytic tangent */
   /* ADR */
   pdk_adr_mass adr_mass;     /* the mass actually used */
   double mass_min, mass_max; /* fictitious mass range [force / length] (unit pseudo time step) */
@@ -247,6 +264,10 @@ typedef struct pdk_static_stats {
   double null_nonaffine;  /* singular tangent: non-affine fraction of its near-null vector
                              (~1 zero-energy mode, ~0 rigid motion of a loose part; -1 n/a) */
   int assemblies, analyses, factorizations, solves, line_search_cuts, tangent_reuses;
+  /* Newton: ||r||_free [force] at the start of each iteration of the last solve round, then at
+   * its end (the first 16 values), to show the rate of convergence */
+  double residual_history[16];
+  int residual_history_len;
   double time_setup; /* coloring, pattern, transpose map */
   double time_mass;  /* ADR fictitious mass */
   double time_assembly, time_analysis, time_factorization, time_solve;
