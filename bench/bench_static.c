@@ -10,8 +10,15 @@
  * ADR stops at rtol 1e-6 (its default), Newton at 1e-10 (its default); both are timed from
  * creation (coloring, fictitious mass, pattern) to the converged state.
  *
+ * --model pmb|lps replaces the correspondence model by PMB or LPS (K = E/3, G = E/2, so LPS has
+ * nu = 0 like the correspondence problems; PMB fixes nu = 1/4: the sanity column then compares
+ * with -T H / M, M = 3E/5 the constrained modulus lambda + 2 mu of that material), and
+ * --tangent analytic|difference|both picks Newton's tangent (both: the two runs side by side, the
+ * analytic one first; default: the solver's auto). --rf R changes the ratio horizon / spacing.
+ *
  * Usage: bench_static [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] [--threads t]
  *                     [--mass auto|rowsum|lanczos] (ADR fictitious mass) [--repeat r]
+ *                     [--model corr|pmb|lps] [--tangent auto|analytic|difference|both] [--rf R]
  *   defaults: 2-D NP 32,64,128 and 3-D n 10,14,20 (cubes of (n+1)^3 nodes), both methods.
  *   --newton-max N skips Newton above N particles (default 70000 in 2-D, 5000 in 3-D: the 3-D
  *   Cholesky factor grows as n^(4/3) and the netlib BLAS on this machine makes it slow).
@@ -53,8 +60,9 @@ static double cpu_seconds(void) {
          (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
 }
 
-static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, pdk_adr_mass mass) {
-  const double W = 10.0, E = 1000.0, T = 1.0, h = W / np, rf = 1.5;
+static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, pdk_adr_mass mass,
+                      pdk_model_kind kind, pdk_tangent_kind tangent, double rf) {
+  const double W = 10.0, E = 1000.0, T = 1.0, h = W / np;
   pdk_lattice_opts lo = pdk_lattice_opts_default();
   lo.type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
   lo.node_type = 1;
@@ -94,7 +102,7 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
   fo.horizon = rf * h;
   CHECK(ctx, pdk_families_build(p, &fo, &fam));
   pdk_model_opts mo = pdk_model_opts_default();
-  mo.kind = PDK_MODEL_CORRESPONDENCE;
+  mo.kind = kind;
   mo.bulk_modulus = E / 3.0;
   mo.shear_modulus = E / 2.0;
   mo.density = 1.0;
@@ -124,6 +132,7 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
   so.bcs = bcs;
   so.num_bcs = nb;
   so.adr_mass = mass;
+  so.tangent = tangent;
   run_result r;
   memset(&r, 0, sizeof r);
   r.n = pdk_particles_count(p);
@@ -152,7 +161,8 @@ static run_result run(pdk_ctx *ctx, int dim, int np, pdk_static_method method, p
       ++count;
     }
   }
-  r.probe_error = (sum / count) / (-T * W / E) - 1.0;
+  const double M = kind == PDK_MODEL_PMB ? 0.6 * E : E; /* constrained modulus, see the top */
+  r.probe_error = (sum / count) / (-T * W / M) - 1.0;
   pdk_static_destroy(&s);
   pdk_model_destroy(&m);
   pdk_families_destroy(&fam);
@@ -171,6 +181,9 @@ int main(int argc, char **argv) {
   long newton_max = -1;
   pdk_adr_mass mass = PDK_ADR_MASS_AUTO;
   int repeat = 1;
+  pdk_model_kind kind = PDK_MODEL_CORRESPONDENCE;
+  int tangents[2] = {PDK_TANGENT_AUTO, 0}, num_tangents = 1;
+  double rf = 1.5;
   for (int a = 1; a < argc; ++a) {
     if (!strcmp(argv[a], "--dim") && a + 1 < argc) {
       dims[0] = atoi(argv[++a]);
@@ -200,12 +213,34 @@ int main(int argc, char **argv) {
       mass = !strcmp(mm, "rowsum")    ? PDK_ADR_MASS_ROW_SUM
              : !strcmp(mm, "lanczos") ? PDK_ADR_MASS_LANCZOS
                                       : PDK_ADR_MASS_AUTO;
+    } else if (!strcmp(argv[a], "--model") && a + 1 < argc) {
+      const char *mk = argv[++a];
+      kind = !strcmp(mk, "pmb")   ? PDK_MODEL_PMB
+             : !strcmp(mk, "lps") ? PDK_MODEL_LPS
+                                  : PDK_MODEL_CORRESPONDENCE;
+    } else if (!strcmp(argv[a], "--tangent") && a + 1 < argc) {
+      const char *tk = argv[++a];
+      num_tangents = 1;
+      if (!strcmp(tk, "analytic"))
+        tangents[0] = PDK_TANGENT_ANALYTIC;
+      else if (!strcmp(tk, "difference"))
+        tangents[0] = PDK_TANGENT_DIFFERENCE;
+      else if (!strcmp(tk, "both")) {
+        tangents[0] = PDK_TANGENT_ANALYTIC;
+        tangents[1] = PDK_TANGENT_DIFFERENCE;
+        num_tangents = 2;
+      } else
+        tangents[0] = PDK_TANGENT_AUTO;
+    } else if (!strcmp(argv[a], "--rf") && a + 1 < argc) {
+      rf = atof(argv[++a]);
+      if (!(rf >= 1.0 && rf <= 6.0)) rf = 1.5;
     } else if (!strcmp(argv[a], "--newton-max") && a + 1 < argc) {
       newton_max = atol(argv[++a]);
     } else {
       fprintf(stderr,
               "usage: %s [--dim 2|3] [--sizes a,b,c] [--method adr|newton|both] "
-              "[--mass auto|rowsum|lanczos] [--threads t] [--newton-max particles]\n",
+              "[--mass auto|rowsum|lanczos] [--threads t] [--newton-max particles] "
+              "[--model corr|pmb|lps] [--tangent auto|analytic|difference|both] [--rf R]\n",
               argv[0]);
       return 2;
     }
@@ -218,12 +253,13 @@ int main(int argc, char **argv) {
     fprintf(stderr, "%s\n", why);
     return 1;
   }
-  printf("# threads %d, %d repeat(s) (total and cpu: medians; phases: last run); times in s, "
-         "memory in MiB; passes = trial force passes\n",
-         pdk_ctx_num_threads(ctx), repeat);
-  printf("%-3s %8s %-6s %8s %6s %7s %8s %6s %7s %7s %7s %7s %7s %7s %8s %6s %8s %8s %9s\n", "dim",
-         "particles", "method", "unknowns", "iters", "passes", "setup", "mass", "assem", "analys",
-         "factor", "solve", "total", "cpu", "K_MiB", "nnz/r", "L_MiB", "peak", "err");
+  printf("# model %s, RF %g, threads %d, %d repeat(s) (total, cpu, assem: medians; other phases: "
+         "last run); times in s, memory in MiB; passes = trial force passes; tangent a = "
+         "analytic, d = difference\n",
+         pdk_model_kind_name(kind), rf, pdk_ctx_num_threads(ctx), repeat);
+  printf("%-3s %8s %-6s %2s %8s %6s %7s %8s %6s %7s %7s %7s %7s %7s %7s %8s %6s %8s %8s %9s\n",
+         "dim", "particles", "method", "K", "unknowns", "iters", "passes", "setup", "mass", "assem",
+         "analys", "factor", "solve", "total", "cpu", "K_MiB", "nnz/r", "L_MiB", "peak", "err");
   for (int d = 0; d < num_dims; ++d) {
     const int dim = dims[d];
     const int def2[3] = {32, 64, 128}, def3[3] = {10, 14, 20};
@@ -235,29 +271,40 @@ int main(int argc, char **argv) {
         const long particles =
             dim == 2 ? (long)(np + 1) * (np + 1) : (long)(np + 1) * (np + 1) * (np + 1);
         if (methods[q] == PDK_STATIC_NEWTON && particles > nmax) continue;
-        /* median of the wall and CPU times over the repeats; stats from the last run */
-        double walls[15], cpus[15];
-        run_result r;
-        for (int t = 0; t < repeat; ++t) {
-          r = run(ctx, dim, np, (pdk_static_method)methods[q], mass);
-          walls[t] = r.wall;
-          cpus[t] = r.cpu;
+        const int nt = methods[q] == PDK_STATIC_NEWTON ? num_tangents : 1;
+        /* medians of the wall, CPU and assembly times over the repeats; stats from the last run.
+         * With --tangent both the two tangents alternate within each repeat (side by side). */
+        double walls[2][15], cpus[2][15], assems[2][15];
+        run_result res[2];
+        for (int t = 0; t < repeat; ++t)
+          for (int tq = 0; tq < nt; ++tq) {
+            res[tq] = run(ctx, dim, np, (pdk_static_method)methods[q], mass, kind,
+                          (pdk_tangent_kind)tangents[tq], rf);
+            walls[tq][t] = res[tq].wall;
+            cpus[tq][t] = res[tq].cpu;
+            assems[tq][t] = res[tq].st.time_assembly;
+          }
+        for (int tq = 0; tq < nt; ++tq) {
+          run_result r = res[tq];
+          qsort(walls[tq], (size_t)repeat, sizeof(double), cmp_double);
+          qsort(cpus[tq], (size_t)repeat, sizeof(double), cmp_double);
+          qsort(assems[tq], (size_t)repeat, sizeof(double), cmp_double);
+          r.wall = walls[tq][repeat / 2];
+          r.cpu = cpus[tq][repeat / 2];
+          r.st.time_assembly = assems[tq][repeat / 2];
+          const pdk_static_stats *st = &r.st;
+          const double mib = 1.0 / 1048576.0;
+          printf("%-3d %8d %-6s %2s %8ld %6ld %7ld %8.3f %6.3f %7.3f %7.3f %7.3f %7.3f %7.2f "
+                 "%7.2f %8.1f %6.1f %8.1f %8.1f %9.2e\n",
+                 dim, (int)r.n, pdk_static_method_name((pdk_static_method)methods[q]),
+                 methods[q] != PDK_STATIC_NEWTON ? "-" : (st->analytic_tangent ? "a" : "d"),
+                 methods[q] == PDK_STATIC_NEWTON ? st->num_unknowns : 0L, st->iterations,
+                 st->force_passes, st->time_setup, st->time_mass, st->time_assembly,
+                 st->time_analysis, st->time_factorization, st->time_solve, r.wall, r.cpu,
+                 (double)st->tangent_bytes * mib, st->tangent_nnz_per_row,
+                 (double)st->factor_bytes * mib, (double)r.peak * mib, r.probe_error);
+          fflush(stdout);
         }
-        qsort(walls, (size_t)repeat, sizeof(double), cmp_double);
-        qsort(cpus, (size_t)repeat, sizeof(double), cmp_double);
-        r.wall = walls[repeat / 2];
-        r.cpu = cpus[repeat / 2];
-        const pdk_static_stats *st = &r.st;
-        const double mib = 1.0 / 1048576.0;
-        printf("%-3d %8d %-6s %8ld %6ld %7ld %8.3f %6.3f %7.3f %7.3f %7.3f %7.3f %7.2f %7.2f %8.1f "
-               "%6.1f %8.1f %8.1f %9.2e\n",
-               dim, (int)r.n, pdk_static_method_name((pdk_static_method)methods[q]),
-               methods[q] == PDK_STATIC_NEWTON ? st->num_unknowns : 0L, st->iterations,
-               st->force_passes, st->time_setup, st->time_mass, st->time_assembly,
-               st->time_analysis, st->time_factorization, st->time_solve, r.wall, r.cpu,
-               (double)st->tangent_bytes * mib, st->tangent_nnz_per_row,
-               (double)st->factor_bytes * mib, (double)r.peak * mib, r.probe_error);
-        fflush(stdout);
       }
     }
   }

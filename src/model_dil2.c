@@ -40,6 +40,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "model_bond.h"
 #include "model_impl.h"
 
 #define PDK_DIL2_BLOCK 1024
@@ -54,6 +55,9 @@ typedef struct dil2_impl {
   double *wdev;  /* [n] Silling: 4 mu / m (energy), Oterkus: b_i */
   double *ebulk; /* [n] Silling: (lambda + mu)/2, Oterkus: a_i */
   double *block_energy;
+  /* analytic tangent, allocated on first use: theta and S_i = sum_b w_b grad phi_b (below) at the
+   * x of the last tangent_prepare */
+  double *tan_theta, *tan_s[2]; /* [n] */
 } dil2_impl;
 
 static void dil2_destroy(pdk_model *m) {
@@ -66,6 +70,9 @@ static void dil2_destroy(pdk_model *m) {
   free(im->wdev);
   free(im->ebulk);
   free(im->block_energy);
+  free(im->tan_theta);
+  free(im->tan_s[0]);
+  free(im->tan_s[1]);
   free(im);
   m->impl = NULL;
 }
@@ -240,4 +247,178 @@ static int dil2_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
-const pdk_model_ops pdk_model_ops_dil2 = {dil2_setup, dil2_force, dil2_destroy, NULL, NULL};
+/* ---- analytic tangent (the Newton solver's, see pdk_model_ops) --------------------------------
+ *
+ * Both laws share one form. Per bond b of particle a (neighbour j), with the bond function
+ *   phi_b(Y) = r0 e             (Silling)      grad phi = r0 n,
+ *                                               Hess phi = r0 (I - n n^T) / r
+ *   phi_b(Y) = e Lambda = Y.xi / r0 - Y.xi / r  (Oterkus)  grad phi = xi e / (r r0) + Lambda r0 n / r,
+ *                    Hess phi = (xi Y^T + Y xi^T) / r^3 + (Y.xi) (I / r^3 - 3 Y Y^T / r^5),
+ * the pass computes theta_a = kappa_a sum_b w_b phi_b and
+ *   f_a = sum_b w_b [(A_a theta_a + A_j theta_j) grad phi_b + (B_a + B_j) e n]
+ * (for Oterkus this is the c1 n + c2 xi / r0 of dil2_force: grad phi is the d(e Lambda)/dY there).
+ * Differentiating with theta fixed gives the bond block
+ *   M_b = w_b [at Hess phi + bt (n n^T + e (I - n n^T) / r)],  at = A_a theta_a + A_j theta_j,
+ *   bt = B_a + B_j,
+ * and through theta: df_a/dtheta_p = A_p S_p for a = p (S_p = sum_b w_b grad phi_b) and
+ * w_ap A_p grad phi_ap for every a whose family holds p. theta_p depends on x_i with gradient
+ * g_i = -kappa_i S_i (p = i) and g_j = kappa_j w_ji grad phi_ji (p = j, bond j -> i). phi and the
+ * Hessian are even and grad phi odd under reversing a bond (Y, xi -> -Y, -xi), so the column of i
+ * (K = -d(V f)/dx) is, per bond b of i to j (w' the weight of the bond j -> i, omega V_i):
+ *   K[i,i] += V_i M_b,  K[j,i] -= V_j (w'/w) M_b,  and the rows of p = j with g_j = -kappa_j w'
+ *   grad phi_b;
+ * then the rows of p = i; for each p: K[p,i] -= V_p A_p S_p g_p^T and, per bond p -> a,
+ *   K[a,i] += V_a w_ap A_p grad phi_pa g_p^T.
+ * The symmetric form makes the tangent symmetric for these hyperelastic laws. Bonds with r = 0
+ * are skipped (no force). */
+typedef struct dil2_bond {
+  double n[2], grad[2], hess[2][2], e, r, r0;
+} dil2_bond;
+
+static void dil2_bond_eval(int oterkus, const double *X, const double *Y, const double *x,
+                           const double *y, pdk_index a, pdk_index j, dil2_bond *g) {
+  const double dX = X[j] - X[a], dY = Y[j] - Y[a], dx = x[j] - x[a], dy = y[j] - y[a];
+  g->r0 = sqrt(dX * dX + dY * dY);
+  g->r = sqrt(dx * dx + dy * dy);
+  if (!(g->r > 0.0)) return;
+  const double r = g->r, r0 = g->r0, e = g->e = r - r0;
+  g->n[0] = dx / r;
+  g->n[1] = dy / r;
+  const double xi[2] = {dX, dY}, Yv[2] = {dx, dy};
+  if (!oterkus) {
+    for (int c = 0; c < 2; ++c) {
+      g->grad[c] = r0 * g->n[c];
+      for (int d = 0; d < 2; ++d)
+        g->hess[c][d] = r0 * ((c == d ? 1.0 : 0.0) - g->n[c] * g->n[d]) / r;
+    }
+  } else {
+    const double yx = dx * dX + dy * dY, lam = yx / (r * r0), r3 = r * r * r, r5 = r3 * r * r;
+    for (int c = 0; c < 2; ++c) {
+      g->grad[c] = xi[c] * e / (r * r0) + lam * r0 * g->n[c] / r;
+      for (int d = 0; d < 2; ++d)
+        g->hess[c][d] = (xi[c] * Yv[d] + Yv[c] * xi[d]) / r3 +
+                        yx * ((c == d ? 1.0 : 0.0) / r3 - 3.0 * Yv[c] * Yv[d] / r5);
+    }
+  }
+}
+
+static int dil2_tangent_prepare(pdk_model *m) {
+  pdk_ctx *ctx = m->ctx;
+  dil2_impl *im = m->impl;
+  const pdk_index n = im->n;
+  if (!im->tan_theta) {
+    const size_t nn = (size_t)(n > 0 ? n : 1);
+    im->tan_theta = malloc(nn * sizeof(double));
+    im->tan_s[0] = malloc(nn * sizeof(double));
+    im->tan_s[1] = malloc(nn * sizeof(double));
+    PDK_CHECK(im->tan_theta && im->tan_s[0] && im->tan_s[1], ctx, PDK_ERR_MEMORY,
+              "%s model: out of memory for the tangent of %d particles",
+              pdk_model_kind_name(m->opts.kind), (int)n);
+  }
+  const int oterkus = im->oterkus;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X = pdk_particles_X(m->p, 0), *Y = pdk_particles_X(m->p, 1);
+  const double *x = pdk_particles_field_data(m->p, "x", 0);
+  const double *y = pdk_particles_field_data(m->p, "x", 1);
+  const double *w = im->w, *kappa = im->kappa;
+  double *th = im->tan_theta, *s0 = im->tan_s[0], *s1 = im->tan_s[1];
+#pragma omp parallel for default(none) schedule(static) num_threads(ctx->num_threads)              \
+    shared(n, oterkus, bs, bj, X, Y, x, y, w, kappa, th, s0, s1)
+  for (pdk_index i = 0; i < n; ++i) {
+    double sum = 0.0, sx = 0.0, sy = 0.0;
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      dil2_bond g;
+      dil2_bond_eval(oterkus, X, Y, x, y, i, bj[b], &g);
+      if (!(g.r > 0.0)) { /* phi as the pass has it: Silling r0 e = -r0^2, Oterkus 0 */
+        if (!oterkus) sum -= w[b] * g.r0 * g.r0;
+        continue;
+      }
+      sum += w[b] * (oterkus ? g.e * ((x[bj[b]] - x[i]) * (X[bj[b]] - X[i]) +
+                                      (y[bj[b]] - y[i]) * (Y[bj[b]] - Y[i])) /
+                                   (g.r * g.r0)
+                             : g.r0 * g.e);
+      sx += w[b] * g.grad[0];
+      sy += w[b] * g.grad[1];
+    }
+    th[i] = kappa[i] * sum;
+    s0[i] = sx;
+    s1[i] = sy;
+  }
+  return PDK_SUCCESS;
+}
+
+/* Rows of the dilatation of p, whose gradient with respect to x_i is g (see above). */
+static void dil2_dilatation_rows(const dil2_impl *im, const pdk_model *m, pdk_index p,
+                                 const double *g, const pdk_index *loc, double *block) {
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X = pdk_particles_X(m->p, 0), *Y = pdk_particles_X(m->p, 1);
+  const double *x = pdk_particles_field_data(m->p, "x", 0);
+  const double *y = pdk_particles_field_data(m->p, "x", 1);
+  const double *V = pdk_particles_volume(m->p);
+  const double Ap = im->A[p];
+  const double sp[2] = {im->tan_s[0][p], im->tan_s[1][p]};
+  double *Kp = block + (size_t)loc[p] * 4;
+  for (int e = 0; e < 2; ++e)
+    for (int c = 0; c < 2; ++c)
+      Kp[e * 2 + c] -= V[p] * Ap * sp[e] * g[c];
+  for (pdk_bond_index b = bs[p]; b < bs[p + 1]; ++b) {
+    const pdk_index a = bj[b];
+    dil2_bond gb;
+    dil2_bond_eval(im->oterkus, X, Y, x, y, p, a, &gb);
+    if (!(gb.r > 0.0)) continue;
+    const pdk_bond_index rb = pdk_bond_reverse(bs, bj, p, a);
+    if (rb < 0) continue;
+    const double wa = V[a] * im->w[rb] * Ap;
+    double *Ka = block + (size_t)loc[a] * 4;
+    for (int e = 0; e < 2; ++e)
+      for (int c = 0; c < 2; ++c)
+        Ka[e * 2 + c] += wa * gb.grad[e] * g[c];
+  }
+}
+
+static void dil2_tangent_column(const pdk_model *m, pdk_index i, const pdk_index *loc,
+                                double *block) {
+  const dil2_impl *im = m->impl;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X = pdk_particles_X(m->p, 0), *Y = pdk_particles_X(m->p, 1);
+  const double *x = pdk_particles_field_data(m->p, "x", 0);
+  const double *y = pdk_particles_field_data(m->p, "x", 1);
+  const double *V = pdk_particles_volume(m->p);
+  const double *th = im->tan_theta, *A = im->A, *B = im->B, *kappa = im->kappa;
+  double *Kii = block + (size_t)loc[i] * 4;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    const pdk_index j = bj[b];
+    dil2_bond gb;
+    dil2_bond_eval(im->oterkus, X, Y, x, y, i, j, &gb);
+    if (!(gb.r > 0.0)) continue;
+    const pdk_bond_index rb = pdk_bond_reverse(bs, bj, i, j);
+    const double w_i = im->w[b], w_j = rb >= 0 ? im->w[rb] : 0.0;
+    const double at = A[i] * th[i] + A[j] * th[j], bt = B[i] + B[j];
+    double M[2][2];
+    for (int e = 0; e < 2; ++e)
+      for (int c = 0; c < 2; ++c) {
+        const double nn = gb.n[e] * gb.n[c];
+        M[e][c] = at * gb.hess[e][c] + bt * (nn + gb.e * ((e == c ? 1.0 : 0.0) - nn) / gb.r);
+      }
+    double *Kji = block + (size_t)loc[j] * 4;
+    for (int e = 0; e < 2; ++e)
+      for (int c = 0; c < 2; ++c) {
+        Kii[e * 2 + c] += V[i] * w_i * M[e][c];
+        Kji[e * 2 + c] -= V[j] * w_j * M[e][c];
+      }
+    if (w_j != 0.0 && A[j] != 0.0) {
+      const double g[2] = {-kappa[j] * w_j * gb.grad[0], -kappa[j] * w_j * gb.grad[1]};
+      dil2_dilatation_rows(im, m, j, g, loc, block);
+    }
+  }
+  if (A[i] != 0.0) {
+    const double g[2] = {-kappa[i] * im->tan_s[0][i], -kappa[i] * im->tan_s[1][i]};
+    dil2_dilatation_rows(im, m, i, g, loc, block);
+  }
+}
+
+const pdk_model_ops pdk_model_ops_dil2 = {dil2_setup, dil2_force, dil2_destroy,
+                                          dil2_tangent_prepare, dil2_tangent_column};

@@ -421,10 +421,9 @@ int pdk_newton_setup(pdk_static *s) {
   {
     const int has = s->m->ops->tangent_column != NULL;
     PDK_CHECK(s->opts.tangent != PDK_TANGENT_ANALYTIC || has, ctx, PDK_ERR_UNSUPPORTED,
-              "newton: tangent analytic was requested but model '%s'%s has no analytic tangent "
-              "(PMB and LPS with the default influence have one); use tangent auto or difference",
-              pdk_model_kind_name(s->m->opts.kind),
-              s->m->opts.kind == PDK_MODEL_LPS ? " with an influence function" : "");
+              "newton: tangent analytic was requested but model '%s' has no analytic tangent "
+              "(PMB, LPS and Oterkus have one); use tangent auto or difference",
+              pdk_model_kind_name(s->m->opts.kind));
     ns->analytic = has && s->opts.tangent != PDK_TANGENT_DIFFERENCE;
   }
   s->stats.analytic_tangent = ns->analytic;

@@ -117,7 +117,7 @@ typedef struct sc_solver {
   bool extrapolate;
   int adr_mass;
   double adr_safety;
-  int linear_solver, fd_scheme;
+  int linear_solver, fd_scheme, tangent;
   double fd_step, line_search_backtracks, line_search_decrease, singular_tolerance,
       symmetry_tolerance;
   bool reuse_tangent;
@@ -189,6 +189,9 @@ static const cyaml_strval_t linear_solver_names[] = {
     {"auto", PDK_LINEAR_AUTO}, {"cholmod", PDK_LINEAR_CHOLMOD}, {"umfpack", PDK_LINEAR_UMFPACK}};
 static const cyaml_strval_t fd_scheme_names[] = {{"central", PDK_FD_CENTRAL},
                                                  {"forward", PDK_FD_FORWARD}};
+static const cyaml_strval_t tangent_names[] = {{"auto", PDK_TANGENT_AUTO},
+                                               {"analytic", PDK_TANGENT_ANALYTIC},
+                                               {"difference", PDK_TANGENT_DIFFERENCE}};
 
 #define N_OF(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
 #define OPT (CYAML_FLAG_OPTIONAL)
@@ -384,6 +387,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(solver, CYAML_FIELD_FLOAT("adr_safety", OPT, sc_solver, adr_safety));
   ADD(solver, CYAML_FIELD_ENUM("linear_solver", ENUM_FLAGS, sc_solver, linear_solver,
                                linear_solver_names, N_OF(linear_solver_names)));
+  ADD(solver, CYAML_FIELD_ENUM("tangent", ENUM_FLAGS, sc_solver, tangent, tangent_names,
+                               N_OF(tangent_names)));
   ADD(solver, CYAML_FIELD_ENUM("fd_scheme", ENUM_FLAGS, sc_solver, fd_scheme, fd_scheme_names,
                                N_OF(fd_scheme_names)));
   ADD(solver, CYAML_FIELD_FLOAT("fd_step", OPT, sc_solver, fd_step));
@@ -1511,6 +1516,7 @@ static const char *const static_keys[] = {"load_steps",
                                           "adr_mass",
                                           "adr_safety",
                                           "linear_solver",
+                                          "tangent",
                                           "fd_scheme",
                                           "fd_step",
                                           "line_search_backtracks",
@@ -1520,6 +1526,7 @@ static const char *const static_keys[] = {"load_steps",
                                           "symmetry_tolerance"};
 static const char *const adr_keys[] = {"adr_mass", "adr_safety"};
 static const char *const newton_keys[] = {"linear_solver",
+                                          "tangent",
                                           "fd_scheme",
                                           "fd_step",
                                           "line_search_backtracks",
@@ -1649,6 +1656,7 @@ static int resolve_static_solver(loader *ld, const sc_scene *d) {
   }
   /* Newton */
   if (has(ld, "solver.linear_solver")) o->linear_solver = (pdk_linear_solver)so->linear_solver;
+  if (has(ld, "solver.tangent")) o->tangent = (pdk_tangent_kind)so->tangent;
   if (has(ld, "solver.fd_scheme")) o->fd_scheme = (pdk_fd_scheme)so->fd_scheme;
   if (has(ld, "solver.fd_step")) {
     REQUIRE(ld, isfinite(so->fd_step) && so->fd_step > 0 && so->fd_step < 0.1, "solver.fd_step",

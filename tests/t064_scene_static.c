@@ -58,6 +58,10 @@ static const error_case cases[] = {
      "solver.linear_solver",
      "auto, cholmod, umfpack"},
     {{"solver.type=newton", "solver.fd_scheme=backward"}, "solver.fd_scheme", "central, forward"},
+    {{"solver.type=newton", "solver.tangent=exact"},
+     "solver.tangent",
+     "auto, analytic, difference"},
+    {{"solver.tangent=analytic"}, "solver.tangent", "key of the newton solver"},
     {{"solver.type=newton", "solver.fd_step=0.5"}, "solver.fd_step", "(0, 0.1)"},
     {{"solver.type=newton", "solver.line_search_backtracks=61"},
      "solver.line_search_backtracks",
@@ -132,6 +136,7 @@ int main(void) {
                           "solver.max_break_rounds=7",
                           "solver.extrapolate=false",
                           "solver.linear_solver=umfpack",
+                          "solver.tangent=difference",
                           "solver.fd_scheme=forward",
                           "solver.fd_step=1e-6",
                           "solver.line_search_backtracks=4",
@@ -150,7 +155,8 @@ int main(void) {
   T_ASSERT(o->rtol == 1e-9 && o->atol == 1e-12 && o->max_iterations == 20 &&
                o->max_break_rounds == 7 && o->extrapolate == 0,
            "convergence keys");
-  T_ASSERT(o->linear_solver == PDK_LINEAR_UMFPACK && o->fd_scheme == PDK_FD_FORWARD &&
+  T_ASSERT(o->linear_solver == PDK_LINEAR_UMFPACK && o->tangent == PDK_TANGENT_DIFFERENCE &&
+               o->fd_scheme == PDK_FD_FORWARD &&
                o->fd_step == 1e-6 && o->max_backtracks == 4 && o->ls_decrease == 0.01 &&
                o->reuse_tangent == 0 && o->singular_rtol == 1e-9 && o->sym_rtol == 1e-5 &&
                pdk_scene_threads(s) == 2,

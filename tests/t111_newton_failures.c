@@ -188,6 +188,7 @@ int main(void) {
     so = pdk_static_opts_default(PDK_STATIC_NEWTON);
     so.bcs = bcs;
     so.num_bcs = 1;
+    so.tangent = PDK_TANGENT_DIFFERENCE; /* LPS has an analytic one (t161) */
     T_OK(ctx, pdk_static_create(b.m, &so, &s));
     int ncol;
     const int *Ap, *Ai;

@@ -1,12 +1,14 @@
-/* Newton's analytic tangent (PMB, LPS; src/model_pmb.c, src/model_lps.c) against the colored
- * central-difference tangent, and what it does to a solve.
+/* Newton's analytic tangent (PMB, LPS, the 2-D dilatation laws; src/model_pmb.c, src/model_lps.c,
+ * src/model_dil2.c) against the colored central-difference tangent, and what it does to a solve.
  * labels: physics threads
  *
  * 1. Entry by entry, on a deformed configuration (a smooth nonlinear field with stretches of a few
  *    per cent, plus a deterministic jitter), with bonds broken across a pre-crack (both ends) and,
  *    in a second pass, a few bonds broken from one end only (the force of each end reads its own
  *    bond state, so the reverse-bond lookup is exercised), 2-D and 3-D, partial volumes on, and
- *    float storage of the bond lengths for one case:
+ *    float storage of the bond lengths for one case; and the 2-D dilatation laws (Silling's with
+ *    a cubic influence, Oterkus published and calibrated with a Gaussian one) on a body with a
+ *    pre-crack (they have no bond state nor partial volumes):
  *      |K_analytic - K_difference| <= 1e-7 max|K|.
  *    Reason: central differences with h = 1e-5 delta have truncation error ~ (h / delta)^2 ~ 1e-10
  *    of the entries (the force is smooth on the scale delta at these stretches) and round-off
@@ -41,8 +43,11 @@ typedef struct body {
 } body;
 
 /* Lattice block [0, L] x [0, H] (x [0, H]), set "left" (x = 0) and "right" (x = L). */
-static body build(pdk_ctx *ctx, int dim, double L, double H, double dx, double rf,
-                  pdk_model_kind kind, int breakable, int float_storage) {
+/* variant: 0 PMB/LPS as given; 1 LPS with an influence function (Silling's 2-D law, cubic);
+ * 2 Oterkus published, 3 Oterkus calibrated (Gaussian influence); 1-3 have a pre-crack (bonds
+ * through the segment x = L/2, y < H/2 do not exist) instead of bond state. */
+static body build_variant(pdk_ctx *ctx, int dim, double L, double H, double dx, double rf,
+                          pdk_model_kind kind, int breakable, int float_storage, int variant) {
   body b;
   memset(&b, 0, sizeof b);
   pdk_lattice_opts lo = pdk_lattice_opts_default();
@@ -62,6 +67,12 @@ static body build(pdk_ctx *ctx, int dim, double L, double H, double dx, double r
   T_OK(ctx, pdk_particles_set_define(b.p, "right", &right, NULL));
   pdk_families_opts fo = pdk_families_opts_default();
   fo.horizon = rf * dx;
+  double seg[4] = {0.5 * L + 0.01 * dx, -1.0, 0.5 * L + 0.01 * dx, 0.5 * H};
+  pdk_precrack crack = {2, seg};
+  if (variant) {
+    fo.precracks = &crack;
+    fo.num_precracks = 1;
+  }
   T_OK(ctx, pdk_families_build(b.p, &fo, &b.fam));
   pdk_model_opts mo = pdk_model_opts_default();
   mo.kind = kind;
@@ -74,8 +85,21 @@ static body build(pdk_ctx *ctx, int dim, double L, double H, double dx, double r
   mo.lattice_constant = dx; /* partial volumes */
   if (breakable) mo.critical_stretch = 10.0; /* bond state exists; nothing breaks by itself */
   if (float_storage) mo.precision = PDK_PRECISION_FLOAT;
+  if (variant) {
+    mo.lattice_constant = 0.0; /* not implemented by the dilatation laws */
+    mo.critical_stretch = 0.0;
+    mo.kind = variant == 1 ? PDK_MODEL_LPS : PDK_MODEL_OTERKUS;
+    mo.lps_use_influence = variant == 1;
+    mo.influence = variant == 1 ? PDK_INFLUENCE_CUBIC : PDK_INFLUENCE_GAUSSIAN;
+    mo.oterkus_a = variant == 3 ? PDK_OTERKUS_A_CALIBRATED : PDK_OTERKUS_A_PUBLISHED;
+  }
   T_OK(ctx, pdk_model_create(b.p, b.fam, &mo, &b.m));
   return b;
+}
+
+static body build(pdk_ctx *ctx, int dim, double L, double H, double dx, double rf,
+                  pdk_model_kind kind, int breakable, int float_storage) {
+  return build_variant(ctx, dim, L, H, dx, rf, kind, breakable, float_storage, 0);
 }
 
 static void destroy(body *b) {
@@ -163,20 +187,24 @@ static double *tangent(pdk_ctx *ctx, pdk_static *s, int mode, int *nnz) {
   return K;
 }
 
-static void compare_tangents(int dim, pdk_model_kind kind, int float_storage) {
+static void compare_tangents(int dim, pdk_model_kind kind, int float_storage, int variant) {
   const double L = 1.0, H = dim == 2 ? 0.5 : 0.4, dx = dim == 2 ? 0.05 : 0.1, rf = 3.0;
-  for (int one_sided = 0; one_sided < 2; ++one_sided) {
+  const char *label = variant == 1   ? "lps (influence)"
+                      : variant == 2 ? "oterkus (published)"
+                      : variant == 3 ? "oterkus (calibrated)"
+                                     : pdk_model_kind_name(kind);
+  for (int one_sided = 0; one_sided < (variant ? 1 : 2); ++one_sided) {
     double *Kt[2] = {NULL, NULL};
     int nnz_t[2] = {0, 0};
     for (int threads = 1; threads <= 2; ++threads) {
       pdk_ctx *ctx = t_ctx(threads);
-      body b = build(ctx, dim, L, H, dx, rf, kind, 1, float_storage);
+      body b = build_variant(ctx, dim, L, H, dx, rf, kind, 1, float_storage, variant);
       deform(&b, dim, L, dx);
-      break_bonds(&b, dim, L, H, one_sided);
+      if (!variant) break_bonds(&b, dim, L, H, one_sided);
       pdk_static *s = newton(ctx, &b, dim, PDK_TANGENT_AUTO);
       T_ASSERT(pdk_static_stats_get(s)->analytic_tangent == 1 &&
                    pdk_static_stats_get(s)->passes_per_tangent == 0,
-               "auto did not choose the analytic tangent for %s", pdk_model_kind_name(kind));
+               "auto did not choose the analytic tangent for %s", label);
       Kt[threads - 1] = tangent(ctx, s, 2, &nnz_t[threads - 1]);
       if (threads == 1) {
         int nnz;
@@ -194,13 +222,13 @@ static void compare_tangents(int dim, pdk_model_kind kind, int float_storage) {
           }
         if (getenv("PDK_TEST_VERBOSE"))
           printf("%dD %s%s%s: max |K_a - K_d| = %.2e of max|K| (%d nonzeros)\n", dim,
-                 pdk_model_kind_name(kind), float_storage ? " float" : "",
+                 label, float_storage ? " float" : "",
                  one_sided ? " one-sided breaks" : "", worst / kmax, nnz);
         T_ASSERT(kmax > 0, "empty tangent");
         T_ASSERT(worst <= 1e-7 * kmax,
                  "%dD %s%s: analytic and difference tangents differ by %.3e of max|K| at entry %d "
                  "(%.10e vs %.10e)",
-                 dim, pdk_model_kind_name(kind), one_sided ? " (one-sided breaks)" : "",
+                 dim, label, one_sided ? " (one-sided breaks)" : "",
                  worst / kmax, at, Ka[at], Kd[at]);
         if (!one_sided) { /* symmetry of the analytic tangent */
           int ncol;
@@ -220,7 +248,7 @@ static void compare_tangents(int dim, pdk_model_kind kind, int float_storage) {
             }
           T_ASSERT(sqrt(num) <= 1e-12 * sqrt(den),
                    "%dD %s: analytic tangent asymmetric: %.3e of ||K||_F", dim,
-                   pdk_model_kind_name(kind), sqrt(num / den));
+                   label, sqrt(num / den));
         }
         free(Kd);
       }
@@ -230,7 +258,7 @@ static void compare_tangents(int dim, pdk_model_kind kind, int float_storage) {
     }
     T_ASSERT(nnz_t[0] == nnz_t[1] && !memcmp(Kt[0], Kt[1], (size_t)nnz_t[0] * sizeof(double)),
              "%dD %s: analytic tangent differs between 1 and 2 threads", dim,
-             pdk_model_kind_name(kind));
+             label);
     free(Kt[0]);
     free(Kt[1]);
   }
@@ -356,11 +384,13 @@ static void refusal(void) {
 }
 
 int main(void) {
-  compare_tangents(2, PDK_MODEL_PMB, 0);
-  compare_tangents(2, PDK_MODEL_LPS, 0);
-  compare_tangents(3, PDK_MODEL_PMB, 0);
-  compare_tangents(3, PDK_MODEL_LPS, 0);
-  compare_tangents(2, PDK_MODEL_LPS, 1);
+  compare_tangents(2, PDK_MODEL_PMB, 0, 0);
+  compare_tangents(2, PDK_MODEL_LPS, 0, 0);
+  compare_tangents(3, PDK_MODEL_PMB, 0, 0);
+  compare_tangents(3, PDK_MODEL_LPS, 0, 0);
+  compare_tangents(2, PDK_MODEL_LPS, 1, 0);
+  for (int variant = 1; variant <= 3; ++variant)
+    compare_tangents(2, PDK_MODEL_LPS, 0, variant);
   nonlinear_bar(PDK_MODEL_PMB);
   nonlinear_bar(PDK_MODEL_LPS);
   refusal();
