@@ -1,4 +1,5 @@
-/* Implicit static Newton-Raphson with a difference tangent and SuiteSparse (CHOLMOD / UMFPACK).
+/* Implicit static Newton-Raphson with an analytic or difference tangent and SuiteSparse (CHOLMOD /
+ * UMFPACK).
  *
  * Unknowns: the free components (not prescribed), numbered particle-major: dof_of[c][i] is the
  * unknown of component c of particle i or -1. Residual r = V (f + lambda b) (static.c); tangent
@@ -25,9 +26,11 @@
  * point). Error: central O(h^2) truncation + O(eps / h) round-off; with h = 1e-5 delta both are
  * near 1e-10 of the entries. The diagonal entries of prescribed components are measured too (they
  * cost nothing extra): their largest magnitude is the stiffness scale k_ref for the singularity
- * test. An analytic tangent for the linear models (Queiruga & Moridis's closed-form family blocks,
- * seeds/notes/002 section 2.9) would replace the 2 dim colors force passes by one assembly pass;
- * it is a later speed-up.
+ * test.
+ *
+ * Analytic assembly (opts.tangent auto or analytic, models with pdk_model_ops.tangent_column: PMB,
+ * LPS, the 2-D dilatation laws): the model's exact derivative, one column particle at a time
+ * (assemble_analytic), into the same pattern; it replaces the 2 dim colors force passes.
  *
  * Factorization. A hyperelastic model's tangent is symmetric; the difference tangent is so up to
  * its error. If ||K - K^T||_F / ||K||_F <= sym_rtol, K <- (K + K^T)/2 (documented in static.h) and

@@ -97,9 +97,10 @@ void pdk_adr_free(pdk_static *s);
 int pdk_newton_setup(pdk_static *s);
 int pdk_newton_solve_level(pdk_static *s, long *iterations);
 void pdk_newton_free(pdk_static *s);
-/* Tests: assembles the difference tangent at the current x into the solver's compressed-column
- * arrays (free components only; not symmetrized) and returns them. colored 1: the solver's
- * colored differences; 0: one particle at a time (reference: 2 n dim passes). */
+/* Tests: assembles a tangent at the current x into the solver's compressed-column arrays (free
+ * components only; not symmetrized) and returns them. colored 1: the colored differences (the
+ * coloring is built if the solver had none); 0: differences one particle at a time (reference:
+ * 2 n dim passes); 2: the model's analytic tangent (PDK_ERR_UNSUPPORTED when it has none). */
 int pdk_newton_tangent(pdk_static *s, int colored, int *num_cols, const int **col_start,
                        const int **row_index, const double **values);
 

@@ -78,15 +78,14 @@
  * list when that search would be too costly) gives the groups, and one assembly costs 2 dim colors
  * trial passes (central differences) or dim colors (forward), independent of the number of
  * unknowns.
- * Analytic tangent (opts.tangent auto, the default, or analytic): PMB and LPS (default influence
- * omega = 1/r0, 2-D and 3-D, partial volumes, float storage, broken bonds) bring the exact
- * derivative of their trial force at the current x (src/model_pmb.c, src/model_lps.c), assembled
- * column by column in the same compressed-column pattern (so CHOLMOD/UMFPACK and the symbolic
- * reuse are unchanged) in one sweep over the particles: no force passes (passes_per_tangent 0, no
- * coloring), no difference error, and a nonlinear (large-stretch) problem converges
- * quadratically. The other models (correspondence, the 2-D dilatation laws with an influence
- * function, Oterkus) use the difference tangent, which tangent difference also forces for PMB and
- * LPS.
+ * Analytic tangent (opts.tangent auto, the default, or analytic): PMB and LPS (omega = 1/r0, 2-D
+ * and 3-D, partial volumes, float storage, broken bonds) and the 2-D dilatation laws (LPS with an
+ * influence function, Oterkus) bring the exact derivative of their trial force at the current x
+ * (src/model_pmb.c, src/model_lps.c, src/model_dil2.c), assembled column by column in the same
+ * compressed-column pattern (so CHOLMOD/UMFPACK and the symbolic reuse are unchanged) in one sweep
+ * over the particles: no force passes (passes_per_tangent 0, no coloring), no difference error,
+ * and a nonlinear (large-stretch) problem converges quadratically. Correspondence uses the
+ * difference tangent; tangent difference forces it for every model.
  * Prescribed components are eliminated (their rows and columns dropped), which keeps a symmetric
  * tangent symmetric.
  *   - Symmetry: a hyperelastic model (PMB, LPS, correspondence with an elastic law and no or

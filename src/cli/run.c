@@ -189,6 +189,7 @@ static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
     if (ss->num_colors)
       fprintf(out, "; coloring %d colors (%ld passes per difference tangent)", ss->num_colors,
               ss->passes_per_tangent);
+    if (ss->analytic_tangent) fprintf(out, "; analytic tangent");
     fputc('\n', out);
   }
 }
