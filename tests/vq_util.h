@@ -249,6 +249,10 @@ static inline int vq_run(pdk_ctx *ctx, const vq_case *c, vq_result *res) {
    * forward-difference tangent (half the passes of central differences) is exact up to round-off
    * and O(fd_step) truncation; Newton's residual iteration removes both. */
   so.fd_scheme = PDK_FD_FORWARD;
+  /* The dilatation laws take their analytic tangent (auto); PDK_VQ_TANGENT=difference forces the
+   * difference one (bench/README.md compares the two). */
+  const char *tangent_env = getenv("PDK_VQ_TANGENT");
+  if (tangent_env && !strcmp(tangent_env, "difference")) so.tangent = PDK_TANGENT_DIFFERENCE;
   VQ_OK(ctx, pdk_static_create(m, &so, &s));
   VQ_OK(ctx, pdk_static_solve(s));
   res->tangent_nnz = (long)pdk_static_stats_get(s)->tangent_nnz;
