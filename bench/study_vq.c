@@ -5,13 +5,17 @@
  *                                                     problem uniaxial|isotropic|shear|crack,
  *                                                     omega 0..4 = Const Inv Linear Quadr Cubic)
  *   study_vq table3|table4|table5|vq7|table7|table8  one table, Markdown on stdout
- *   options: --np a,b,c (NP list of the convergence fits), --threads N
+ *   study_vq table8f                                 Table 8's two F columns only
+ *   options: --np a,b,c (NP list of the convergence fits), --threads N,
+ *            --rf a,b (the RF rows of table4 and table5; default 1.5,2,2.5,3,3.5)
  * docs/validation/queiruga.md lists the commands and their output; bench/run_vq_study.sh runs all.
  */
 #include "../tests/vq_util.h"
 
 static int g_threads = 2;
 static int g_np[64], g_nnp = 0;
+static double g_rf[5];
+static int g_nrf = 0; /* --rf: the RF rows of tables 4 and 5 (default all five) */
 
 static const int np_default[] = {100, 140, 200, 280};
 
@@ -75,6 +79,10 @@ int main(int argc, char **argv) {
       char *s = argv[++k];
       g_nnp = 0;
       for (char *t = strtok(s, ","); t && g_nnp < 64; t = strtok(NULL, ",")) g_np[g_nnp++] = atoi(t);
+    } else if (!strcmp(argv[k], "--rf") && k + 1 < argc) {
+      char *s = argv[++k];
+      g_nrf = 0;
+      for (char *t = strtok(s, ","); t && g_nrf < 5; t = strtok(NULL, ",")) g_rf[g_nrf++] = atof(t);
     } else {
       fprintf(stderr, "study_vq: unknown option '%s'\n", argv[k]);
       return 2;
@@ -156,17 +164,21 @@ int main(int argc, char **argv) {
     const pdk_oterkus_a oas[3] = {0, PDK_OTERKUS_A_PUBLISHED, PDK_OTERKUS_A_CALIBRATED};
     const char *lname[3] = {"Silling", "Oterkus (a = (K-2G)/2, as published)",
                             "Oterkus (a calibrated, eq. 13 with lambda+mu)"};
-    for (int ri = 0; ri < 5; ++ri) {
+    if (!g_nrf) {
+      g_nrf = 5;
+      memcpy(g_rf, rfs, sizeof rfs);
+    }
+    for (int ri = 0; ri < g_nrf; ++ri) {
       for (int li = 0; li < (t5 ? 2 : 1); ++li) {
         double o[3], f[3];
         for (int k = 0; k < 3; ++k)
           o[k] = order(ctx, t5 ? laws[li] : VQ_F, t5 ? oas[li] : 0, pbs[k], PDK_INFLUENCE_CUBIC,
-                       rfs[ri], &f[k]);
+                       g_rf[ri], &f[k]);
         if (t5)
-          printf("| %.1f | %s | %.4f (%.2e) | %.4f (%.2e) | %.4f (%.2e) |\n", rfs[ri], lname[li],
+          printf("| %.1f | %s | %.4f (%.2e) | %.4f (%.2e) | %.4f (%.2e) |\n", g_rf[ri], lname[li],
                  o[0], f[0], o[1], f[1], o[2], f[2]);
         else
-          printf("| %.1f | %.4f | %.4f | %.4f | %.2e / %.2e / %.2e |\n", rfs[ri], o[0], o[1], o[2],
+          printf("| %.1f | %.4f | %.4f | %.4f | %.2e / %.2e / %.2e |\n", g_rf[ri], o[0], o[1], o[2],
                  f[0], f[1], f[2]);
         fflush(stdout);
       }
@@ -206,31 +218,55 @@ int main(int argc, char **argv) {
              r.err_win_s[2], r.err_all_s[2], r.max_opening);
       fflush(stdout);
     }
-  } else if (!strcmp(mode, "table8")) {
+  } else if (!strcmp(mode, "table8") || !strcmp(mode, "table8f")) {
+    /* table8f: the two F columns only (each solve takes seconds; the dilatation laws at RF 3.5
+     * need minutes to tens of minutes per solve with the difference tangent). */
+    const int ncol = !strcmp(mode, "table8f") ? 2 : 4;
     printf("Table 8: pressurized crack, cubic w, whole-domain relative L2 error against NP "
            "(h = 16000 mm / NP)\n\n");
-    printf("| NP | F RF 1.5 | F RF 1.5 smoothed (linear) | Silling RF 3.5 | Oterkus RF 3.5 |\n");
-    printf("|---|---|---|---|---|\n");
+    printf("| NP | F RF 1.5 | F RF 1.5 smoothed (linear) |%s\n",
+           ncol == 4 ? " Silling RF 3.5 | Oterkus RF 3.5 |" : "");
+    printf("|---|---|---|%s\n", ncol == 4 ? "---|---|" : "");
     double e[4][64];
     for (int k = 0; k < g_nnp; ++k) {
       vq_case cf = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, g_np[k], 0, g_threads};
-      vq_case cs = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
-      vq_case co2 = {VQ_CRACK, VQ_OTERKUS, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
-      vq_result rf, rs, ro;
+      vq_result rf;
       run(ctx, cf, &rf);
-      run(ctx, cs, &rs);
-      run(ctx, co2, &ro);
       e[0][k] = rf.err_all;
       e[1][k] = rf.err_all_s[1];
-      e[2][k] = rs.err_all;
-      e[3][k] = ro.err_all;
-      printf("| %d | %.4f | %.4f | %.4f | %.4f |\n", g_np[k], e[0][k], e[1][k], e[2][k], e[3][k]);
+      if (ncol == 4) {
+        vq_case cs = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
+        vq_case co2 = {VQ_CRACK, VQ_OTERKUS, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
+        vq_result rs, ro;
+        run(ctx, cs, &rs);
+        run(ctx, co2, &ro);
+        e[2][k] = rs.err_all;
+        e[3][k] = ro.err_all;
+      }
+      printf("| %d |", g_np[k]);
+      for (int m = 0; m < ncol; ++m) printf(" %.4f |", e[m][k]);
+      printf("\n");
       fflush(stdout);
     }
-    printf("| order (all NP) | %.4f | %.4f | %.4f | %.4f |\n", vq_slope(g_nnp, g_np, e[0]),
-           vq_slope(g_nnp, g_np, e[1]), vq_slope(g_nnp, g_np, e[2]), vq_slope(g_nnp, g_np, e[3]));
-    printf("| min error |");
-    for (int m = 0; m < 4; ++m) {
+    printf("| order (all NP) |");
+    for (int m = 0; m < ncol; ++m) printf(" %.4f |", vq_slope(g_nnp, g_np, e[m]));
+    /* The paper's fit (notes 002, Fig. 16): the last 21 points for F, the last 10 for the
+     * dilatation laws, keeping only those with e < 1. */
+    printf("\n| order (paper's fit: last 21 / 10 points, e < 1) |");
+    for (int m = 0; m < ncol; ++m) {
+      int npk[64], cnt = 0;
+      double ek[64];
+      const int last = m < 2 ? 21 : 10;
+      for (int k = g_nnp > last ? g_nnp - last : 0; k < g_nnp; ++k)
+        if (e[m][k] < 1.0) {
+          npk[cnt] = g_np[k];
+          ek[cnt++] = e[m][k];
+        }
+      if (cnt >= 2) printf(" %.4f (%d points) |", vq_slope(cnt, npk, ek), cnt);
+      else printf(" n/a |");
+    }
+    printf("\n| min error |");
+    for (int m = 0; m < ncol; ++m) {
       double mn = 1e300;
       for (int k = 0; k < g_nnp; ++k) mn = fmin(mn, e[m][k]);
       printf(" %.1f%% |", 100.0 * mn);
