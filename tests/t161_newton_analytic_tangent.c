@@ -8,7 +8,7 @@
  *    bond state, so the reverse-bond lookup is exercised), 2-D and 3-D, partial volumes on, and
  *    float storage of the bond lengths for one case; and the 2-D dilatation laws (Silling's with
  *    a cubic influence, Oterkus published and calibrated with a Gaussian one) on a body with a
- *    pre-crack (they have no bond state nor partial volumes):
+ *    pre-crack (they have no bond state nor partial volumes); and a two-material PMB body:
  *      |K_analytic - K_difference| <= 1e-7 max|K|.
  *    Reason: central differences with h = 1e-5 delta have truncation error ~ (h / delta)^2 ~ 1e-10
  *    of the entries (the force is smooth on the scale delta at these stretches) and round-off
@@ -45,7 +45,8 @@ typedef struct body {
 /* Lattice block [0, L] x [0, H] (x [0, H]), set "left" (x = 0) and "right" (x = L). */
 /* variant: 0 PMB/LPS as given; 1 LPS with an influence function (Silling's 2-D law, cubic);
  * 2 Oterkus published, 3 Oterkus calibrated (Gaussian influence); 1-3 have a pre-crack (bonds
- * through the segment x = L/2, y < H/2 do not exist) instead of bond state. */
+ * through the segment x = L/2, y < H/2 do not exist) instead of bond state; 4 PMB with two
+ * materials (K ratio 10 across x = 0.3 L: bonds across take the series micromodulus). */
 static body build_variant(pdk_ctx *ctx, int dim, double L, double H, double dx, double rf,
                           pdk_model_kind kind, int breakable, int float_storage, int variant) {
   body b;
@@ -69,7 +70,7 @@ static body build_variant(pdk_ctx *ctx, int dim, double L, double H, double dx, 
   fo.horizon = rf * dx;
   double seg[4] = {0.5 * L + 0.01 * dx, -1.0, 0.5 * L + 0.01 * dx, 0.5 * H};
   pdk_precrack crack = {2, seg};
-  if (variant) {
+  if (variant >= 1 && variant <= 3) {
     fo.precracks = &crack;
     fo.num_precracks = 1;
   }
@@ -85,7 +86,18 @@ static body build_variant(pdk_ctx *ctx, int dim, double L, double H, double dx, 
   mo.lattice_constant = dx; /* partial volumes */
   if (breakable) mo.critical_stretch = 10.0; /* bond state exists; nothing breaks by itself */
   if (float_storage) mo.precision = PDK_PRECISION_FLOAT;
-  if (variant) {
+  pdk_material mats[2] = {{mo.bulk_modulus, mo.shear_modulus, 1.0},
+                          {0.1 * mo.bulk_modulus, 0.1 * mo.shear_modulus, 1.0}};
+  if (variant == 4) {
+    T_OK(ctx, pdk_particles_field_add(b.p, "material", PDK_I32, 1));
+    int32_t *mat = pdk_particles_field_data(b.p, "material", 0);
+    const double *X0 = pdk_particles_X(b.p, 0);
+    for (pdk_index i = 0; i < pdk_particles_count(b.p); ++i)
+      mat[i] = X0[i] < 0.3 * L ? 0 : 1;
+    mo.materials = mats;
+    mo.num_materials = 2;
+  }
+  if (variant >= 1 && variant <= 3) {
     mo.lattice_constant = 0.0; /* not implemented by the dilatation laws */
     mo.critical_stretch = 0.0;
     mo.kind = variant == 1 ? PDK_MODEL_LPS : PDK_MODEL_OTERKUS;
@@ -192,15 +204,17 @@ static void compare_tangents(int dim, pdk_model_kind kind, int float_storage, in
   const char *label = variant == 1   ? "lps (influence)"
                       : variant == 2 ? "oterkus (published)"
                       : variant == 3 ? "oterkus (calibrated)"
+                      : variant == 4 ? "pmb (two materials)"
                                      : pdk_model_kind_name(kind);
-  for (int one_sided = 0; one_sided < (variant ? 1 : 2); ++one_sided) {
+  const int has_state = variant == 0 || variant == 4;
+  for (int one_sided = 0; one_sided < (has_state ? 2 : 1); ++one_sided) {
     double *Kt[2] = {NULL, NULL};
     int nnz_t[2] = {0, 0};
     for (int threads = 1; threads <= 2; ++threads) {
       pdk_ctx *ctx = t_ctx(threads);
       body b = build_variant(ctx, dim, L, H, dx, rf, kind, 1, float_storage, variant);
       deform(&b, dim, L, dx);
-      if (!variant) break_bonds(&b, dim, L, H, one_sided);
+      if (has_state) break_bonds(&b, dim, L, H, one_sided);
       pdk_static *s = newton(ctx, &b, dim, PDK_TANGENT_AUTO);
       T_ASSERT(pdk_static_stats_get(s)->analytic_tangent == 1 &&
                    pdk_static_stats_get(s)->passes_per_tangent == 0,
@@ -391,6 +405,7 @@ int main(void) {
   compare_tangents(2, PDK_MODEL_LPS, 1, 0);
   for (int variant = 1; variant <= 3; ++variant)
     compare_tangents(2, PDK_MODEL_LPS, 0, variant);
+  compare_tangents(2, PDK_MODEL_PMB, 0, 4);
   nonlinear_bar(PDK_MODEL_PMB);
   nonlinear_bar(PDK_MODEL_LPS);
   refusal();
