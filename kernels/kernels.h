@@ -222,6 +222,47 @@ void pdk_kernel_lps_dilation_avx512(const pdk_lps_consts *k, const pdk_bond_arra
 pdk_bond_index pdk_kernel_lps_force_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                            pdk_index i0, pdk_index i1);
 
+/* ---- PMB over the sliced layout (SELL-C-sigma) --------------------------------------------------
+ * The families of pdk_bond_arrays re-stored in slices of C consecutive rows (src/sell.h): row r of
+ * slice s = r / C is particle row_i[r]; within a slice the bonds are stored column-major, entry
+ * slice_start[s] + col C + l holding bond col of lane l's particle, so one SIMD vector of C lanes
+ * is C particles at the same bond rank and a particle's force is one lane's running sum, without
+ * a horizontal sum or a partial last step. A slice has as many columns as its longest family;
+ * shorter families are padded with entries pointing at the particle itself (bond length 0: the
+ * force term g = c s beta V / r takes the r = 0 branch, q = 0, and adds an exact +0) that are
+ * flagged broken (alive = 0, so a committing pass neither breaks them nor takes their stretch into
+ * s0). Rows r >= n fill the last slice (row_i a real particle, results discarded).
+ * Each bond's terms are computed with the operations of kernels/ref/pmb.c in the same order (no
+ * FMA), so bond failure decisions, the number broken and s0_next equal the reference's bit for
+ * bit; a particle's force and energy are summed over its bonds in CSR order, one after the other
+ * (the reference may regroup the sum when the compiler vectorizes it), so they differ from the
+ * reference by summation order only. */
+typedef struct pdk_sell_arrays {
+  int width;                   /* C lanes per slice (1..16) */
+  pdk_index n;                 /* particles: rows r >= n are padding */
+  const pdk_index *row_i;      /* [num_slices C] particle of each row, 64-byte aligned */
+  const int64_t *slice_start;  /* [num_slices + 1] first entry of each slice (multiples of C) */
+  const pdk_index *sj;         /* [num_entries] neighbour; padding: the row's own particle */
+  uint8_t *alive;              /* [num_entries] 1 intact, 0 broken or padding; NULL: no state */
+  const float *r0;             /* [num_entries] float bond lengths (precision float) or NULL */
+} pdk_sell_arrays;
+
+/* Force pass over slices [s0, s1): a's positions, volume, packed rows (SIMD variants), s0,
+ * s0_next, f, w as pdk_pmb_force_fn; a->bond_j and bond_r0 are not read; a->bond_alive (the CSR
+ * bond state) is written only where a committing pass breaks a bond, in step with s->alive, which
+ * is what every pass reads: entry column col of row i is CSR bond a->bond_start[i] + col. Returns
+ * the bonds broken. */
+typedef pdk_bond_index (*pdk_pmb_force_sell_fn)(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                                const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+pdk_bond_index pdk_kernel_pmb_force_sell_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                             const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+/* SIMD variants (kernels/opt/sell_simd.h in bond_avx2.c, bond_avx512.c): C must equal the ISA's
+ * lanes, 4 (AVX2) and 8 (AVX-512), and the packed rows ref4, cur4 must be set. */
+pdk_bond_index pdk_kernel_pmb_force_sell_avx2(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                              const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+pdk_bond_index pdk_kernel_pmb_force_sell_avx512(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                                const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */

@@ -40,6 +40,9 @@ struct pdk_model {
   void *impl;                  /* kind-private data */
   uint8_t *bond_alive;         /* [num_bonds] or NULL when bonds never break */
   double *s0;                  /* [n_pad] LAMMPS critical stretch per particle, or NULL */
+  /* Bumped by whoever writes bond_alive outside a force pass (checkpoint restore), so a kind that
+   * keeps its own copy of the bond state (PMB layout sell) refreshes it. */
+  unsigned long bond_state_version;
   pdk_bond_index num_broken;
   pdk_index num_flagged;
   pdk_index num_failed;  /* Johnson-Cook: failed particles after the last pass */

@@ -22,6 +22,12 @@
  * sums V_i W_i over the block into its own slot; the slots are summed in block order afterwards.
  * Every particle's force depends only on its own row, so results are bitwise the same for any
  * thread count.
+ *
+ * Layout sell (opts.layout): the pass walks a sliced copy of the families (src/sell.h) through
+ * the table's pmb_force_sell, over blocks of PDK_PMB_BLOCK / C slices; the energy partials are
+ * then summed over the same particle blocks as csr's, after a barrier (a slice's rows are spread
+ * over its sorting window). The copy's bond state is kept equal to bond_alive by the kernels and
+ * refreshed from it when m->bond_state_version moved (checkpoint restore).
  */
 #include <float.h>
 #include <math.h>
@@ -30,6 +36,7 @@
 #include "kernels.h"
 #include "model_bond.h"
 #include "model_impl.h"
+#include "sell.h"
 
 #define PDK_PMB_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
 
@@ -43,6 +50,9 @@ typedef struct pmb_impl {
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows, float bond lengths */
   double *c_particle;   /* [n_pad] multi-material micromodulus per particle, or NULL */
+  int use_sell;         /* layout sell: the pass walks `sell` */
+  pdk_sell sell;
+  unsigned long sell_version; /* m->bond_state_version sell.alive was last synced with */
 } pmb_impl;
 
 /* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
@@ -95,6 +105,12 @@ static int pmb_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
+  if (o->layout == PDK_LAYOUT_SELL) {
+    PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, o->sell_sigma, m->bond_alive,
+                            im->bd.bond_r0, &im->sell));
+    im->use_sell = 1;
+    im->sell_version = m->bond_state_version;
+  }
   return PDK_SUCCESS;
 }
 
@@ -123,6 +139,49 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;
+  if (im->use_sell) {
+    if (im->sell_version != m->bond_state_version) {
+      pdk_sell_sync_alive(ctx, &im->sell, m->fam, m->bond_alive);
+      im->sell_version = m->bond_state_version;
+    }
+    const pdk_pmb_force_sell_fn skernel = ctx->kernels.pmb_force_sell;
+    const pdk_sell_arrays *sa = &im->sell.a;
+    const int64_t num_slices = im->sell.num_slices;
+    const int64_t per_block = PDK_PMB_BLOCK / sa->width; /* slices per kernel call */
+    const int64_t num_sblocks = (num_slices + per_block - 1) / per_block;
+#pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
+    shared(num_blocks, n, k, a, bd, pack, volume, w, block_energy, skernel, sa, num_slices,        \
+               per_block, num_sblocks)
+    {
+      if (pack) {
+#pragma omp for schedule(static)
+        for (int64_t blk = 0; blk < num_blocks; ++blk) {
+          const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+          const pdk_index i1 =
+              (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+          pdk_bond_pack_cur(bd, a, i0, i1);
+        } /* implicit barrier: every row is packed before a neighbour reads it */
+      }
+#pragma omp for schedule(static)
+      for (int64_t blk = 0; blk < num_sblocks; ++blk) {
+        const int64_t s0 = blk * per_block;
+        const int64_t s1 = s0 + per_block < num_slices ? s0 + per_block : num_slices;
+        broken += skernel(k, a, sa, s0, s1);
+      } /* implicit barrier: the energy blocks below hold rows of any slice */
+      if (w) {
+#pragma omp for schedule(static)
+        for (int64_t blk = 0; blk < num_blocks; ++blk) {
+          const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+          const pdk_index i1 =
+              (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+          block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+        }
+      }
+    }
+    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy,
+                         num_blocks, energy);
+    return PDK_SUCCESS;
+  }
 
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
     shared(num_blocks, n, k, a, bd, kernel, pack, volume, w, block_energy)
@@ -157,6 +216,7 @@ static void pmb_destroy(pdk_model *m) {
   pdk_free_aligned(im->c_particle);
   free(im->block_energy);
   pdk_bond_data_free(&im->bd);
+  pdk_sell_free(&im->sell);
   free(im);
   m->impl = NULL;
 }
@@ -222,6 +282,12 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
 
 const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy, NULL,
                                          pmb_tangent_column};
+
+double pdk_model_pmb_padding_fraction(const pdk_model *m) {
+  if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;
+  const pmb_impl *im = m->impl;
+  return im->use_sell ? pdk_sell_padding_fraction(&im->sell) : 0.0;
+}
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;

@@ -129,6 +129,19 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
+/* How the force pass stores the families (PMB only; src/sell.h, kernels/kernels.h). */
+typedef enum pdk_layout {
+  PDK_LAYOUT_CSR = 0, /* the families' CSR rows: the SIMD lanes run along one particle's bonds */
+  PDK_LAYOUT_SELL = 1 /* sliced (SELL-C-sigma): slices of C consecutive particles (C = the SIMD
+                         lanes of the kernel table: 8 AVX-512, 4 AVX2, 8 reference), bonds stored
+                         column-major so each lane is one particle, rows sorted by family length
+                         inside windows of sell_sigma particles (Morton order kept otherwise),
+                         padded with weight-0 bonds. A copy of the families in that order (4 B per
+                         entry, + 1 B bond state, + 4 B float storage). Forces equal csr's up to
+                         summation order; bond failure bit for bit. Not faster on this code's
+                         benchmarks (bench/README.md, "Force loops"): an option, not the default */
+} pdk_layout;
+
 /* One material of a multi-material body (pdk_model_opts.materials). */
 typedef struct pdk_material {
   double bulk_modulus;  /* K [pressure] */
@@ -199,6 +212,12 @@ typedef struct pdk_model_opts {
    * follows the stiffest and lightest material. 0 (default): one material, the values above. */
   const pdk_material *materials;
   int num_materials;
+  /* Family layout of the force pass (default csr). sell: PMB only, one material (other kinds and
+   * multi-material bodies refuse it, PDK_ERR_UNSUPPORTED). */
+  pdk_layout layout;
+  /* sell: the sorting window in particles, rounded up to a multiple of C; 0 (default): 32 C (256
+   * with AVX-512). C or less: no sorting. */
+  int sell_sigma;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
@@ -241,6 +260,9 @@ pdk_index pdk_model_num_isolated(const pdk_model *m);
  * instead). The CLI warns at the end of a run when 0 <= ratio < PDK_FLOAT_STRETCH_WARN. */
 #define PDK_FLOAT_STRETCH_WARN 1e4
 double pdk_model_float_stretch_ratio(const pdk_model *m);
+/* Layout sell: the fraction of the stored bond entries that are padding, (entries - bonds) /
+ * entries, the share of the SIMD lanes' work spent on nothing; 0 for layout csr. */
+double pdk_model_padding_fraction(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 pdk_index pdk_model_num_failed(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */

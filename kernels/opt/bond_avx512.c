@@ -38,4 +38,5 @@ PDK_KERNEL_FP_EXACT
 #define BS_CVT_F(p) ((bs_vd)_mm512_cvtps_pd(_mm256_loadu_ps(p)))
 
 #include "opt/bond_simd.h"
+#include "opt/sell_simd.h"
 #endif

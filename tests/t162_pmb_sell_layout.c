@@ -1,0 +1,386 @@
+/* PMB force pass over the sliced layout (model layout sell, SELL-C-sigma) against the CSR
+ * reference (kernel table "ref", layout csr), for every kernel family this CPU runs (ref: C = 8,
+ * avx2: C = 4, avx512: C = 8), 2-D and 3-D, double and float storage, 1 and 2 threads.
+ *
+ * Part 1, hand-made families (pdk_families_from_csr): particle counts 1, 3, 4, 5, 7, 8, 9, 17, 70
+ * (C - 1, C, C + 1 for both widths, one slice and several), family lengths cycling through 0
+ * (empty), 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33 (capped at n - 1) so slices mix empty and long
+ * rows, random positions (bond lengths up to 5.2, past the partial-volume edge at 3.5), random
+ * volumes, one bond of current length exactly 0, and a small sorting window (sell_sigma = 2 C, so
+ * the 70-particle body has several windows, the last one partial). Part 2, jittered lattices
+ * (Morton order, horizon 3.015 spacings, default window): a 9 x 8 x 7 cube and a 23 x 19 plate.
+ * Both parts: a trial pass, then commit passes at growing displacements that break bonds, then a
+ * trial pass, and a bond-state change written outside a pass (as a checkpoint restore does).
+ * The layout of 0 particles is checked directly: no slice, no entry, padding 0.
+ *
+ * What must hold, and why:
+ *   - bond state, number broken: bit for bit the reference's (every bond's stretch is computed
+ *     with the reference's operations in its order; src/sell.h keeps the layout's state equal to
+ *     the CSR state);
+ *   - f and W: the reference's up to the order of the sum over a family. Two sums of the same n_b
+ *     terms in different orders differ by at most 2 (n_b - 1) eps sum_b |term_b| (first order), so
+ *     the test allows 2 n_b eps S_i, S_i = sum_b c |s_b| beta_b V_j (>= sum_b |g_b eta_b|, and for
+ *     W the terms are below S_i max r0 / 4) evaluated here from the formulas; the total energy
+ *     2 n_b eps sum_i V_i S_i r0max / 4 plus n eps of the sum for the order of the particle sum;
+ *   - the layout sums each particle's bonds one after the other in CSR order whatever the lane,
+ *     slice or window, so every sell variant (ref, avx2, avx512; any window) gives the same bits,
+ *     and 1 and 2 threads give the same bits;
+ *   - the sorted window leaves no more padding than the unsorted layout (sell_sigma = C).
+ * labels: unit threads */
+#include <float.h>
+#include <stdint.h>
+
+#include "bond_models_test.h"
+#include "families_impl.h"
+#include "kernels.h"
+#include "model_bond.h"
+#include "model_impl.h"
+#include "pdk_impl.h"
+#include "sell.h"
+
+static const int row_sizes[] = {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33};
+#define NSIZES ((int)(sizeof row_sizes / sizeof row_sizes[0]))
+static const pdk_index counts[] = {1, 3, 4, 5, 7, 8, 9, 17, 70};
+#define NCOUNTS ((int)(sizeof counts / sizeof counts[0]))
+
+/* A body: store, families, and what a run needs to rebuild it the same way. */
+typedef struct body {
+  int dim, lattice;
+  pdk_index n;
+  uint64_t seed;
+} body;
+
+static pdk_particles *make_store(pdk_ctx *ctx, const body *b) {
+  if (b->lattice) {
+    pdk_particles *p = bm_body(ctx, b->dim, 9, 8, 7, 1.0, 0.1, 0.2, b->seed);
+    if (b->dim == 2) {
+      pdk_particles_destroy(&p);
+      p = bm_body(ctx, 2, 23, 19, 1, 1.0, 0.1, 0.2, b->seed);
+    }
+    T_OK(ctx, pdk_particles_reorder_morton(p, pdk_families_cell_edge(p, 3.015), NULL));
+    return p;
+  }
+  pdk_particles *p = NULL;
+  T_OK(ctx, pdk_particles_create(ctx, b->dim, b->n, &p));
+  uint64_t s = b->seed;
+  for (int c = 0; c < b->dim; ++c) {
+    double *X = pdk_particles_X(p, c);
+    for (pdk_index i = 0; i < b->n; ++i) X[i] = 1.5 * (bm_rng_sym(&s) + 1.0); /* [0, 3) */
+  }
+  double *V = pdk_particles_volume(p);
+  for (pdk_index i = 0; i < b->n; ++i) V[i] = 0.5 + 0.5 * (bm_rng_sym(&s) + 1.0);
+  return p;
+}
+
+static pdk_families *make_families(pdk_ctx *ctx, pdk_particles *p, const body *b) {
+  if (b->lattice) return bm_families(ctx, p, 3.015);
+  const pdk_index n = b->n;
+  pdk_bond_index *bs = calloc((size_t)n + 1, sizeof *bs);
+  for (pdk_index i = 0; i < n; ++i) {
+    int len = row_sizes[(i * 7) % NSIZES];
+    if (len > n - 1) len = n - 1;
+    bs[i + 1] = bs[i] + len;
+  }
+  pdk_index *bj = malloc((size_t)(bs[n] > 0 ? bs[n] : 1) * sizeof *bj);
+  uint8_t *used = calloc((size_t)n, 1);
+  uint64_t s = b->seed ^ 0xabcdefu;
+  for (pdk_index i = 0; i < n; ++i) {
+    memset(used, 0, (size_t)n);
+    used[i] = 1;
+    for (pdk_bond_index k = bs[i]; k < bs[i + 1]; ++k) {
+      pdk_index j;
+      if (i == 0 && k == bs[0] && n > 1) j = 1; /* particle 1 sits on 0 in the current state */
+      else
+        do j = (pdk_index)(bm_rng_next(&s) % (uint64_t)n); while (used[j]);
+      used[j] = 1;
+      bj[k] = j;
+    }
+  }
+  pdk_families *f = NULL;
+  T_OK(ctx, pdk_families_from_csr(ctx, n, 4.0, bs, bj, &f));
+  free(bs), free(bj), free(used);
+  return f;
+}
+
+/* x = X + amp U(-1, 1) (and, hand-made bodies, x_1 = x_0: a bond of current length 0). */
+static void displace(pdk_particles *p, const body *b, double amp, uint64_t seed) {
+  bm_displace_random(p, amp, seed);
+  if (!b->lattice && b->n > 1)
+    for (int c = 0; c < b->dim; ++c) {
+      double *x = pdk_particles_field_data(p, "x", c);
+      x[1] = x[0];
+    }
+}
+
+#define NPASS 5
+typedef struct run_out {
+  pdk_index n;
+  pdk_bond_index nb;
+  double *f[NPASS][3], *w[NPASS], e[NPASS], padding;
+  uint8_t *alive[NPASS];
+  pdk_bond_index broken[NPASS];
+} run_out;
+
+static void free_run(run_out *r) {
+  for (int k = 0; k < NPASS; ++k) {
+    for (int c = 0; c < 3; ++c) free(r->f[k][c]);
+    free(r->w[k]);
+    free(r->alive[k]);
+  }
+}
+
+/* The pass sequence on one configuration; NULL when the kernel family is not on this CPU. */
+static int run(const body *b, const char *kernels, int threads, pdk_layout layout, int sigma,
+               pdk_precision prec, run_out *r) {
+  pdk_ctx_opts co = pdk_ctx_opts_default();
+  co.num_threads = threads;
+  co.kernels = kernels;
+  char why[512];
+  pdk_ctx *ctx = NULL;
+  if (pdk_ctx_create(&co, &ctx, why, sizeof why)) return 0;
+  pdk_particles *p = make_store(ctx, b);
+  pdk_families *fam = make_families(ctx, p, b);
+  pdk_model_opts o = pdk_model_opts_default();
+  o.kind = PDK_MODEL_PMB;
+  o.bulk_modulus = 2.0;
+  o.density = 1.0;
+  o.critical_stretch = b->lattice ? 0.004 : 0.01;
+  o.alpha = 0.25;
+  o.lattice_constant = 1.0;
+  o.precision = prec;
+  o.layout = layout;
+  o.sell_sigma = sigma;
+  pdk_model *m = NULL;
+  T_OK(ctx, pdk_model_create(p, fam, &o, &m));
+  memset(r, 0, sizeof *r);
+  r->n = pdk_particles_count(p);
+  r->nb = pdk_families_num_bonds(fam);
+  r->padding = pdk_model_padding_fraction(m);
+  const int dim = b->dim;
+  for (int k = 0; k < NPASS; ++k) {
+    const double amp = b->lattice ? 0.004 : 0.02;
+    if (k == 0) displace(p, b, amp, 5);
+    if (k == 1 || k == 2) displace(p, b, amp * (k + 1), 5 + (uint64_t)k);
+    if (k == 4) { /* bond state written outside a pass: every fifth intact bond of the CSR state */
+      for (pdk_bond_index q = 0; q < r->nb; q += 5) m->bond_alive[q] = 0;
+      ++m->bond_state_version;
+    }
+    if (k == 1 || k == 2)
+      T_OK(ctx, pdk_model_force(m, &r->e[k]));
+    else
+      T_OK(ctx, pdk_model_force_trial(m, &r->e[k]));
+    for (int c = 0; c < dim; ++c) {
+      r->f[k][c] = malloc((size_t)r->n * sizeof(double));
+      memcpy(r->f[k][c], pdk_particles_field_data(p, "f", c), (size_t)r->n * sizeof(double));
+    }
+    r->w[k] = malloc((size_t)r->n * sizeof(double));
+    memcpy(r->w[k], pdk_model_pmb_energy_density(m), (size_t)r->n * sizeof(double));
+    r->alive[k] = malloc((size_t)(r->nb > 0 ? r->nb : 1));
+    memcpy(r->alive[k], pdk_model_bond_alive(m), (size_t)r->nb);
+    r->broken[k] = pdk_model_num_broken(m);
+  }
+  pdk_model_destroy(&m);
+  pdk_families_destroy(&fam);
+  pdk_particles_destroy(&p);
+  pdk_ctx_destroy(&ctx);
+  return 1;
+}
+
+/* Per-particle scale S_i = sum_b c |s_b| beta_b V_j over the CSR bonds at the positions of pass k
+ * (recomputed: the test's own evaluation), and the largest bond count and r0. */
+typedef struct scale {
+  double *S;
+  double r0max;
+  pdk_bond_index nbmax;
+} scale;
+
+static scale make_scale(const body *b, int k) {
+  pdk_ctx *ctx = NULL;
+  pdk_ctx_opts co = pdk_ctx_opts_default();
+  char why[512];
+  T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
+  pdk_particles *p = make_store(ctx, b);
+  pdk_families *fam = make_families(ctx, p, b);
+  const double amp = b->lattice ? 0.004 : 0.02;
+  const int kk = k == 0 ? 0 : k == 1 ? 1 : 2;
+  displace(p, b, kk == 0 ? amp : amp * (kk + 1), 5 + (uint64_t)kk);
+  const int dim = b->dim;
+  const pdk_index n = pdk_particles_count(p);
+  const pdk_bond_index *bs = pdk_families_bond_start(fam);
+  const pdk_index *bj = pdk_families_bond_j(fam);
+  const double delta = pdk_families_horizon(fam);
+  const double c = dim == 3 ? 18.0 * 2.0 / (M_PI * pow(delta, 4))
+                            : 72.0 * 2.0 / (5.0 * M_PI * pow(delta, 3) * 1.0);
+  const double *V = pdk_particles_volume(p);
+  scale sc = {calloc((size_t)n, sizeof(double)), 0.0, 0};
+  for (pdk_index i = 0; i < n; ++i) {
+    if (bs[i + 1] - bs[i] > sc.nbmax) sc.nbmax = bs[i + 1] - bs[i];
+    for (pdk_bond_index q = bs[i]; q < bs[i + 1]; ++q) {
+      const pdk_index j = bj[q];
+      double r0 = 0, r = 0;
+      for (int a = 0; a < dim; ++a) {
+        const double dX = pdk_particles_X(p, a)[j] - pdk_particles_X(p, a)[i];
+        const double dx = ((double *)pdk_particles_field_data(p, "x", a))[j] -
+                          ((double *)pdk_particles_field_data(p, "x", a))[i];
+        r0 += dX * dX, r += dx * dx;
+      }
+      r0 = sqrt(r0), r = sqrt(r);
+      if (r0 > sc.r0max) sc.r0max = r0;
+      const double beta = fmin(1.0, (delta + 0.5 - r0) / 1.0);
+      sc.S[i] += c * fabs(r - r0) / r0 * beta * V[j];
+    }
+  }
+  pdk_families_destroy(&fam);
+  pdk_particles_destroy(&p);
+  pdk_ctx_destroy(&ctx);
+  return sc;
+}
+
+static int same_bits(const double *a, const double *b, pdk_index n) {
+  return memcmp(a, b, (size_t)n * sizeof(double)) == 0;
+}
+
+/* v, a sell run, against r, the CSR reference (tolerances in the header). */
+static void check_close(const body *b, const run_out *v, const run_out *r, const char *what) {
+  const double eps = DBL_EPSILON;
+  T_ASSERT(v->n == r->n && v->nb == r->nb, "%s: sizes", what);
+  for (int k = 0; k < NPASS; ++k) {
+    T_ASSERT(v->broken[k] == r->broken[k], "%s pass %d: %lld bonds broken vs %lld", what, k,
+             (long long)v->broken[k], (long long)r->broken[k]);
+    T_ASSERT(memcmp(v->alive[k], r->alive[k], (size_t)r->nb) == 0,
+             "%s pass %d: bond state differs from csr", what, k);
+    scale sc = make_scale(b, k);
+    const double tol_n = 2.0 * (double)(sc.nbmax > 0 ? sc.nbmax : 1) * eps;
+    double esum = 0;
+    for (pdk_index i = 0; i < r->n; ++i) {
+      for (int c = 0; c < b->dim; ++c)
+        T_NEAR(v->f[k][c][i], r->f[k][c][i], 0.0, tol_n * sc.S[i], "%s pass %d f%d of %d", what,
+               k, c, (int)i);
+      T_NEAR(v->w[k][i], r->w[k][i], 0.0, tol_n * sc.S[i] * sc.r0max * 0.25,
+             "%s pass %d W of %d", what, k, (int)i);
+      esum += sc.S[i] * sc.r0max * 0.25 * 1.5; /* V <= 1.5 in part 1, about 1.2 in part 2 */
+    }
+    T_NEAR(v->e[k], r->e[k], 0.0, tol_n * esum + (double)r->n * eps * fabs(r->e[k]),
+           "%s pass %d energy", what, k);
+    free(sc.S);
+  }
+}
+
+static void check_bits(const body *b, const run_out *v, const run_out *r, const char *what) {
+  for (int k = 0; k < NPASS; ++k) {
+    for (int c = 0; c < b->dim; ++c)
+      T_ASSERT(same_bits(v->f[k][c], r->f[k][c], r->n), "%s pass %d: f%d not bitwise equal",
+               what, k, c);
+    T_ASSERT(same_bits(v->w[k], r->w[k], r->n), "%s pass %d: W not bitwise equal", what, k);
+    T_ASSERT(memcmp(&v->e[k], &r->e[k], sizeof(double)) == 0, "%s pass %d: energy %.17g vs %.17g",
+             what, k, v->e[k], r->e[k]);
+    T_ASSERT(memcmp(v->alive[k], r->alive[k], (size_t)r->nb) == 0, "%s pass %d: bond state", what,
+             k);
+  }
+}
+
+static void check_body(const body *b) {
+  static const char *const fams[] = {"ref", "avx2", "avx512"};
+  for (int pr = 0; pr < 2; ++pr) {
+    const pdk_precision prec = pr ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
+    run_out ref, first;
+    T_ASSERT(run(b, "ref", 1, PDK_LAYOUT_CSR, 0, prec, &ref), "no ref kernels");
+    int have_first = 0;
+    for (int kf = 0; kf < 3; ++kf) {
+      run_out v1, v2, vu;
+      const int C = kf == 1 ? 4 : 8;
+      const int sigma = b->lattice ? 0 : 2 * C;
+      if (!run(b, fams[kf], 1, PDK_LAYOUT_SELL, sigma, prec, &v1)) continue; /* not on this CPU */
+      T_ASSERT(run(b, fams[kf], 2, PDK_LAYOUT_SELL, sigma, prec, &v2), "2 threads");
+      T_ASSERT(run(b, fams[kf], 1, PDK_LAYOUT_SELL, C, prec, &vu), "unsorted");
+      char what[160];
+      snprintf(what, sizeof what, "%d-D %s n=%d %s sell %s", b->dim, b->lattice ? "lattice" : "hand",
+               (int)b->n, prec ? "float" : "double", fams[kf]);
+      check_close(b, &v1, &ref, what);
+      check_bits(b, &v2, &v1, what); /* 1 vs 2 threads */
+      check_bits(b, &vu, &v1, what); /* window C (unsorted) vs sorted */
+      T_ASSERT(v1.padding <= vu.padding, "%s: padding sorted %g > unsorted %g", what, v1.padding,
+               vu.padding);
+      T_ASSERT(v1.padding >= 0 && v1.padding < 1, "%s: padding %g", what, v1.padding);
+      if (!have_first) {
+        first = v1, have_first = 1;
+      } else {
+        check_bits(b, &v1, &first, what); /* every sell variant: the same bits */
+        free_run(&v1);
+      }
+      free_run(&v2);
+      free_run(&vu);
+    }
+    if (b->lattice) { /* the passes must have broken some bonds, not all */
+      T_ASSERT(ref.broken[2] > 0 && ref.broken[2] < ref.nb, "%d-D lattice: %lld of %lld broke",
+               b->dim, (long long)ref.broken[2], (long long)ref.nb);
+    }
+    if (have_first) free_run(&first);
+    free_run(&ref);
+  }
+}
+
+/* The layout of 0 particles, and the refusals. */
+static void edge_cases(void) {
+  pdk_ctx *ctx = NULL;
+  pdk_ctx_opts co = pdk_ctx_opts_default();
+  char why[512];
+  T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
+  pdk_bond_index bs0 = 0;
+  pdk_index bj0 = 0;
+  pdk_families *f0 = NULL;
+  T_OK(ctx, pdk_families_from_csr(ctx, 0, 1.0, &bs0, &bj0, &f0));
+  pdk_sell s;
+  uint8_t alive = 1;
+  T_OK(ctx, pdk_sell_build(ctx, f0, 8, 0, &alive, NULL, &s));
+  T_ASSERT(s.num_slices == 0 && s.num_entries == 0 && pdk_sell_padding_fraction(&s) == 0.0,
+           "0 particles: %lld slices, %lld entries", (long long)s.num_slices,
+           (long long)s.num_entries);
+  pdk_bond_arrays a;
+  memset(&a, 0, sizeof a);
+  a.dim = 3;
+  pdk_pmb_consts k;
+  memset(&k, 0, sizeof k);
+  T_ASSERT(pdk_kernel_pmb_force_sell_ref(&k, &a, &s.a, 0, 0) == 0, "empty pass");
+  pdk_sell_free(&s);
+  T_FAILS(ctx, pdk_sell_build(ctx, f0, 17, 0, NULL, NULL, &s), PDK_ERR_ARG, "width 17");
+  pdk_families_destroy(&f0);
+
+  /* refusals: layout sell with LPS, multi-material PMB, an unknown layout */
+  body b = {3, 0, 5, 3};
+  pdk_particles *p = make_store(ctx, &b);
+  pdk_families *fam = make_families(ctx, p, &b);
+  pdk_model_opts o = pdk_model_opts_default();
+  o.bulk_modulus = 2.0, o.shear_modulus = 1.0, o.density = 1.0;
+  o.layout = PDK_LAYOUT_SELL;
+  o.kind = PDK_MODEL_LPS;
+  pdk_model *m = NULL;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "layout csr");
+  o.kind = PDK_MODEL_PMB;
+  o.layout = (pdk_layout)7;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_ARG, "use csr or sell");
+  o.layout = PDK_LAYOUT_SELL;
+  o.sell_sigma = -1;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_ARG, "sell_sigma");
+  o.sell_sigma = 0;
+  pdk_material mats[2] = {{2.0, 1.0, 1.0}, {3.0, 1.0, 1.0}};
+  o.materials = mats, o.num_materials = 2;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "multi-material");
+  T_ASSERT(m == NULL, "no model on refusal");
+  pdk_families_destroy(&fam);
+  pdk_particles_destroy(&p);
+  pdk_ctx_destroy(&ctx);
+}
+
+int main(void) {
+  edge_cases();
+  for (int dim = 2; dim <= 3; ++dim) {
+    for (int q = 0; q < NCOUNTS; ++q) {
+      body b = {dim, 0, counts[q], 1000 + (uint64_t)q};
+      check_body(&b);
+    }
+    body lat = {dim, 1, 0, 77};
+    check_body(&lat);
+  }
+  return 0;
+}
