@@ -8,12 +8,18 @@
  *                [--repeat R] [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
+ *                [--layout csr|sell]... [--sell-sigma S]
  *
  * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
  *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
  *   family in turn (default: the context's, PDK_KERNELS). --precision: storage precision of the
  *   models (a kind that refuses one is reported and skipped). --law, --stab: correspondence law
  *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
+ *
+ * --layout: family layout of the PMB pass (repeatable: csr and sell side by side in one run, in
+ *   the order given, each configuration with each layout in turn; other kinds refuse sell and are
+ *   reported and skipped). --sell-sigma S: the sell sorting window in particles (0, the default:
+ *   32 C). The `pad%` column gives the padding share of the sell entries (0 for csr).
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
  *   force, v += dt/2 f/rho; zero initial velocity, as the LAMMPS side-by-side in bench/lammps/)
@@ -72,7 +78,8 @@ static void usage(void) {
           "                    [--threads T]... [--repeat R] [--order morton|lattice] [--s00 S]\n"
           "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
           "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-          "                    [--stab none|silling|hourglass]\n");
+          "                    [--stab none|silling|hourglass] [--layout csr|sell]...\n"
+          "                    [--sell-sigma S]\n");
   exit(2);
 }
 
@@ -227,6 +234,8 @@ int main(int argc, char **argv) {
   pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
   pdk_law law = PDK_LAW_LINEAR_ELASTIC;
   pdk_stabilization stab = PDK_STAB_NONE;
+  pdk_layout layouts[MAX_LIST] = {PDK_LAYOUT_CSR};
+  int num_layouts = 1, user_layouts = 0, sell_sigma = 0;
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
       if (!user_sides) num_sides = 0, user_sides = 1;
@@ -278,6 +287,14 @@ int main(int argc, char **argv) {
              : !strcmp(v, "hourglass") ? PDK_STAB_HOURGLASS
                                        : (pdk_stabilization)-1;
       if ((int)stab < 0) usage();
+    } else if (!strcmp(argv[k], "--layout") && k + 1 < argc) {
+      if (!user_layouts) num_layouts = 0, user_layouts = 1;
+      const char *v = argv[++k];
+      if (strcmp(v, "csr") && strcmp(v, "sell")) usage();
+      if (num_layouts < MAX_LIST)
+        layouts[num_layouts++] = !strcmp(v, "sell") ? PDK_LAYOUT_SELL : PDK_LAYOUT_CSR;
+    } else if (!strcmp(argv[k], "--sell-sigma") && k + 1 < argc) {
+      sell_sigma = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
       triad_mib = atof(argv[++k]);
     } else {
@@ -308,9 +325,10 @@ int main(int argc, char **argv) {
          "volumes on, order %s, s00 %g, %s of %d; corr: law %s, stabilization %s\n",
          order, s00, steps ? "steps" : "median pass", steps ? steps : repeat, law_name[law],
          stab_name[stab]);
-  printf("# %-6s %-6s %-6s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model",
-         "kern", "prec", "d", "n", "bonds", "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c",
-         "Gbond/s", "B/bond", "GB/s", "triad", "roof%", "cpu_ns/b");
+  printf("# %-6s %-6s %-6s %-4s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s %6s\n",
+         "model", "kern", "prec", "lay", "d", "n", "bonds", "b/p", "thr",
+         steps ? "s/step" : "s/pass", "ns/b/c", "Gbond/s", "B/bond", "GB/s", "triad", "roof%",
+         "cpu_ns/b", "pad%");
   pdk_ctx *kctx = NULL;
   for (int ik = 0; ik < num_kernels; ++ik)
   for (int is = 0; is < num_sides + num_plates; ++is) {
@@ -345,9 +363,12 @@ int main(int argc, char **argv) {
     const pdk_bond_index nb = pdk_families_num_bonds(fam);
     const double bpp = (double)nb / n;
 
-    for (int im = 0; im < num_models * num_prec; ++im) {
+    for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
+      const pdk_layout layout = layouts[iml % num_layouts];
+      const int im = iml / num_layouts;
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
+      if (experiment && layout != PDK_LAYOUT_CSR) continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
       pmb_r0_case ex = {
@@ -361,13 +382,15 @@ int main(int argc, char **argv) {
       mo.density = rho;
       mo.lattice_constant = dx;
       mo.critical_stretch = s00;
+      mo.layout = layout;
+      mo.sell_sigma = sell_sigma;
       if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
-        printf("  %-6s %-6s %-6s (unsupported: %s)\n", short_name(models[im / num_prec]),
+        printf("  %-6s %-6s %-6s %-4s (unsupported: %s)\n", short_name(models[im / num_prec]),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               pdk_ctx_error_message(ctx));
+               layout == PDK_LAYOUT_SELL ? "sell" : "csr", pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
       }
@@ -448,13 +471,15 @@ int main(int argc, char **argv) {
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
                 : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
-        printf("  %-6s %-6s %-6s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f "
-               "%7.1f %8.3f\n",
+        printf("  %-6s %-6s %-6s %-4s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
+               "%7.2f %7.1f %8.3f %6.3f\n",
                short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
-               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double", dim,
+               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
+               layout == PDK_LAYOUT_SELL ? "sell" : "csr", dim,
                (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
-               triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9);
+               triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9,
+               100.0 * pdk_model_padding_fraction(m));
         fflush(stdout);
       }
       pdk_model_destroy(&m);

@@ -11,7 +11,9 @@
  * (Morton order, horizon 3.015 spacings, default window): a 9 x 8 x 7 cube and a 23 x 19 plate.
  * Both parts: a trial pass, then commit passes at growing displacements that break bonds, then a
  * trial pass, and a bond-state change written outside a pass (as a checkpoint restore does).
- * The layout of 0 particles is checked directly: no slice, no entry, padding 0.
+ * The layout of 0 particles is checked directly: no slice, no entry, padding 0. A scene with
+ * model.layout: sell builds a PMB model with that layout (and an LPS one is refused, naming the
+ * fix).
  *
  * What must hold, and why:
  *   - bond state, number broken: bit for bit the reference's (every bond's stretch is computed
@@ -194,11 +196,7 @@ typedef struct scale {
   pdk_bond_index nbmax;
 } scale;
 
-static scale make_scale(const body *b, int k) {
-  pdk_ctx *ctx = NULL;
-  pdk_ctx_opts co = pdk_ctx_opts_default();
-  char why[512];
-  T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
+static scale make_scale(pdk_ctx *ctx, const body *b, int k) {
   pdk_particles *p = make_store(ctx, b);
   pdk_families *fam = make_families(ctx, p, b);
   const double amp = b->lattice ? 0.004 : 0.02;
@@ -232,7 +230,6 @@ static scale make_scale(const body *b, int k) {
   }
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
-  pdk_ctx_destroy(&ctx);
   return sc;
 }
 
@@ -241,7 +238,8 @@ static int same_bits(const double *a, const double *b, pdk_index n) {
 }
 
 /* v, a sell run, against r, the CSR reference (tolerances in the header). */
-static void check_close(const body *b, const run_out *v, const run_out *r, const char *what) {
+static void check_close(const body *b, const scale *scales, const run_out *v, const run_out *r,
+                        const char *what) {
   const double eps = DBL_EPSILON;
   T_ASSERT(v->n == r->n && v->nb == r->nb, "%s: sizes", what);
   for (int k = 0; k < NPASS; ++k) {
@@ -249,7 +247,7 @@ static void check_close(const body *b, const run_out *v, const run_out *r, const
              (long long)v->broken[k], (long long)r->broken[k]);
     T_ASSERT(memcmp(v->alive[k], r->alive[k], (size_t)r->nb) == 0,
              "%s pass %d: bond state differs from csr", what, k);
-    scale sc = make_scale(b, k);
+    const scale sc = scales[k];
     const double tol_n = 2.0 * (double)(sc.nbmax > 0 ? sc.nbmax : 1) * eps;
     double esum = 0;
     for (pdk_index i = 0; i < r->n; ++i) {
@@ -262,7 +260,6 @@ static void check_close(const body *b, const run_out *v, const run_out *r, const
     }
     T_NEAR(v->e[k], r->e[k], 0.0, tol_n * esum + (double)r->n * eps * fabs(r->e[k]),
            "%s pass %d energy", what, k);
-    free(sc.S);
   }
 }
 
@@ -279,8 +276,10 @@ static void check_bits(const body *b, const run_out *v, const run_out *r, const 
   }
 }
 
-static void check_body(const body *b) {
+static void check_body(pdk_ctx *ctx, const body *b) {
   static const char *const fams[] = {"ref", "avx2", "avx512"};
+  scale scales[NPASS];
+  for (int k = 0; k < NPASS; ++k) scales[k] = make_scale(ctx, b, k);
   for (int pr = 0; pr < 2; ++pr) {
     const pdk_precision prec = pr ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
     run_out ref, first;
@@ -296,7 +295,7 @@ static void check_body(const body *b) {
       char what[160];
       snprintf(what, sizeof what, "%d-D %s n=%d %s sell %s", b->dim, b->lattice ? "lattice" : "hand",
                (int)b->n, prec ? "float" : "double", fams[kf]);
-      check_close(b, &v1, &ref, what);
+      check_close(b, scales, &v1, &ref, what);
       check_bits(b, &v2, &v1, what); /* 1 vs 2 threads */
       check_bits(b, &vu, &v1, what); /* window C (unsorted) vs sorted */
       T_ASSERT(v1.padding <= vu.padding, "%s: padding sorted %g > unsorted %g", what, v1.padding,
@@ -318,6 +317,7 @@ static void check_body(const body *b) {
     if (have_first) free_run(&first);
     free_run(&ref);
   }
+  for (int k = 0; k < NPASS; ++k) free(scales[k].S);
 }
 
 /* The layout of 0 particles, and the refusals. */
@@ -372,15 +372,54 @@ static void edge_cases(void) {
   pdk_ctx_destroy(&ctx);
 }
 
+/* The scene key model.layout reaches the model. */
+static void scene_key(void) {
+  const char *src = getenv("PDK_SOURCE_DIR");
+  char path[2048];
+  snprintf(path, sizeof path, "%s/tests/scenes/t060_minimal.yaml", src ? src : "..");
+  pdk_ctx *ctx = NULL;
+  pdk_ctx_opts co = pdk_ctx_opts_default();
+  char why[512];
+  T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
+  const char *ov[] = {"model.layout=sell", "model.kind=lps", "material.shear_modulus=0.5e9"};
+  pdk_scene *sc = NULL;
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, path, ov, 1, &sc));
+  T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
+  const pdk_model *m = pdk_sim_model(sim);
+  T_ASSERT(pdk_model_opts_get(m)->layout == PDK_LAYOUT_SELL, "scene layout not passed on");
+  const double pad = pdk_model_padding_fraction(m);
+  /* 6 x 4 x 4: mirror-symmetric, each family length comes 8 times, so sorting leaves none */
+  T_ASSERT(pad == 0.0, "padding %g of a 96-particle block", pad);
+  T_OK(ctx, pdk_explicit_run(pdk_sim_explicit(sim), 2, NULL));
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&sc);
+  T_OK(ctx, pdk_scene_load(ctx, path, ov, 3, &sc));
+  T_FAILS(ctx, pdk_sim_create(ctx, sc, &sim), PDK_ERR_UNSUPPORTED, "use layout csr");
+  pdk_scene_destroy(&sc);
+  const char *bad[] = {"model.layout=blocked"};
+  pdk_ctx_error_clear(ctx);
+  T_ASSERT(pdk_scene_load(ctx, path, bad, 1, &sc) != 0 && sc == NULL, "layout blocked accepted");
+  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "layout"), "message: %s",
+           pdk_ctx_error_message(ctx));
+  pdk_ctx_destroy(&ctx);
+}
+
 int main(void) {
   edge_cases();
+  scene_key();
+  pdk_ctx *ctx = NULL;
+  pdk_ctx_opts co = pdk_ctx_opts_default();
+  char why[512];
+  T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
   for (int dim = 2; dim <= 3; ++dim) {
     for (int q = 0; q < NCOUNTS; ++q) {
       body b = {dim, 0, counts[q], 1000 + (uint64_t)q};
-      check_body(&b);
+      check_body(ctx, &b);
     }
     body lat = {dim, 1, 0, 77};
-    check_body(&lat);
+    check_body(ctx, &lat);
   }
+  pdk_ctx_destroy(&ctx);
   return 0;
 }
