@@ -138,8 +138,8 @@ typedef enum pdk_layout {
                          inside windows of sell_sigma particles (Morton order kept otherwise),
                          padded with weight-0 bonds. A copy of the families in that order (4 B per
                          entry, + 1 B bond state, + 4 B float storage). Forces equal csr's up to
-                         summation order; bond failure bit for bit. Not faster on this code's
-                         benchmarks (bench/README.md, "Force loops"): an option, not the default */
+                         summation order; bond failure bit for bit. Speed against csr:
+                         bench/README.md, "Force loops" (an option, not the default) */
 } pdk_layout;
 
 /* One material of a multi-material body (pdk_model_opts.materials). */

@@ -1,5 +1,6 @@
 /* AVX2 PMB force and LPS dilation / force passes: 4 bonds per step, the body is
- * kernels/opt/bond_simd.h (method, contract and equality with the reference there). Compiled for
+ * kernels/opt/bond_simd.h (method, contract and equality with the reference there); and the PMB
+ * pass over the sliced layout, slices of 4 particles, kernels/opt/sell_simd.h. Compiled for
  * AVX2 + FMA by the target pragma below (FMA contraction stays off: PDK_KERNEL_FP_EXACT), so the
  * baseline build runs on any x86-64 and src/kernels.c installs these only on CPUs with AVX2. */
 #include "kernels.h"
