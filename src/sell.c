@@ -85,7 +85,8 @@ int pdk_sell_build(pdk_ctx *ctx, const pdk_families *fam, int width, int sigma,
   /* Rows: windows of sigma rows sorted by descending length, ties by index (a deterministic
    * order whatever the thread count). Key = (max length - length) << 32 | i. */
   int bad = 0;
-#pragma omp parallel default(none) shared(n, bs, sigma, num_windows, row_i, bad) num_threads(ctx->num_threads)
+#pragma omp parallel default(none) shared(n, bs, sigma, num_windows, row_i, bad)                   \
+    num_threads(ctx->num_threads)
   {
     uint64_t *key = malloc((size_t)sigma * sizeof *key);
     if (!key) {
@@ -103,13 +104,15 @@ int pdk_sell_build(pdk_ctx *ctx, const pdk_families *fam, int width, int sigma,
                       (uint64_t)(uint32_t)i;
       }
       qsort(key, (size_t)(r1 - r0), sizeof *key, cmp_u64);
-      for (pdk_index r = r0; r < r1; ++r) row_i[r] = (pdk_index)(key[r - r0] & 0xffffffffu);
+      for (pdk_index r = r0; r < r1; ++r)
+        row_i[r] = (pdk_index)(key[r - r0] & 0xffffffffu);
     }
     free(key);
   }
   PDK_CHECK_GOTO(!bad, ctx, PDK_ERR_MEMORY, "sliced layout: out of memory sorting the rows");
   /* Padding rows: the slice's first particle (its data is read, its results are discarded). */
-  for (int64_t r = n; r < num_slices * C; ++r) row_i[r] = row_i[(r / C) * C];
+  for (int64_t r = n; r < num_slices * C; ++r)
+    row_i[r] = row_i[(r / C) * C];
 
   /* Slice lengths, then offsets (serial prefix sum). */
   for (int64_t sl = 0; sl < num_slices; ++sl) {
@@ -126,8 +129,7 @@ int pdk_sell_build(pdk_ctx *ctx, const pdk_families *fam, int width, int sigma,
   out->sj = pdk_alloc_aligned((size_t)(ne > 0 ? ne : 1), sizeof(pdk_index));
   if (csr_alive) out->alive = pdk_alloc_aligned((size_t)(ne > 0 ? ne : 1), 1);
   if (csr_r0) out->r0 = pdk_alloc_aligned((size_t)(ne > 0 ? ne : 1), sizeof(float));
-  PDK_CHECK_GOTO(out->sj && (!csr_alive || out->alive) && (!csr_r0 || out->r0), ctx,
-                 PDK_ERR_MEMORY,
+  PDK_CHECK_GOTO(out->sj && (!csr_alive || out->alive) && (!csr_r0 || out->r0), ctx, PDK_ERR_MEMORY,
                  "sliced layout: out of memory for %lld entries (%lld bytes); use layout csr",
                  (long long)ne, (long long)(ne * (int64_t)per_entry));
   pdk_index *sj = out->sj;

@@ -33,16 +33,16 @@
 #define PDK_SELL_SIGMA_SLICES 32
 
 typedef struct pdk_sell {
-  pdk_sell_arrays a;     /* the kernels' view of the arrays below */
-  int sigma;             /* sorting window [rows] */
+  pdk_sell_arrays a; /* the kernels' view of the arrays below */
+  int sigma;         /* sorting window [rows] */
   int64_t num_slices;
-  int64_t num_entries;   /* stored entries, padding included */
+  int64_t num_entries; /* stored entries, padding included */
   pdk_bond_index num_bonds;
-  pdk_index *row_i;      /* [num_slices C] */
-  int64_t *slice_start;  /* [num_slices + 1] */
-  pdk_index *sj;         /* [num_entries] */
-  uint8_t *alive;        /* [num_entries] or NULL */
-  float *r0;             /* [num_entries] or NULL */
+  pdk_index *row_i;     /* [num_slices C] */
+  int64_t *slice_start; /* [num_slices + 1] */
+  pdk_index *sj;        /* [num_entries] */
+  uint8_t *alive;       /* [num_entries] or NULL */
+  float *r0;            /* [num_entries] or NULL */
 } pdk_sell;
 
 /* Builds the layout of fam for width C (1..16) and window sigma rows (0: PDK_SELL_SIGMA_SLICES C;

@@ -67,10 +67,12 @@ static pdk_particles *make_store(pdk_ctx *ctx, const body *b) {
   uint64_t s = b->seed;
   for (int c = 0; c < b->dim; ++c) {
     double *X = pdk_particles_X(p, c);
-    for (pdk_index i = 0; i < b->n; ++i) X[i] = 1.5 * (bm_rng_sym(&s) + 1.0); /* [0, 3) */
+    for (pdk_index i = 0; i < b->n; ++i)
+      X[i] = 1.5 * (bm_rng_sym(&s) + 1.0); /* [0, 3) */
   }
   double *V = pdk_particles_volume(p);
-  for (pdk_index i = 0; i < b->n; ++i) V[i] = 0.5 + 0.5 * (bm_rng_sym(&s) + 1.0);
+  for (pdk_index i = 0; i < b->n; ++i)
+    V[i] = 0.5 + 0.5 * (bm_rng_sym(&s) + 1.0);
   return p;
 }
 
@@ -91,9 +93,12 @@ static pdk_families *make_families(pdk_ctx *ctx, pdk_particles *p, const body *b
     used[i] = 1;
     for (pdk_bond_index k = bs[i]; k < bs[i + 1]; ++k) {
       pdk_index j;
-      if (i == 0 && k == bs[0] && n > 1) j = 1; /* particle 1 sits on 0 in the current state */
+      if (i == 0 && k == bs[0] && n > 1)
+        j = 1; /* particle 1 sits on 0 in the current state */
       else
-        do j = (pdk_index)(bm_rng_next(&s) % (uint64_t)n); while (used[j]);
+        do
+          j = (pdk_index)(bm_rng_next(&s) % (uint64_t)n);
+        while (used[j]);
       used[j] = 1;
       bj[k] = j;
     }
@@ -125,7 +130,8 @@ typedef struct run_out {
 
 static void free_run(run_out *r) {
   for (int k = 0; k < NPASS; ++k) {
-    for (int c = 0; c < 3; ++c) free(r->f[k][c]);
+    for (int c = 0; c < 3; ++c)
+      free(r->f[k][c]);
     free(r->w[k]);
     free(r->alive[k]);
   }
@@ -164,7 +170,8 @@ static int run(const body *b, const char *kernels, int threads, pdk_layout layou
     if (k == 0) displace(p, b, amp, 5);
     if (k == 1 || k == 2) displace(p, b, amp * (k + 1), 5 + (uint64_t)k);
     if (k == 4) { /* bond state written outside a pass: every fifth intact bond of the CSR state */
-      for (pdk_bond_index q = 0; q < r->nb; q += 5) m->bond_alive[q] = 0;
+      for (pdk_bond_index q = 0; q < r->nb; q += 5)
+        m->bond_alive[q] = 0;
       ++m->bond_state_version;
     }
     if (k == 1 || k == 2)
@@ -252,10 +259,10 @@ static void check_close(const body *b, const scale *scales, const run_out *v, co
     double esum = 0;
     for (pdk_index i = 0; i < r->n; ++i) {
       for (int c = 0; c < b->dim; ++c)
-        T_NEAR(v->f[k][c][i], r->f[k][c][i], 0.0, tol_n * sc.S[i], "%s pass %d f%d of %d", what,
-               k, c, (int)i);
-      T_NEAR(v->w[k][i], r->w[k][i], 0.0, tol_n * sc.S[i] * sc.r0max * 0.25,
-             "%s pass %d W of %d", what, k, (int)i);
+        T_NEAR(v->f[k][c][i], r->f[k][c][i], 0.0, tol_n * sc.S[i], "%s pass %d f%d of %d", what, k,
+               c, (int)i);
+      T_NEAR(v->w[k][i], r->w[k][i], 0.0, tol_n * sc.S[i] * sc.r0max * 0.25, "%s pass %d W of %d",
+             what, k, (int)i);
       esum += sc.S[i] * sc.r0max * 0.25 * 1.5; /* V <= 1.5 in part 1, about 1.2 in part 2 */
     }
     T_NEAR(v->e[k], r->e[k], 0.0, tol_n * esum + (double)r->n * eps * fabs(r->e[k]),
@@ -266,8 +273,8 @@ static void check_close(const body *b, const scale *scales, const run_out *v, co
 static void check_bits(const body *b, const run_out *v, const run_out *r, const char *what) {
   for (int k = 0; k < NPASS; ++k) {
     for (int c = 0; c < b->dim; ++c)
-      T_ASSERT(same_bits(v->f[k][c], r->f[k][c], r->n), "%s pass %d: f%d not bitwise equal",
-               what, k, c);
+      T_ASSERT(same_bits(v->f[k][c], r->f[k][c], r->n), "%s pass %d: f%d not bitwise equal", what,
+               k, c);
     T_ASSERT(same_bits(v->w[k], r->w[k], r->n), "%s pass %d: W not bitwise equal", what, k);
     T_ASSERT(memcmp(&v->e[k], &r->e[k], sizeof(double)) == 0, "%s pass %d: energy %.17g vs %.17g",
              what, k, v->e[k], r->e[k]);
@@ -279,7 +286,8 @@ static void check_bits(const body *b, const run_out *v, const run_out *r, const 
 static void check_body(pdk_ctx *ctx, const body *b) {
   static const char *const fams[] = {"ref", "avx2", "avx512"};
   scale scales[NPASS];
-  for (int k = 0; k < NPASS; ++k) scales[k] = make_scale(ctx, b, k);
+  for (int k = 0; k < NPASS; ++k)
+    scales[k] = make_scale(ctx, b, k);
   for (int pr = 0; pr < 2; ++pr) {
     const pdk_precision prec = pr ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
     run_out ref, first;
@@ -293,8 +301,8 @@ static void check_body(pdk_ctx *ctx, const body *b) {
       T_ASSERT(run(b, fams[kf], 2, PDK_LAYOUT_SELL, sigma, prec, &v2), "2 threads");
       T_ASSERT(run(b, fams[kf], 1, PDK_LAYOUT_SELL, C, prec, &vu), "unsorted");
       char what[160];
-      snprintf(what, sizeof what, "%d-D %s n=%d %s sell %s", b->dim, b->lattice ? "lattice" : "hand",
-               (int)b->n, prec ? "float" : "double", fams[kf]);
+      snprintf(what, sizeof what, "%d-D %s n=%d %s sell %s", b->dim,
+               b->lattice ? "lattice" : "hand", (int)b->n, prec ? "float" : "double", fams[kf]);
       check_close(b, scales, &v1, &ref, what);
       check_bits(b, &v2, &v1, what); /* 1 vs 2 threads */
       check_bits(b, &vu, &v1, what); /* window C (unsorted) vs sorted */
@@ -317,7 +325,8 @@ static void check_body(pdk_ctx *ctx, const body *b) {
     if (have_first) free_run(&first);
     free_run(&ref);
   }
-  for (int k = 0; k < NPASS; ++k) free(scales[k].S);
+  for (int k = 0; k < NPASS; ++k)
+    free(scales[k].S);
 }
 
 /* The layout of 0 particles, and the refusals. */
@@ -400,8 +409,7 @@ static void scene_key(void) {
   const char *bad[] = {"model.layout=blocked"};
   pdk_ctx_error_clear(ctx);
   T_ASSERT(pdk_scene_load(ctx, path, bad, 1, &sc) != 0 && sc == NULL, "layout blocked accepted");
-  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "layout"), "message: %s",
-           pdk_ctx_error_message(ctx));
+  T_ASSERT(strstr(pdk_ctx_error_message(ctx), "layout"), "message: %s", pdk_ctx_error_message(ctx));
   pdk_ctx_destroy(&ctx);
 }
 

@@ -57,7 +57,8 @@ BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, con
       bs_vd on = one;
       if (has_state) {
         double o[BS_W];
-        for (int l = 0; l < BS_W; ++l) o[l] = (double)s->alive[e + l];
+        for (int l = 0; l < BS_W; ++l)
+          o[l] = (double)s->alive[e + l];
         memcpy(&on, o, sizeof o);
       }
       const bs_vd d = r - r0;
@@ -78,7 +79,8 @@ BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, con
             bs_sel(alive, bs_set1(k->s00) - bs_set1(k->alpha) * sv, bs_set1(-DBL_MAX));
         s0_max = bs_sel(cand > s0_max, cand, s0_max);
         long long any = 0;
-        for (int l = 0; l < BS_W; ++l) any |= brk[l];
+        for (int l = 0; l < BS_W; ++l)
+          any |= brk[l];
         if (any) /* rare: clear the bond in both layouts */
           for (int l = 0; l < BS_W; ++l)
             if (brk[l]) {
@@ -108,8 +110,7 @@ BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, con
 #define SELL_D(dim)                                                                                \
   (!s->alive ? SELL_E(dim, 0, 0) : !a->s0_next ? SELL_E(dim, 1, 0) : SELL_E(dim, 1, 1))
 
-pdk_bond_index BS_NAME(pdk_kernel_pmb_force_sell)(const pdk_pmb_consts *k,
-                                                  const pdk_bond_arrays *a,
+pdk_bond_index BS_NAME(pdk_kernel_pmb_force_sell)(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                                   const pdk_sell_arrays *s, int64_t s0,
                                                   int64_t s1) {
   return a->dim == 3 ? SELL_D(3) : SELL_D(2);

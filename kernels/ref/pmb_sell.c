@@ -43,7 +43,8 @@ sell_slices(const int dim, const int has_state, const int commit, const int want
     const pdk_index *rows = s->row_i + sl * C;
     double f0[SELL_MAX_WIDTH], f1[SELL_MAX_WIDTH], f2[SELL_MAX_WIDTH], wi[SELL_MAX_WIDTH];
     double s0_max[SELL_MAX_WIDTH];
-    for (int l = 0; l < C; ++l) f0[l] = f1[l] = f2[l] = wi[l] = 0.0, s0_max[l] = -DBL_MAX;
+    for (int l = 0; l < C; ++l)
+      f0[l] = f1[l] = f2[l] = wi[l] = 0.0, s0_max[l] = -DBL_MAX;
     const int64_t e0 = s->slice_start[sl], e1 = s->slice_start[sl + 1];
     for (int64_t e = e0; e < e1; e += C)
       for (int l = 0; l < C; ++l) {
