@@ -222,7 +222,7 @@ void pdk_kernel_lps_dilation_avx512(const pdk_lps_consts *k, const pdk_bond_arra
 pdk_bond_index pdk_kernel_lps_force_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                            pdk_index i0, pdk_index i1);
 
-/* ---- PMB over the sliced layout (SELL-C-sigma) --------------------------------------------------
+/* ---- PMB and LPS over the sliced layout (SELL-C-sigma) --------------------------------------------------
  * The families of pdk_bond_arrays re-stored in slices of C consecutive rows (src/sell.h): row r of
  * slice s = r / C is particle row_i[r]; within a slice the bonds are stored column-major, entry
  * slice_start[s] + col C + l holding bond col of lane l's particle, so one SIMD vector of C lanes
@@ -261,6 +261,25 @@ pdk_bond_index pdk_kernel_pmb_force_sell_ref(const pdk_pmb_consts *k, const pdk_
 pdk_bond_index pdk_kernel_pmb_force_sell_avx2(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                               const pdk_sell_arrays *s, int64_t s0, int64_t s1);
 pdk_bond_index pdk_kernel_pmb_force_sell_avx512(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
+                                                const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+/* LPS dilation and force passes over slices [s0, s1), the same layout and rules (dilation: a's
+ * positions, volume, rows, inv_m in, theta_out out; force: theta, inv_m of every particle in, as
+ * pdk_lps_force_fn). The padding's deviatoric energy term is skipped (r0 = 0). */
+typedef void (*pdk_lps_dilation_sell_fn)(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                         const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+typedef pdk_bond_index (*pdk_lps_force_sell_fn)(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                                const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+void pdk_kernel_lps_dilation_sell_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                      const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+pdk_bond_index pdk_kernel_lps_force_sell_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                             const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+void pdk_kernel_lps_dilation_sell_avx2(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                       const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+pdk_bond_index pdk_kernel_lps_force_sell_avx2(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                              const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+void pdk_kernel_lps_dilation_sell_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
+                                         const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+pdk_bond_index pdk_kernel_lps_force_sell_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                                 const pdk_sell_arrays *s, int64_t s0, int64_t s1);
 
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */

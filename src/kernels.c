@@ -20,6 +20,8 @@ static void fill_ref(pdk_kernel_table *t) {
   t->lps_force = pdk_kernel_lps_force_ref;
   t->sell_width = 8;
   t->pmb_force_sell = pdk_kernel_pmb_force_sell_ref;
+  t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_ref;
+  t->lps_force_sell = pdk_kernel_lps_force_sell_ref;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -51,6 +53,8 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->lps_force = pdk_kernel_lps_force_avx2;
     t->sell_width = 4;
     t->pmb_force_sell = pdk_kernel_pmb_force_sell_avx2;
+    t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_avx2;
+    t->lps_force_sell = pdk_kernel_lps_force_sell_avx2;
   }
   if (isa & PDK_ISA_AVX512) {
     t->pmb_force = pdk_kernel_pmb_force_avx512;
@@ -58,6 +62,8 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->lps_force = pdk_kernel_lps_force_avx512;
     t->sell_width = 8;
     t->pmb_force_sell = pdk_kernel_pmb_force_sell_avx512;
+    t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_avx512;
+    t->lps_force_sell = pdk_kernel_lps_force_sell_avx512;
   }
 }
 

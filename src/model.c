@@ -116,13 +116,16 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "layout %d unknown; use csr or sell", (int)o->layout);
   PDK_CHECK(o->sell_sigma >= 0, ctx, PDK_ERR_ARG,
             "sell_sigma must be >= 0 (0: the default window), got %d", o->sell_sigma);
-  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->kind == PDK_MODEL_PMB, ctx, PDK_ERR_UNSUPPORTED,
-            "%s model: layout sell is implemented for pmb only; use layout csr",
-            pdk_model_kind_name(o->kind));
-  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->num_materials == 0, ctx, PDK_ERR_UNSUPPORTED,
-            "pmb model: layout sell does not support multi-material bodies (%d materials); use "
+  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->kind == PDK_MODEL_PMB ||
+                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence),
+            ctx, PDK_ERR_UNSUPPORTED,
+            "%s model%s: layout sell is implemented for pmb and lps (LAMMPS's omega) only; use "
             "layout csr",
-            o->num_materials);
+            pdk_model_kind_name(o->kind), o->lps_use_influence ? " with lps_use_influence" : "");
+  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->num_materials == 0, ctx, PDK_ERR_UNSUPPORTED,
+            "%s model: layout sell does not support multi-material bodies (%d materials); use "
+            "layout csr",
+            pdk_model_kind_name(o->kind), o->num_materials);
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
@@ -345,7 +348,10 @@ pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; 
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
 
-double pdk_model_padding_fraction(const pdk_model *m) { return pdk_model_pmb_padding_fraction(m); }
+double pdk_model_padding_fraction(const pdk_model *m) {
+  return m->ops == &pdk_model_ops_lps ? pdk_model_lps_padding_fraction(m)
+                                      : pdk_model_pmb_padding_fraction(m);
+}
 
 double pdk_model_float_stretch_ratio(const pdk_model *m) {
   if (m->opts.precision != PDK_PRECISION_FLOAT ||

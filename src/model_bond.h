@@ -79,8 +79,9 @@ static inline void pdk_bond_pass_finish(pdk_model *m, double **s0_next, int swap
 }
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m);
-/* pdk_model_padding_fraction of a PMB model (0 for layout csr or another kind). */
+/* pdk_model_padding_fraction of a PMB or LPS model (0 for layout csr or another kind). */
 double pdk_model_pmb_padding_fraction(const pdk_model *m);
+double pdk_model_lps_padding_fraction(const pdk_model *m);
 const double *pdk_model_lps_energy_density(const pdk_model *m);
 
 #endif

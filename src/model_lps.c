@@ -20,6 +20,12 @@
  * effect from the next pass). Both passes run in one parallel region over fixed blocks of
  * PDK_LPS_BLOCK particles (static schedule, barrier between); the energy is summed per block and
  * the blocks in order, so results are bitwise the same for any thread count.
+ *
+ * Layout sell (opts.layout): both passes walk a sliced copy of the families (src/sell.h) through
+ * the table's lps_dilation_sell and lps_force_sell, over blocks of PDK_LPS_BLOCK / C slices, as
+ * src/model_pmb.c does for PMB (energy over the csr particle blocks after a barrier; the copy's
+ * bond state refreshed when m->bond_state_version moved). The weighted volume is computed once at
+ * set-up over the CSR families.
  */
 #include <float.h>
 #include <math.h>
@@ -28,6 +34,7 @@
 #include "kernels.h"
 #include "model_bond.h"
 #include "model_impl.h"
+#include "sell.h"
 
 #define PDK_LPS_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
 
@@ -45,6 +52,9 @@ typedef struct lps_impl {
    * s_i = sum_b alive_b beta V_j eta_b / |eta_b| at the x of the last tangent_prepare */
   double *tan_q;    /* [n] */
   double *tan_s[3]; /* [n] per component */
+  int use_sell; /* layout sell: the passes walk `sell` (src/sell.h) */
+  pdk_sell sell;
+  unsigned long sell_version; /* m->bond_state_version sell.alive was last synced with */
 } lps_impl;
 
 static int64_t block_count(pdk_index n) { return ((int64_t)n + PDK_LPS_BLOCK - 1) / PDK_LPS_BLOCK; }
@@ -125,6 +135,12 @@ static int lps_setup(pdk_model *m) {
       if (ref4) ref4[4 * (size_t)i + 3] = inv_m[i]; /* the rows' extra column */
     }
   }
+  if (m->opts.layout == PDK_LAYOUT_SELL) {
+    PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, m->opts.sell_sigma,
+                            m->bond_alive, im->bd.bond_r0, &im->sell));
+    im->use_sell = 1;
+    im->sell_version = m->bond_state_version;
+  }
   return PDK_SUCCESS;
 }
 
@@ -155,6 +171,52 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
   const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
   pdk_bond_index broken = 0;
+  if (im->use_sell) {
+    if (im->sell_version != m->bond_state_version) {
+      pdk_sell_sync_alive(ctx, &im->sell, m->fam, m->bond_alive);
+      im->sell_version = m->bond_state_version;
+    }
+    const pdk_lps_dilation_sell_fn sdilation = ctx->kernels.lps_dilation_sell;
+    const pdk_lps_force_sell_fn sforce = ctx->kernels.lps_force_sell;
+    const pdk_sell_arrays *sa = &im->sell.a;
+    const int64_t num_slices = im->sell.num_slices;
+    const int64_t per_block = PDK_LPS_BLOCK / sa->width; /* slices per kernel call */
+    const int64_t num_sblocks = (num_slices + per_block - 1) / per_block;
+#pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
+    shared(num_blocks, n, k, a, bd, pack, volume, w, block_energy, sdilation, sforce, sa,          \
+               num_slices, per_block, num_sblocks)
+    {
+      if (pack) {
+#pragma omp for schedule(static)
+        for (int64_t blk = 0; blk < num_blocks; ++blk) {
+          pdk_index i0, i1;
+          block_range(blk, n, &i0, &i1);
+          pdk_bond_pack_cur(bd, a, i0, i1);
+        } /* implicit barrier: every row is packed before a neighbour reads it */
+      }
+#pragma omp for schedule(static)
+      for (int64_t blk = 0; blk < num_sblocks; ++blk) {
+        const int64_t s0 = blk * per_block;
+        sdilation(k, a, sa, s0, s0 + per_block < num_slices ? s0 + per_block : num_slices);
+      } /* implicit barrier: every theta is complete before any force is computed */
+#pragma omp for schedule(static)
+      for (int64_t blk = 0; blk < num_sblocks; ++blk) {
+        const int64_t s0 = blk * per_block;
+        broken += sforce(k, a, sa, s0, s0 + per_block < num_slices ? s0 + per_block : num_slices);
+      } /* implicit barrier: the energy blocks below hold rows of any slice */
+      if (w) {
+#pragma omp for schedule(static)
+        for (int64_t blk = 0; blk < num_blocks; ++blk) {
+          pdk_index i0, i1;
+          block_range(blk, n, &i0, &i1);
+          block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+        }
+      }
+    }
+    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy,
+                         num_blocks, energy);
+    return PDK_SUCCESS;
+  }
 
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
     shared(num_blocks, n, k, a, bd, dilation, force, pack, volume, w, block_energy)
@@ -197,6 +259,7 @@ static void lps_destroy(pdk_model *m) {
   free(im->tan_q);
   for (int c = 0; c < 3; ++c) free(im->tan_s[c]);
   pdk_bond_data_free(&im->bd);
+  pdk_sell_free(&im->sell);
   free(im);
   m->impl = NULL;
 }
@@ -391,6 +454,12 @@ static void lps_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
 
 const pdk_model_ops pdk_model_ops_lps = {lps_setup, lps_force, lps_destroy, lps_tangent_prepare,
                                          lps_tangent_column};
+
+double pdk_model_lps_padding_fraction(const pdk_model *m) {
+  if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return 0.0;
+  const lps_impl *im = m->impl;
+  return im->use_sell ? pdk_sell_padding_fraction(&im->sell) : 0.0;
+}
 
 const double *pdk_model_lps_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return NULL;

@@ -56,11 +56,16 @@ typedef struct pdk_kernel_table {
                        pdk_index i0, pdk_index i1);
   pdk_bond_index (*lps_force)(const struct pdk_lps_consts *k, const struct pdk_bond_arrays *a,
                        pdk_index i0, pdk_index i1);
-  /* PMB force pass over the sliced layout (model layout sell; kernels/ref/pmb_sell.c and
+  /* PMB force and LPS passes over the sliced layout (model layout sell; kernels/ref/bond_sell.c and
    * variants), over slices of sell_width rows: the SIMD lanes (4 AVX2, 8 AVX-512; the reference
    * takes any width and uses 8). It reads the packed rows when bond_rows = 1. */
   int sell_width;
   pdk_bond_index (*pmb_force_sell)(const struct pdk_pmb_consts *k,
+                                   const struct pdk_bond_arrays *a,
+                                   const struct pdk_sell_arrays *s, int64_t s0, int64_t s1);
+  void (*lps_dilation_sell)(const struct pdk_lps_consts *k, const struct pdk_bond_arrays *a,
+                            const struct pdk_sell_arrays *s, int64_t s0, int64_t s1);
+  pdk_bond_index (*lps_force_sell)(const struct pdk_lps_consts *k,
                                    const struct pdk_bond_arrays *a,
                                    const struct pdk_sell_arrays *s, int64_t s0, int64_t s1);
 } pdk_kernel_table;

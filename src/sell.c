@@ -1,5 +1,5 @@
 /* The sliced family layout (SELL-C-sigma) of the PMB force pass: build, bond-state sync, padding
- * (data structure and rules in src/sell.h, kernels in kernels/ref/pmb_sell.c and
+ * (data structure and rules in src/sell.h, kernels in kernels/ref/bond_sell.c and
  * kernels/opt/sell_simd.h). */
 #include <string.h>
 

@@ -129,7 +129,7 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
-/* How the force pass stores the families (PMB only; src/sell.h, kernels/kernels.h). */
+/* How the force passes store the families (PMB and LPS; src/sell.h, kernels/kernels.h). */
 typedef enum pdk_layout {
   PDK_LAYOUT_CSR = 0, /* the families' CSR rows: the SIMD lanes run along one particle's bonds */
   PDK_LAYOUT_SELL = 1 /* sliced (SELL-C-sigma): slices of C consecutive particles (C = the SIMD
@@ -212,8 +212,9 @@ typedef struct pdk_model_opts {
    * follows the stiffest and lightest material. 0 (default): one material, the values above. */
   const pdk_material *materials;
   int num_materials;
-  /* Family layout of the force pass (default csr). sell: PMB only, one material (other kinds and
-   * multi-material bodies refuse it, PDK_ERR_UNSUPPORTED). */
+  /* Family layout of the force passes (default csr). sell: PMB and LPS (LAMMPS's omega, not
+   * lps_use_influence), one material; other kinds and multi-material bodies refuse it
+   * (PDK_ERR_UNSUPPORTED). */
   pdk_layout layout;
   /* sell: the sorting window in particles, rounded up to a multiple of C; 0 (default): 32 C (256
    * with AVX-512). C or less: no sorting. */

@@ -1,6 +1,7 @@
-/* PMB force pass over the sliced layout (model layout sell, SELL-C-sigma) against the CSR
- * reference (kernel table "ref", layout csr), for every kernel family this CPU runs (ref: C = 8,
- * avx2: C = 4, avx512: C = 8), 2-D and 3-D, double and float storage, 1 and 2 threads.
+/* PMB force pass and LPS dilation / force passes over the sliced layout (model layout sell,
+ * SELL-C-sigma) against the CSR reference (kernel table "ref", layout csr), for every kernel
+ * family this CPU runs (ref: C = 8, avx2: C = 4, avx512: C = 8), 2-D and 3-D, double and float
+ * storage, 1 and 2 threads.
  *
  * Part 1, hand-made families (pdk_families_from_csr): particle counts 1, 3, 4, 5, 7, 8, 9, 17, 70
  * (C - 1, C, C + 1 for both widths, one slice and several), family lengths cycling through 0
@@ -12,18 +13,19 @@
  * Both parts: a trial pass, then commit passes at growing displacements that break bonds, then a
  * trial pass, and a bond-state change written outside a pass (as a checkpoint restore does).
  * The layout of 0 particles is checked directly: no slice, no entry, padding 0. A scene with
- * model.layout: sell builds a PMB model with that layout (and an LPS one is refused, naming the
- * fix).
+ * model.layout: sell builds a model with that layout (and a correspondence one is refused, naming
+ * the fix); the kinds without a sliced pass refuse it.
  *
  * What must hold, and why:
  *   - bond state, number broken: bit for bit the reference's (every bond's stretch is computed
  *     with the reference's operations in its order; src/sell.h keeps the layout's state equal to
  *     the CSR state);
- *   - f and W: the reference's up to the order of the sum over a family. Two sums of the same n_b
- *     terms in different orders differ by at most 2 (n_b - 1) eps sum_b |term_b| (first order), so
- *     the test allows 2 n_b eps S_i, S_i = sum_b c |s_b| beta_b V_j (>= sum_b |g_b eta_b|, and for
- *     W the terms are below S_i max r0 / 4) evaluated here from the formulas; the total energy
- *     2 n_b eps sum_i V_i S_i r0max / 4 plus n eps of the sum for the order of the particle sum;
+ *   - f, W (and LPS theta): the reference's up to the order of the sums over a family. Two sums of
+ *     the same n_b terms in different orders differ by at most 2 (n_b - 1) eps sum_b |term_b|
+ *     (first order), so the test allows 2 n_b eps times the sum of the terms' sizes, evaluated
+ *     here from the formulas over every bond (make_scale); LPS adds what the neighbours' dilation
+ *     round-off carries into the force and the energy (twice its first-order size); the total
+ *     energy sum_i V_i tol(W_i) plus n eps of it for the particle sum;
  *   - the layout sums each particle's bonds one after the other in CSR order whatever the lane,
  *     slice or window, so every sell variant (ref, avx2, avx512; any window) gives the same bits,
  *     and 1 and 2 threads give the same bits;
@@ -123,7 +125,7 @@ static void displace(pdk_particles *p, const body *b, double amp, uint64_t seed)
 typedef struct run_out {
   pdk_index n;
   pdk_bond_index nb;
-  double *f[NPASS][3], *w[NPASS], e[NPASS], padding;
+  double *f[NPASS][3], *w[NPASS], *theta[NPASS], *m, e[NPASS], padding;
   uint8_t *alive[NPASS];
   pdk_bond_index broken[NPASS];
 } run_out;
@@ -135,11 +137,12 @@ static void free_run(run_out *r) {
     free(r->w[k]);
     free(r->alive[k]);
   }
+  free(r->m);
 }
 
 /* The pass sequence on one configuration; NULL when the kernel family is not on this CPU. */
-static int run(const body *b, const char *kernels, int threads, pdk_layout layout, int sigma,
-               pdk_precision prec, run_out *r) {
+static int run(const body *b, pdk_model_kind kind, const char *kernels, int threads,
+               pdk_layout layout, int sigma, pdk_precision prec, run_out *r) {
   pdk_ctx_opts co = pdk_ctx_opts_default();
   co.num_threads = threads;
   co.kernels = kernels;
@@ -149,8 +152,9 @@ static int run(const body *b, const char *kernels, int threads, pdk_layout layou
   pdk_particles *p = make_store(ctx, b);
   pdk_families *fam = make_families(ctx, p, b);
   pdk_model_opts o = pdk_model_opts_default();
-  o.kind = PDK_MODEL_PMB;
+  o.kind = kind;
   o.bulk_modulus = 2.0;
+  o.shear_modulus = 0.9;
   o.density = 1.0;
   o.critical_stretch = b->lattice ? 0.004 : 0.01;
   o.alpha = 0.25;
@@ -183,7 +187,18 @@ static int run(const body *b, const char *kernels, int threads, pdk_layout layou
       memcpy(r->f[k][c], pdk_particles_field_data(p, "f", c), (size_t)r->n * sizeof(double));
     }
     r->w[k] = malloc((size_t)r->n * sizeof(double));
-    memcpy(r->w[k], pdk_model_pmb_energy_density(m), (size_t)r->n * sizeof(double));
+    memcpy(r->w[k],
+           kind == PDK_MODEL_PMB ? pdk_model_pmb_energy_density(m)
+                                 : pdk_model_lps_energy_density(m),
+           (size_t)r->n * sizeof(double));
+    if (kind == PDK_MODEL_LPS) {
+      r->theta[k] = malloc((size_t)r->n * sizeof(double));
+      memcpy(r->theta[k], pdk_particles_field_data(p, "theta", 0), (size_t)r->n * sizeof(double));
+      if (k == 0) {
+        r->m = malloc((size_t)r->n * sizeof(double));
+        memcpy(r->m, pdk_particles_field_data(p, "m", 0), (size_t)r->n * sizeof(double));
+      }
+    }
     r->alive[k] = malloc((size_t)(r->nb > 0 ? r->nb : 1));
     memcpy(r->alive[k], pdk_model_bond_alive(m), (size_t)r->nb);
     r->broken[k] = pdk_model_num_broken(m);
@@ -195,15 +210,16 @@ static int run(const body *b, const char *kernels, int threads, pdk_layout layou
   return 1;
 }
 
-/* Per-particle scale S_i = sum_b c |s_b| beta_b V_j over the CSR bonds at the positions of pass k
- * (recomputed: the test's own evaluation), and the largest bond count and r0. */
+/* The tolerances of pass k (header), per particle, from the test's own evaluation of the terms'
+ * sizes over the CSR bonds (all of them, intact or not: an upper bound) at that pass's positions;
+ * LPS takes theta and m of the reference run. tol_n = 2 n_b eps with n_b the longest family. */
 typedef struct scale {
-  double *S;
-  double r0max;
-  pdk_bond_index nbmax;
+  double *tf, *tw, *tt; /* force (per component), energy density, dilation */
+  double te;            /* total energy */
 } scale;
 
-static scale make_scale(pdk_ctx *ctx, const body *b, int k) {
+static scale make_scale(pdk_ctx *ctx, const body *b, int k, pdk_model_kind kind,
+                        const run_out *ref) {
   pdk_particles *p = make_store(ctx, b);
   pdk_families *fam = make_families(ctx, p, b);
   const double amp = b->lattice ? 0.004 : 0.02;
@@ -214,58 +230,102 @@ static scale make_scale(pdk_ctx *ctx, const body *b, int k) {
   const pdk_bond_index *bs = pdk_families_bond_start(fam);
   const pdk_index *bj = pdk_families_bond_j(fam);
   const double delta = pdk_families_horizon(fam);
-  const double c = dim == 3 ? 18.0 * 2.0 / (M_PI * pow(delta, 4))
-                            : 72.0 * 2.0 / (5.0 * M_PI * pow(delta, 3) * 1.0);
+  const double K = 2.0, G = 0.9, dd = dim;
+  const double c =
+      dim == 3 ? 18.0 * K / (M_PI * pow(delta, 4)) : 72.0 * K / (5.0 * M_PI * pow(delta, 3) * 1.0);
+  const double lambda = K - 2.0 * G / 3.0;
+  const double c_dil = dim == 3 ? 3.0 * K - 5.0 * G : 2.0 * (lambda - G);
+  const double c_dev = dim == 3 ? 15.0 * G : 8.0 * G;
+  const double e_bulk = dim == 3 ? K : lambda + G, e_dev = dim == 3 ? 7.5 * G : 4.0 * G;
   const double *V = pdk_particles_volume(p);
-  scale sc = {calloc((size_t)n, sizeof(double)), 0.0, 0};
-  for (pdk_index i = 0; i < n; ++i) {
-    if (bs[i + 1] - bs[i] > sc.nbmax) sc.nbmax = bs[i + 1] - bs[i];
-    for (pdk_bond_index q = bs[i]; q < bs[i + 1]; ++q) {
-      const pdk_index j = bj[q];
-      double r0 = 0, r = 0;
-      for (int a = 0; a < dim; ++a) {
-        const double dX = pdk_particles_X(p, a)[j] - pdk_particles_X(p, a)[i];
-        const double dx = ((double *)pdk_particles_field_data(p, "x", a))[j] -
-                          ((double *)pdk_particles_field_data(p, "x", a))[i];
-        r0 += dX * dX, r += dx * dx;
+  pdk_bond_index nbmax = 1;
+  for (pdk_index i = 0; i < n; ++i)
+    if (bs[i + 1] - bs[i] > nbmax) nbmax = bs[i + 1] - bs[i];
+  const double tol_n = 2.0 * (double)nbmax * DBL_EPSILON;
+  scale sc = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double)),
+              calloc((size_t)n, sizeof(double)), 0.0};
+  const double *th = kind == PDK_MODEL_LPS ? ref->theta[k] : NULL;
+  double *inv_m = calloc((size_t)n, sizeof(double));
+  for (pdk_index i = 0; i < n && th; ++i)
+    inv_m[i] = ref->m[i] > 0 ? 1.0 / ref->m[i] : 0.0;
+  /* bond lengths, once */
+  for (int pass = 0; pass < (th ? 2 : 1); ++pass)
+    for (pdk_index i = 0; i < n; ++i) {
+      double sf = 0, sw = 0, st = 0, sp = 0, sd = 0;
+      for (pdk_bond_index q = bs[i]; q < bs[i + 1]; ++q) {
+        const pdk_index j = bj[q];
+        double r0 = 0, r = 0;
+        for (int a = 0; a < dim; ++a) {
+          const double dX = pdk_particles_X(p, a)[j] - pdk_particles_X(p, a)[i];
+          const double dx = ((double *)pdk_particles_field_data(p, "x", a))[j] -
+                            ((double *)pdk_particles_field_data(p, "x", a))[i];
+          r0 += dX * dX, r += dx * dx;
+        }
+        r0 = sqrt(r0), r = sqrt(r);
+        const double e = r - r0, pv = V[j] * fmin(1.0, (delta + 0.5 - r0) / 1.0);
+        if (!th) {
+          sf += c * fabs(e) / r0 * pv;
+          sw += 0.25 * c * e * e / r0 * pv;
+        } else if (pass == 0) {
+          st += fabs(e) * pv;
+        } else {
+          sf += pv *
+                (fabs(c_dil) * (fabs(th[i]) * inv_m[i] + fabs(th[j]) * inv_m[j]) * r0 +
+                 c_dev * (inv_m[i] + inv_m[j]) * fabs(e)) /
+                r0;
+          sp += pv * fabs(c_dil) * (sc.tt[i] * inv_m[i] + sc.tt[j] * inv_m[j]);
+          const double ed = e - th[i] / dd * r0;
+          sw += ed * ed / r0 * pv;
+          sd += 2.0 * fabs(ed) * pv / dd;
+        }
       }
-      r0 = sqrt(r0), r = sqrt(r);
-      if (r0 > sc.r0max) sc.r0max = r0;
-      const double beta = fmin(1.0, (delta + 0.5 - r0) / 1.0);
-      sc.S[i] += c * fabs(r - r0) / r0 * beta * V[j];
+      if (!th) {
+        sc.tf[i] = tol_n * sf;
+        sc.tw[i] = tol_n * sw;
+      } else if (pass == 0) {
+        sc.tt[i] = tol_n * dd * inv_m[i] * st;
+      } else {
+        /* summation order of this particle's sums, plus what the neighbours' dilation round-off
+         * carries into the force and the energy (twice the first-order bound) */
+        sc.tf[i] = tol_n * sf + 2.0 * sp;
+        sc.tw[i] = tol_n * (0.5 * e_bulk * th[i] * th[i] + e_dev * inv_m[i] * sw) +
+                   2.0 * sc.tt[i] * (e_bulk * fabs(th[i]) + e_dev * inv_m[i] * sd);
+      }
     }
-  }
+  for (pdk_index i = 0; i < n; ++i)
+    sc.te += V[i] * sc.tw[i];
+  free(inv_m);
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
   return sc;
 }
 
+static void free_scale(scale *sc) { free(sc->tf), free(sc->tw), free(sc->tt); }
+
 static int same_bits(const double *a, const double *b, pdk_index n) {
   return memcmp(a, b, (size_t)n * sizeof(double)) == 0;
 }
 
-/* v, a sell run, against r, the CSR reference (tolerances in the header). */
+/* v, a sell run, against r, the CSR reference (tolerances in the header and make_scale). */
 static void check_close(const body *b, const scale *scales, const run_out *v, const run_out *r,
                         const char *what) {
-  const double eps = DBL_EPSILON;
   T_ASSERT(v->n == r->n && v->nb == r->nb, "%s: sizes", what);
   for (int k = 0; k < NPASS; ++k) {
     T_ASSERT(v->broken[k] == r->broken[k], "%s pass %d: %lld bonds broken vs %lld", what, k,
              (long long)v->broken[k], (long long)r->broken[k]);
     T_ASSERT(memcmp(v->alive[k], r->alive[k], (size_t)r->nb) == 0,
              "%s pass %d: bond state differs from csr", what, k);
-    const scale sc = scales[k];
-    const double tol_n = 2.0 * (double)(sc.nbmax > 0 ? sc.nbmax : 1) * eps;
-    double esum = 0;
+    const scale *sc = &scales[k];
     for (pdk_index i = 0; i < r->n; ++i) {
       for (int c = 0; c < b->dim; ++c)
-        T_NEAR(v->f[k][c][i], r->f[k][c][i], 0.0, tol_n * sc.S[i], "%s pass %d f%d of %d", what, k,
-               c, (int)i);
-      T_NEAR(v->w[k][i], r->w[k][i], 0.0, tol_n * sc.S[i] * sc.r0max * 0.25, "%s pass %d W of %d",
-             what, k, (int)i);
-      esum += sc.S[i] * sc.r0max * 0.25 * 1.5; /* V <= 1.5 in part 1, about 1.2 in part 2 */
+        T_NEAR(v->f[k][c][i], r->f[k][c][i], 0.0, sc->tf[i], "%s pass %d f%d of %d", what, k, c,
+               (int)i);
+      T_NEAR(v->w[k][i], r->w[k][i], 0.0, sc->tw[i], "%s pass %d W of %d", what, k, (int)i);
+      if (r->theta[k])
+        T_NEAR(v->theta[k][i], r->theta[k][i], 0.0, sc->tt[i], "%s pass %d theta of %d", what, k,
+               (int)i);
     }
-    T_NEAR(v->e[k], r->e[k], 0.0, tol_n * esum + (double)r->n * eps * fabs(r->e[k]),
+    T_NEAR(v->e[k], r->e[k], 0.0, sc->te + (double)r->n * DBL_EPSILON * fabs(r->e[k]),
            "%s pass %d energy", what, k);
   }
 }
@@ -276,6 +336,8 @@ static void check_bits(const body *b, const run_out *v, const run_out *r, const 
       T_ASSERT(same_bits(v->f[k][c], r->f[k][c], r->n), "%s pass %d: f%d not bitwise equal", what,
                k, c);
     T_ASSERT(same_bits(v->w[k], r->w[k], r->n), "%s pass %d: W not bitwise equal", what, k);
+    T_ASSERT(!r->theta[k] || same_bits(v->theta[k], r->theta[k], r->n),
+             "%s pass %d: theta not bitwise equal", what, k);
     T_ASSERT(memcmp(&v->e[k], &r->e[k], sizeof(double)) == 0, "%s pass %d: energy %.17g vs %.17g",
              what, k, v->e[k], r->e[k]);
     T_ASSERT(memcmp(v->alive[k], r->alive[k], (size_t)r->nb) == 0, "%s pass %d: bond state", what,
@@ -283,25 +345,26 @@ static void check_bits(const body *b, const run_out *v, const run_out *r, const 
   }
 }
 
-static void check_body(pdk_ctx *ctx, const body *b) {
+static void check_body(pdk_ctx *ctx, const body *b, pdk_model_kind kind) {
   static const char *const fams[] = {"ref", "avx2", "avx512"};
-  scale scales[NPASS];
-  for (int k = 0; k < NPASS; ++k)
-    scales[k] = make_scale(ctx, b, k);
   for (int pr = 0; pr < 2; ++pr) {
     const pdk_precision prec = pr ? PDK_PRECISION_FLOAT : PDK_PRECISION_DOUBLE;
     run_out ref, first;
-    T_ASSERT(run(b, "ref", 1, PDK_LAYOUT_CSR, 0, prec, &ref), "no ref kernels");
+    T_ASSERT(run(b, kind, "ref", 1, PDK_LAYOUT_CSR, 0, prec, &ref), "no ref kernels");
+    scale scales[NPASS];
+    for (int k = 0; k < NPASS; ++k)
+      scales[k] = make_scale(ctx, b, k, kind, &ref);
     int have_first = 0;
     for (int kf = 0; kf < 3; ++kf) {
       run_out v1, v2, vu;
       const int C = kf == 1 ? 4 : 8;
       const int sigma = b->lattice ? 0 : 2 * C;
-      if (!run(b, fams[kf], 1, PDK_LAYOUT_SELL, sigma, prec, &v1)) continue; /* not on this CPU */
-      T_ASSERT(run(b, fams[kf], 2, PDK_LAYOUT_SELL, sigma, prec, &v2), "2 threads");
-      T_ASSERT(run(b, fams[kf], 1, PDK_LAYOUT_SELL, C, prec, &vu), "unsorted");
+      if (!run(b, kind, fams[kf], 1, PDK_LAYOUT_SELL, sigma, prec, &v1))
+        continue; /* not on this CPU */
+      T_ASSERT(run(b, kind, fams[kf], 2, PDK_LAYOUT_SELL, sigma, prec, &v2), "2 threads");
+      T_ASSERT(run(b, kind, fams[kf], 1, PDK_LAYOUT_SELL, C, prec, &vu), "unsorted");
       char what[160];
-      snprintf(what, sizeof what, "%d-D %s n=%d %s sell %s", b->dim,
+      snprintf(what, sizeof what, "%s %d-D %s n=%d %s sell %s", pdk_model_kind_name(kind), b->dim,
                b->lattice ? "lattice" : "hand", (int)b->n, prec ? "float" : "double", fams[kf]);
       check_close(b, scales, &v1, &ref, what);
       check_bits(b, &v2, &v1, what); /* 1 vs 2 threads */
@@ -324,9 +387,9 @@ static void check_body(pdk_ctx *ctx, const body *b) {
     }
     if (have_first) free_run(&first);
     free_run(&ref);
+    for (int k = 0; k < NPASS; ++k)
+      free_scale(&scales[k]);
   }
-  for (int k = 0; k < NPASS; ++k)
-    free(scales[k].S);
 }
 
 /* The layout of 0 particles, and the refusals. */
@@ -355,16 +418,21 @@ static void edge_cases(void) {
   T_FAILS(ctx, pdk_sell_build(ctx, f0, 17, 0, NULL, NULL, &s), PDK_ERR_ARG, "width 17");
   pdk_families_destroy(&f0);
 
-  /* refusals: layout sell with LPS, multi-material PMB, an unknown layout */
+  /* refusals: layout sell with correspondence and LPS with an influence function, multi-material
+   * PMB, an unknown layout */
   body b = {3, 0, 5, 3};
   pdk_particles *p = make_store(ctx, &b);
   pdk_families *fam = make_families(ctx, p, &b);
   pdk_model_opts o = pdk_model_opts_default();
   o.bulk_modulus = 2.0, o.shear_modulus = 1.0, o.density = 1.0;
   o.layout = PDK_LAYOUT_SELL;
-  o.kind = PDK_MODEL_LPS;
+  o.kind = PDK_MODEL_CORRESPONDENCE;
   pdk_model *m = NULL;
   T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "layout csr");
+  o.kind = PDK_MODEL_LPS;
+  o.lps_use_influence = 1;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "lps_use_influence");
+  o.lps_use_influence = 0;
   o.kind = PDK_MODEL_PMB;
   o.layout = (pdk_layout)7;
   T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_ARG, "use csr or sell");
@@ -390,7 +458,8 @@ static void scene_key(void) {
   pdk_ctx_opts co = pdk_ctx_opts_default();
   char why[512];
   T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
-  const char *ov[] = {"model.layout=sell", "model.kind=lps", "material.shear_modulus=0.5e9"};
+  const char *ov[] = {"model.layout=sell", "model.kind=correspondence",
+                      "material.shear_modulus=0.5e9"};
   pdk_scene *sc = NULL;
   pdk_sim *sim = NULL;
   T_OK(ctx, pdk_scene_load(ctx, path, ov, 1, &sc));
@@ -420,14 +489,15 @@ int main(void) {
   pdk_ctx_opts co = pdk_ctx_opts_default();
   char why[512];
   T_ASSERT(!pdk_ctx_create(&co, &ctx, why, sizeof why), "%s", why);
-  for (int dim = 2; dim <= 3; ++dim) {
-    for (int q = 0; q < NCOUNTS; ++q) {
-      body b = {dim, 0, counts[q], 1000 + (uint64_t)q};
-      check_body(ctx, &b);
+  for (int kind = PDK_MODEL_PMB; kind <= PDK_MODEL_LPS; ++kind)
+    for (int dim = 2; dim <= 3; ++dim) {
+      for (int q = 0; q < NCOUNTS; ++q) {
+        body b = {dim, 0, counts[q], 1000 + (uint64_t)q};
+        check_body(ctx, &b, (pdk_model_kind)kind);
+      }
+      body lat = {dim, 1, 0, 77};
+      check_body(ctx, &lat, (pdk_model_kind)kind);
     }
-    body lat = {dim, 1, 0, 77};
-    check_body(ctx, &lat);
-  }
   pdk_ctx_destroy(&ctx);
   return 0;
 }
