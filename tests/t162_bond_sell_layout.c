@@ -135,6 +135,7 @@ static void free_run(run_out *r) {
     for (int c = 0; c < 3; ++c)
       free(r->f[k][c]);
     free(r->w[k]);
+    free(r->theta[k]);
     free(r->alive[k]);
   }
   free(r->m);
