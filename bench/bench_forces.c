@@ -8,12 +8,17 @@
  *                [--repeat R] [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
+ *                [--layout csr|stencil]...
  *
  * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
  *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
  *   family in turn (default: the context's, PDK_KERNELS). --precision: storage precision of the
  *   models (a kind that refuses one is reported and skipped). --law, --stab: correspondence law
  *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
+ *
+ * --layout: csr (default), the general path over the CSR families; stencil, the PMB stencil path
+ *   (model stencil on: bond offsets outside, runs of lattice sites inside, src/model_stencil.c);
+ *   repeatable, so both run side by side on the same lattice. Other models skip stencil.
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
  *   force, v += dt/2 f/rho; zero initial velocity, as the LAMMPS side-by-side in bench/lammps/)
@@ -72,7 +77,7 @@ static void usage(void) {
           "                    [--threads T]... [--repeat R] [--order morton|lattice] [--s00 S]\n"
           "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
           "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-          "                    [--stab none|silling|hourglass]\n");
+          "                    [--stab none|silling|hourglass] [--layout csr|stencil]...\n");
   exit(2);
 }
 
@@ -133,6 +138,16 @@ static double bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_part
   double second = per_bond + (per_particle + 16.0) / bonds_per_particle;
   if (kind == PDK_MODEL_CORRESPONDENCE) second += 72.0 / bonds_per_particle;
   return first + second;
+}
+
+/* PMB stencil path: no index stream; per bond the mask byte read and written when breaking is on;
+ * per particle x read and copied to its site (written, write-allocate), the site's X, x, V read,
+ * f written (write-allocate), and with breaking s0 read, copied to the site, s0_next written. */
+static double stencil_bytes_per_bond(int dim, double bonds_per_particle, int breaking) {
+  const double per_bond = breaking ? 2.0 : 0.0;
+  const double per_particle = dim * 8.0 + 2.0 * dim * 8.0 + (2.0 * dim * 8.0 + 8.0) +
+                              2.0 * dim * 8.0 + (breaking ? 8.0 + 16.0 + 16.0 : 0.0);
+  return per_bond + per_particle / bonds_per_particle;
 }
 
 /* Correspondence, modelled compulsory bytes per directed bond for one force pass (both sweeps). */
@@ -227,6 +242,7 @@ int main(int argc, char **argv) {
   pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
   pdk_law law = PDK_LAW_LINEAR_ELASTIC;
   pdk_stabilization stab = PDK_STAB_NONE;
+  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0; /* 0 csr, 1 stencil */
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
       if (!user_sides) num_sides = 0, user_sides = 1;
@@ -278,6 +294,11 @@ int main(int argc, char **argv) {
              : !strcmp(v, "hourglass") ? PDK_STAB_HOURGLASS
                                        : (pdk_stabilization)-1;
       if ((int)stab < 0) usage();
+    } else if (!strcmp(argv[k], "--layout") && k + 1 < argc) {
+      if (!user_layouts) num_layouts = 0, user_layouts = 1;
+      const char *v = argv[++k];
+      if (strcmp(v, "csr") && strcmp(v, "stencil")) usage();
+      if (num_layouts < MAX_LIST) layouts[num_layouts++] = !strcmp(v, "stencil");
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
       triad_mib = atof(argv[++k]);
     } else {
@@ -308,8 +329,8 @@ int main(int argc, char **argv) {
          "volumes on, order %s, s00 %g, %s of %d; corr: law %s, stabilization %s\n",
          order, s00, steps ? "steps" : "median pass", steps ? steps : repeat, law_name[law],
          stab_name[stab]);
-  printf("# %-6s %-6s %-6s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model",
-         "kern", "prec", "d", "n", "bonds", "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c",
+  printf("# %-6s %-6s %-6s %-7s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s\n", "model",
+         "kern", "prec", "layout", "d", "n", "bonds", "b/p", "thr", steps ? "s/step" : "s/pass", "ns/b/c",
          "Gbond/s", "B/bond", "GB/s", "triad", "roof%", "cpu_ns/b");
   pdk_ctx *kctx = NULL;
   for (int ik = 0; ik < num_kernels; ++ik)
@@ -345,9 +366,11 @@ int main(int argc, char **argv) {
     const pdk_bond_index nb = pdk_families_num_bonds(fam);
     const double bpp = (double)nb / n;
 
-    for (int im = 0; im < num_models * num_prec; ++im) {
+    for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
+      const int im = iml / num_layouts, stencil = layouts[iml % num_layouts];
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
+      if (stencil && (experiment || models[im / num_prec] != PDK_MODEL_PMB)) continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
       pmb_r0_case ex = {
@@ -361,12 +384,14 @@ int main(int argc, char **argv) {
       mo.density = rho;
       mo.lattice_constant = dx;
       mo.critical_stretch = s00;
+      mo.stencil = stencil ? PDK_STENCIL_ON : PDK_STENCIL_OFF;
       if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
-        printf("  %-6s %-6s %-6s (unsupported: %s)\n", short_name(models[im / num_prec]),
+        printf("  %-6s %-6s %-6s %-7s (unsupported: %s)\n", short_name(models[im / num_prec]),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
+               stencil ? "stencil" : "csr",
                pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
@@ -446,12 +471,14 @@ int main(int argc, char **argv) {
             mo.kind == PDK_MODEL_CORRESPONDENCE
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
-                : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+                : stencil ? stencil_bytes_per_bond(dim, bpp, s00 > 0)
+                          : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
-        printf("  %-6s %-6s %-6s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f %7.2f "
-               "%7.1f %8.3f\n",
+        printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
+               "%7.2f %7.1f %8.3f\n",
                short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
-               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double", dim,
+               pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
+               stencil ? "stencil" : "csr", dim,
                (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
                triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9);

@@ -459,8 +459,10 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
       PDK_CALL_GOTO(
           read_component(ctx, gf, name, type, c, (hsize_t)n, pdk_particles_field_data(p, name, c)));
   }
-  if (m->bond_alive)
+  if (m->bond_alive) {
     PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
+    ++m->bond_state_version;
+  }
   if (m->s0) PDK_CALL_GOTO(read_array(ctx, gm, "s0", PDK_F64, (hsize_t)n, m->s0));
   if (is_ul) PDK_CALL_GOTO(restore_ul(ctx, gm, m, ul_rebuilt, ul_num_rebuilds));
   PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_broken", &v));

@@ -18,6 +18,9 @@ static void fill_ref(pdk_kernel_table *t) {
   t->pmb_force = pdk_kernel_pmb_force_ref;
   t->lps_dilation = pdk_kernel_lps_dilation_ref;
   t->lps_force = pdk_kernel_lps_force_ref;
+  /* The stencil pass has no reference of its own (its oracle is the general path, tests/t160);
+   * the ref family runs it compiled for the baseline ISA. */
+  t->pmb_stencil = pdk_kernel_pmb_stencil_base;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -47,11 +50,13 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->pmb_force = pdk_kernel_pmb_force_avx2;
     t->lps_dilation = pdk_kernel_lps_dilation_avx2;
     t->lps_force = pdk_kernel_lps_force_avx2;
+    t->pmb_stencil = pdk_kernel_pmb_stencil_avx2;
   }
   if (isa & PDK_ISA_AVX512) {
     t->pmb_force = pdk_kernel_pmb_force_avx512;
     t->lps_dilation = pdk_kernel_lps_dilation_avx512;
     t->lps_force = pdk_kernel_lps_force_avx512;
+    t->pmb_stencil = pdk_kernel_pmb_stencil_avx512;
   }
 }
 

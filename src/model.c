@@ -111,6 +111,12 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "thickness must be a finite length > 0 (2-D: the out-of-plane thickness the volumes "
             "include; default 1), got %g",
             o->thickness);
+  PDK_CHECK((unsigned)o->stencil <= PDK_STENCIL_ON, ctx, PDK_ERR_ARG,
+            "stencil mode %d unknown; use off (0), auto (1) or on (2)", (int)o->stencil);
+  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind == PDK_MODEL_PMB, ctx, PDK_ERR_UNSUPPORTED,
+            "%s model: the stencil path is implemented for the pmb model only; use stencil off "
+            "or auto",
+            name);
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather

@@ -50,6 +50,9 @@ struct pdk_model {
   double *mat_bulk, *mat_shear, *mat_density;
   double *mat_lambda, *mat_stab; /* correspondence: lambda = K - 2G/3, stabilization modulus */
   pdk_material *materials; /* copy of opts.materials (opts.materials points here) */
+  /* Incremented by whoever writes bond_alive from outside the force passes (checkpoint restore),
+   * so a kind that keeps a copy of the bond state in another layout (the PMB stencil) reloads it. */
+  unsigned long bond_state_version;
 };
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */

@@ -25,11 +25,13 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "kernels.h"
 #include "model_bond.h"
 #include "model_impl.h"
+#include "model_stencil.h"
 
 #define PDK_PMB_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
 
@@ -43,6 +45,8 @@ typedef struct pmb_impl {
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows, float bond lengths */
   double *c_particle;   /* [n_pad] multi-material micromodulus per particle, or NULL */
+  pdk_stencil *stencil; /* the stencil layout when the passes take it (opts.stencil), or NULL */
+  char stencil_why[512]; /* why stencil auto fell back to the general path */
 } pmb_impl;
 
 /* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
@@ -95,6 +99,20 @@ static int pmb_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
+  if (o->stencil != PDK_STENCIL_OFF) {
+    if (im->c_particle)
+      snprintf(im->stencil_why, sizeof im->stencil_why,
+               "several materials (the stencil path takes one micromodulus)");
+    else
+      PDK_CALL(pdk_stencil_create(m, im->bd.bond_r0, &im->stencil, im->stencil_why,
+                                  sizeof im->stencil_why));
+    PDK_CHECK(im->stencil || o->stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
+              "pmb model: stencil on, but the stencil path does not apply: %s; use stencil auto "
+              "(the general path then) or off",
+              im->stencil_why);
+    /* the stencil pass reads neither the packed rows nor the per-bond float lengths */
+    if (im->stencil) pdk_bond_data_free(&im->bd);
+  }
   return PDK_SUCCESS;
 }
 
@@ -109,6 +127,25 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_pmb_consts *k = &im->k;
+  if (im->stencil) {
+    double *s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
+    double *w = energy ? im->w : NULL;
+    pdk_bond_index broken = 0;
+    PDK_CALL(pdk_stencil_pmb_force(m, im->stencil, k, s0_next, w, &broken));
+    if (w) {
+      const double *volume = pdk_particles_volume(p);
+      double *block_energy = im->block_energy;
+#pragma omp parallel for default(none) shared(num_blocks, n, volume, w, block_energy)                  schedule(static) num_threads(ctx->num_threads)
+      for (int64_t blk = 0; blk < num_blocks; ++blk) {
+        const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+        const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+        block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+      }
+    }
+    pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, im->block_energy, num_blocks,
+                         energy);
+    return PDK_SUCCESS;
+  }
   pdk_bond_arrays arrays;
   PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays), ctx, PDK_ERR_NOT_FOUND,
             "pmb model: fields \"x\" and \"f\" are missing from the particle store");
@@ -157,6 +194,7 @@ static void pmb_destroy(pdk_model *m) {
   pdk_free_aligned(im->c_particle);
   free(im->block_energy);
   pdk_bond_data_free(&im->bd);
+  pdk_stencil_destroy(&im->stencil);
   free(im);
   m->impl = NULL;
 }
@@ -222,6 +260,15 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
 
 const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy, NULL,
                                          pmb_tangent_column};
+
+int pdk_model_stencil_active(const pdk_model *m) {
+  return m && m->ops == &pdk_model_ops_pmb && m->impl && ((pmb_impl *)m->impl)->stencil != NULL;
+}
+
+const char *pdk_model_stencil_reason(const pdk_model *m) {
+  if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return "";
+  return ((pmb_impl *)m->impl)->stencil_why;
+}
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;
