@@ -306,14 +306,27 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     st->volume[s] = i >= 0 ? V[i] : 0.0;
   }
 
-  /* 4. rows: each grid row from its first to its last occupied site */
+  /* 4. rows: each grid row from its first to its last occupied site. 3-D: in tiles of `tile` rows
+   * along y, z outer within a tile, so the 2P + 1 planes of neighbour rows a tile reads (about
+   * 768 KiB) stay in the L2 cache while z advances; each row is then read from memory about
+   * (tile + 2P) / tile times instead of 2P + 1. The order does not change any result. */
   {
     const int64_t nrow_max = ny * st->nz;
     st->row_lo = malloc((size_t)nrow_max * sizeof *st->row_lo);
     st->row_hi = malloc((size_t)nrow_max * sizeof *st->row_hi);
     PDK_CHECK_GOTO(st->row_lo && st->row_hi, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+    const double row_bytes = (double)nx * 8.0 * (2 * dim + 1);
+    int64_t tile = (int64_t)(768.0 * 1024.0 / ((2 * pad + 1) * row_bytes)) - 2 * pad;
+    if (tile < 2 * pad + 1) tile = 2 * pad + 1;
+    if (dim == 2 || tile > ny) tile = ny;
     int64_t nr = 0;
-    for (int64_t row = 0; row < nrow_max; ++row) {
+    for (int64_t row_k = 0; row_k < nrow_max; ++row_k) {
+      /* row_k counts rows in tile order: tile, then z, then y within the tile */
+      const int64_t y0 = (row_k / (tile * st->nz)) * tile;
+      const int64_t th = y0 + tile <= ny ? tile : ny - y0; /* this tile's height */
+      const int64_t in = row_k - y0 * st->nz;
+      const int64_t iz = in / th, iy = y0 + in % th;
+      const int64_t row = iy + ny * iz;
       const int64_t s0 = row * nx;
       int64_t lo = -1, hi = -1;
       for (int64_t ix = 0; ix < nx; ++ix)

@@ -13,7 +13,7 @@
  * s0 of earlier passes, stay within the same bound.
  *
  * Cases: cubes with awkward row lengths (1 particle; 3, 5, 7, 9: the SIMD widths 4 and 8 plus or
- * minus one; 63 and 65 around the 64-site chunks), in lattice and in Morton order; a 2-D plate
+ * minus one; 63 and 65; rows of 130, walked in tiles of rows), in lattice and in Morton order; a 2-D plate
  * with a hole; a 2-D plate with a pre-crack (bonds missing from interior families); bond breaking
  * over several committing passes (double and float storage); each kernel variant the CPU has
  * (baseline, AVX2, AVX-512); 1 vs 2 threads bitwise; a short explicit run (trajectories within
@@ -24,6 +24,7 @@
 #include <stdint.h>
 
 #include "bond_models_test.h"
+#include "pdk/scene.h"
 
 typedef struct run_out {
   pdk_index n;
@@ -172,6 +173,13 @@ static void awkward_sizes(pdk_ctx *ctx) {
     pdk_families_destroy(&fam);
     pdk_particles_destroy(&p);
   }
+  /* long rows: the 3-D row list is then walked in tiles of rows along y (8 rows here, 26 in the
+   * padded grid: tiles of 8, 8, 8, 2) */
+  pdk_particles *p = bm_body(ctx, 3, 130, 20, 12, 1.0, 0.0, 0.2, 13);
+  pdk_families *fam = bm_families(ctx, p, 3.015);
+  worst = fmax(worst, compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.02, 0.01, 2, "long rows"));
+  pdk_families_destroy(&fam);
+  pdk_particles_destroy(&p);
   printf("awkward sizes: largest difference %.3f of the bound\n", worst);
 }
 
@@ -382,6 +390,34 @@ static void explicit_run(pdk_ctx *ctx) {
   for (int k = 0; k < 2; ++k) free(x[k][0]), free(x[k][1]);
 }
 
+/* The scene key model.stencil: on builds a stencil model; bad values and kinds are refused naming
+ * the key. */
+static void scene_key(pdk_ctx *ctx) {
+  const char *src = getenv("PDK_SOURCE_DIR");
+  char path[2048];
+  snprintf(path, sizeof path, "%s/tests/scenes/t060_minimal.yaml", src ? src : "..");
+  const char *on[] = {"model.stencil=on"};
+  pdk_scene *sc = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, path, on, 1, &sc));
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
+  T_ASSERT(pdk_model_stencil_active(pdk_sim_model(sim)), "scene model.stencil: on not applied");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&sc);
+  const char *bad[] = {"model.stencil=yes"};
+  pdk_ctx_error_clear(ctx);
+  T_ASSERT(pdk_scene_load(ctx, path, bad, 1, &sc) != 0 &&
+               strstr(pdk_ctx_error_message(ctx), "stencil"),
+           "model.stencil=yes accepted or not named: %s", pdk_ctx_error_message(ctx));
+  const char *lps[] = {"model.stencil=on", "model.kind=lps", "material.shear_modulus=4e8"};
+  pdk_ctx_error_clear(ctx);
+  T_ASSERT(pdk_scene_load(ctx, path, lps, 3, &sc) != 0 &&
+               strstr(pdk_ctx_error_message(ctx), "model.stencil"),
+           "model.stencil: on with lps accepted or the key not named: %s",
+           pdk_ctx_error_message(ctx));
+  pdk_scene_destroy(&sc);
+}
+
 int main(void) {
   pdk_ctx *ctx = t_ctx(2);
   awkward_sizes(ctx);
@@ -390,6 +426,7 @@ int main(void) {
   breaking(ctx);
   refusals(ctx);
   explicit_run(ctx);
+  scene_key(ctx);
   pdk_ctx_destroy(&ctx);
   variants();
   threads();

@@ -14,7 +14,8 @@
  * along one offset as contiguous vector loads: no index stream, no gather.
  *
  * Loops: rows [r0, r1) of the row list (row_lo[r] .. row_hi[r]-1: one grid row from its first to
- * its last occupied site), cut into blocks of SC_U * SC_W sites (lanes are sites). Per block the
+ * its last occupied site), cut into blocks of SC_U * SC_W sites (lanes are sites), the rest of a
+ * row into single vectors. Per block the
  * site's own data and the sums stay in registers while the offsets run in the outer loop; per
  * offset and vector, 7 contiguous loads (x, y, z, X, Y, Z, V of the neighbour sites). So particle
  * i's force is the sum of its bond terms in offset order, whatever the vector width and the
@@ -68,7 +69,8 @@ SC_INLINE sc_vd sc_sel(sc_vl m, sc_vd a, sc_vd b) { /* m ? a : b per lane */
   return (sc_vd)(((sc_vl)a & m) | ((sc_vl)b & ~m));
 }
 
-SC_INLINE pdk_bond_index sc_block(const int dim, const int stored, const int has_mask,
+/* One block of nu <= SC_U vectors (nu * SC_W sites from s, of which the first len are the row's). */
+SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored, const int has_mask,
                                   const int commit, const int want_energy,
                                   const pdk_pmb_consts *k, const pdk_stencil_arrays *a,
                                   int64_t s, int len) {
@@ -79,7 +81,7 @@ SC_INLINE pdk_bond_index sc_block(const int dim, const int stored, const int has
   const int64_t ns = a->num_sites;
   sc_vd xi[SC_U], yi[SC_U], zi[SC_U], Xi[SC_U], Yi[SC_U], Zi[SC_U], s0i[SC_U];
   sc_vd f0[SC_U], f1[SC_U], f2[SC_U], wi[SC_U], s0m[SC_U];
-  for (int u = 0; u < SC_U; ++u) {
+  for (int u = 0; u < nu; ++u) {
     const int64_t t = s + u * SC_W;
     xi[u] = sc_ld(a->x[0] + t);
     yi[u] = sc_ld(a->x[1] + t);
@@ -96,7 +98,7 @@ SC_INLINE pdk_bond_index sc_block(const int dim, const int stored, const int has
     const int64_t j0 = s + a->offset[o];
     const sc_vd r0_o = stored ? sc_set1(a->r0_off[o]) : zero;
     const sc_vd beta_o = stored ? sc_set1(a->beta_off[o]) : zero;
-    for (int u = 0; u < SC_U; ++u) {
+    for (int u = 0; u < nu; ++u) {
       const int64_t j = j0 + u * SC_W;
       const sc_vd dx = sc_ld(a->x[0] + j) - xi[u], dy = sc_ld(a->x[1] + j) - yi[u];
       const sc_vd dz = dim == 3 ? sc_ld(a->x[2] + j) - zi[u] : zero;
@@ -181,11 +183,15 @@ SC_INLINE pdk_bond_index sc_rows(const int dim, const int stored, const int has_
                                  const int commit, const int want_energy, const pdk_pmb_consts *k,
                                  const pdk_stencil_arrays *a, int64_t r0, int64_t r1) {
   pdk_bond_index broken = 0;
-  for (int64_t r = r0; r < r1; ++r)
-    for (int64_t s = a->row_lo[r]; s < a->row_hi[r]; s += SC_B) {
-      const int len = (int)(a->row_hi[r] - s < SC_B ? a->row_hi[r] - s : SC_B);
-      broken += sc_block(dim, stored, has_mask, commit, want_energy, k, a, s, len);
-    }
+  for (int64_t r = r0; r < r1; ++r) {
+    const int64_t hi = a->row_hi[r];
+    int64_t s = a->row_lo[r];
+    for (; s + SC_B <= hi; s += SC_B) /* whole blocks */
+      broken += sc_block(SC_U, dim, stored, has_mask, commit, want_energy, k, a, s, SC_B);
+    for (; s < hi; s += SC_W) /* the rest one vector at a time: at most SC_W - 1 idle lanes */
+      broken += sc_block(1, dim, stored, has_mask, commit, want_energy, k, a, s,
+                         (int)(hi - s < SC_W ? hi - s : SC_W));
+  }
   return broken;
 }
 
