@@ -16,9 +16,10 @@
  *   models (a kind that refuses one is reported and skipped). --law, --stab: correspondence law
  *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
  *
- * --layout: csr (default), the general path over the CSR families; stencil, the PMB stencil path
- *   (model stencil on: bond offsets outside, runs of lattice sites inside, src/model_stencil.c);
- *   repeatable, so both run side by side on the same lattice. Other models skip stencil.
+ * --layout: csr (default), the general path over the CSR families; stencil, the PMB and LPS stencil
+ *   path (model stencil on: bond offsets outside, runs of lattice sites inside,
+ *   src/model_stencil.c); repeatable, so both run side by side on the same lattice. Other models
+ *   skip stencil.
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
  *   force, v += dt/2 f/rho; zero initial velocity, as the LAMMPS side-by-side in bench/lammps/)
@@ -143,11 +144,16 @@ static double bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_part
 /* PMB stencil path: no index stream; per bond the mask byte read and written when breaking is on;
  * per particle x read and copied to its site (written, write-allocate), the site's X, x, V read,
  * f written (write-allocate), and with breaking s0 read, copied to the site, s0_next written. */
-static double stencil_bytes_per_bond(int dim, double bonds_per_particle, int breaking) {
+static double stencil_bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_particle,
+                                     int breaking) {
   const double per_bond = breaking ? 2.0 : 0.0;
   const double per_particle = dim * 8.0 + 2.0 * dim * 8.0 + (2.0 * dim * 8.0 + 8.0) +
                               2.0 * dim * 8.0 + (breaking ? 8.0 + 16.0 + 16.0 : 0.0);
-  return per_bond + per_particle / bonds_per_particle;
+  if (kind != PDK_MODEL_LPS) return per_bond + per_particle / bonds_per_particle;
+  /* LPS: the dilation sweep reads the sites' X, x, V, 1/m and writes theta (site and particle,
+   * write-allocate); the force sweep reads theta and 1/m per site too */
+  const double dil = 2.0 * dim * 8.0 + 8.0 + 8.0 + 2.0 * 2.0 * 8.0;
+  return (breaking ? 2.0 : 0.0) + (per_particle + dil + 16.0) / bonds_per_particle;
 }
 
 /* Correspondence, modelled compulsory bytes per directed bond for one force pass (both sweeps). */
@@ -370,7 +376,9 @@ int main(int argc, char **argv) {
       const int im = iml / num_layouts, stencil = layouts[iml % num_layouts];
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
-      if (stencil && (experiment || models[im / num_prec] != PDK_MODEL_PMB)) continue;
+      if (stencil && (experiment || (models[im / num_prec] != PDK_MODEL_PMB &&
+                                     models[im / num_prec] != PDK_MODEL_LPS)))
+        continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
       pmb_r0_case ex = {
@@ -471,7 +479,7 @@ int main(int argc, char **argv) {
             mo.kind == PDK_MODEL_CORRESPONDENCE
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
-                : stencil ? stencil_bytes_per_bond(dim, bpp, s00 > 0)
+                : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
                           : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
         printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "

@@ -247,6 +247,11 @@ typedef struct pdk_stencil_arrays {
   double *s0_next;               /* [n_pad]; non-NULL: committing pass */
   double *f[3];                  /* [n_pad] */
   double *w;                     /* [n_pad] or NULL */
+  /* LPS (kernels/opt/lps_stencil.h): 1/m and the dilation per site (0 at empty sites), the
+   * dilation pass's outputs per site and per particle. */
+  const double *inv_m, *theta;   /* [num_sites + slack] */
+  double *theta_site;            /* [num_sites + slack] (the array theta points to) */
+  double *theta_out;             /* [n_pad] */
 } pdk_stencil_arrays;
 
 /* Rows [r0, r1) of a; returns the bonds broken (committing pass). */
@@ -258,6 +263,27 @@ pdk_bond_index pdk_kernel_pmb_stencil_avx2(const pdk_pmb_consts *k, const pdk_st
                                            int64_t r0, int64_t r1);
 pdk_bond_index pdk_kernel_pmb_stencil_avx512(const pdk_pmb_consts *k,
                                              const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+/* LPS dilation (writes theta_site and theta_out) and force passes, rows [r0, r1). */
+typedef void (*pdk_lps_stencil_dilation_fn)(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                            int64_t r0, int64_t r1);
+typedef pdk_bond_index (*pdk_lps_stencil_force_fn)(const pdk_lps_consts *k,
+                                                   const pdk_stencil_arrays *a, int64_t r0,
+                                                   int64_t r1);
+void pdk_kernel_lps_stencil_dilation_base(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                          int64_t r0, int64_t r1);
+void pdk_kernel_lps_stencil_dilation_avx2(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                          int64_t r0, int64_t r1);
+void pdk_kernel_lps_stencil_dilation_avx512(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                            int64_t r0, int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_base(const pdk_lps_consts *k,
+                                                 const pdk_stencil_arrays *a, int64_t r0,
+                                                 int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_avx2(const pdk_lps_consts *k,
+                                                 const pdk_stencil_arrays *a, int64_t r0,
+                                                 int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
+                                                   const pdk_stencil_arrays *a, int64_t r0,
+                                                   int64_t r1);
 
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */

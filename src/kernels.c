@@ -21,6 +21,8 @@ static void fill_ref(pdk_kernel_table *t) {
   /* The stencil pass has no reference of its own (its oracle is the general path, tests/t160);
    * the ref family runs it compiled for the baseline ISA. */
   t->pmb_stencil = pdk_kernel_pmb_stencil_base;
+  t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_base;
+  t->lps_stencil_force = pdk_kernel_lps_stencil_force_base;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -51,12 +53,16 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->lps_dilation = pdk_kernel_lps_dilation_avx2;
     t->lps_force = pdk_kernel_lps_force_avx2;
     t->pmb_stencil = pdk_kernel_pmb_stencil_avx2;
+    t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx2;
+    t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx2;
   }
   if (isa & PDK_ISA_AVX512) {
     t->pmb_force = pdk_kernel_pmb_force_avx512;
     t->lps_dilation = pdk_kernel_lps_dilation_avx512;
     t->lps_force = pdk_kernel_lps_force_avx512;
     t->pmb_stencil = pdk_kernel_pmb_stencil_avx512;
+    t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx512;
+    t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx512;
   }
 }
 

@@ -53,6 +53,10 @@ struct pdk_model {
   /* Incremented by whoever writes bond_alive from outside the force passes (checkpoint restore),
    * so a kind that keeps a copy of the bond state in another layout (the PMB stencil) reloads it. */
   unsigned long bond_state_version;
+  /* PMB and LPS: the lattice (stencil) layout the passes take (opts.stencil; src/model_stencil.c),
+   * or NULL; why auto fell back to the general path. */
+  struct pdk_stencil *stencil;
+  char stencil_why[512];
 };
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */

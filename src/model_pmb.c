@@ -45,8 +45,6 @@ typedef struct pmb_impl {
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows, float bond lengths */
   double *c_particle;   /* [n_pad] multi-material micromodulus per particle, or NULL */
-  pdk_stencil *stencil; /* the stencil layout when the passes take it (opts.stencil), or NULL */
-  char stencil_why[512]; /* why stencil auto fell back to the general path */
 } pmb_impl;
 
 /* Partial-volume constants shared by PMB and LPS: beta = min(1, (vs_a - r0) * vs_b). */
@@ -99,20 +97,9 @@ static int pmb_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
-  if (o->stencil != PDK_STENCIL_OFF) {
-    if (im->c_particle)
-      snprintf(im->stencil_why, sizeof im->stencil_why,
-               "several materials (the stencil path takes one micromodulus)");
-    else
-      PDK_CALL(pdk_stencil_create(m, im->bd.bond_r0, &im->stencil, im->stencil_why,
-                                  sizeof im->stencil_why));
-    PDK_CHECK(im->stencil || o->stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
-              "pmb model: stencil on, but the stencil path does not apply: %s; use stencil auto "
-              "(the general path then) or off",
-              im->stencil_why);
-    /* the stencil pass reads neither the packed rows nor the per-bond float lengths */
-    if (im->stencil) pdk_bond_data_free(&im->bd);
-  }
+  PDK_CALL(pdk_stencil_model_setup(m, im->bd.bond_r0, im->c_particle != NULL));
+  /* the stencil pass reads neither the packed rows nor the per-bond float lengths */
+  if (m->stencil) pdk_bond_data_free(&im->bd);
   return PDK_SUCCESS;
 }
 
@@ -127,11 +114,11 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_pmb_consts *k = &im->k;
-  if (im->stencil) {
+  if (m->stencil) {
     double *s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
     double *w = energy ? im->w : NULL;
     pdk_bond_index broken = 0;
-    PDK_CALL(pdk_stencil_pmb_force(m, im->stencil, k, s0_next, w, &broken));
+    PDK_CALL(pdk_stencil_pmb_force(m, m->stencil, k, s0_next, w, &broken));
     if (w) {
       const double *volume = pdk_particles_volume(p);
       double *block_energy = im->block_energy;
@@ -194,7 +181,6 @@ static void pmb_destroy(pdk_model *m) {
   pdk_free_aligned(im->c_particle);
   free(im->block_energy);
   pdk_bond_data_free(&im->bd);
-  pdk_stencil_destroy(&im->stencil);
   free(im);
   m->impl = NULL;
 }
@@ -260,15 +246,6 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
 
 const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy, NULL,
                                          pmb_tangent_column};
-
-int pdk_model_stencil_active(const pdk_model *m) {
-  return m && m->ops == &pdk_model_ops_pmb && m->impl && ((pmb_impl *)m->impl)->stencil != NULL;
-}
-
-const char *pdk_model_stencil_reason(const pdk_model *m) {
-  if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return "";
-  return ((pmb_impl *)m->impl)->stencil_why;
-}
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;

@@ -56,6 +56,7 @@ struct pdk_stencil {
   uint8_t *mask;                 /* [num_offsets * num_sites] or NULL */
   uint8_t *changed;              /* [num_sites] when bonds can break */
   unsigned long version;         /* m->bond_state_version the mask holds */
+  double *inv_m, *theta;         /* LPS [num_sites + slack]: 1/m, dilation (0 at empty sites) */
 };
 
 void pdk_stencil_destroy(pdk_stencil **stp) {
@@ -77,6 +78,8 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
   free(st->beta_off);
   pdk_free_aligned(st->mask);
   pdk_free_aligned(st->changed);
+  pdk_free_aligned(st->inv_m);
+  pdk_free_aligned(st->theta);
   free(st);
   *stp = NULL;
 }
@@ -89,7 +92,34 @@ size_t pdk_stencil_memory_bytes(const pdk_stencil *st) {
   b += (size_t)st->num_rows * 2 * sizeof(int64_t);
   if (st->s0) b += ns * (sizeof(double) + 1);
   if (st->mask) b += ns * (size_t)st->num_offsets;
+  if (st->inv_m) b += 2 * ns * sizeof(double);
   return b;
+}
+
+int pdk_stencil_model_setup(pdk_model *m, const float *bond_r0, int multi_material) {
+  const pdk_model_opts *o = &m->opts;
+  m->stencil_why[0] = '\0';
+  if (o->stencil == PDK_STENCIL_OFF) return PDK_SUCCESS;
+  if (multi_material)
+    snprintf(m->stencil_why, sizeof m->stencil_why,
+             "several materials (the stencil path takes one modulus)");
+  else
+    PDK_CALL(pdk_stencil_create(m, bond_r0, &m->stencil, m->stencil_why, sizeof m->stencil_why));
+  PDK_CHECK(m->stencil || o->stencil != PDK_STENCIL_ON, m->ctx, PDK_ERR_UNSUPPORTED,
+            "%s model: stencil on, but the stencil path does not apply: %s; use stencil auto (the "
+            "general path then) or off",
+            pdk_model_kind_name(o->kind), m->stencil_why);
+  return PDK_SUCCESS;
+}
+
+int pdk_stencil_lps_setup(pdk_model *m, pdk_stencil *st, const double *inv_m) {
+  const size_t ns_all = (size_t)(st->num_sites + PDK_STENCIL_SLACK);
+  st->inv_m = pdk_alloc_aligned(ns_all, sizeof(double));
+  st->theta = pdk_alloc_aligned(ns_all, sizeof(double));
+  PDK_CHECK(st->inv_m && st->theta, m->ctx, PDK_ERR_MEMORY,
+            "stencil: out of memory for a grid of %lld sites", (long long)st->num_sites);
+  for (pdk_index i = 0; i < st->n; ++i) st->inv_m[st->particle_site[i]] = inv_m[i];
+  return PDK_SUCCESS;
 }
 
 static int cmp_i64(const void *a, const void *b) {
@@ -402,8 +432,10 @@ cleanup:
   return err;
 }
 
-int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k,
-                          double *s0_next, double *w, pdk_bond_index *broken_out) {
+/* The kernels' arrays for one pass; xp: the particles' "x". */
+static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_b,
+                          double *s0_next, double *w, pdk_stencil_arrays *out,
+                          const double *xp[3]) {
   pdk_ctx *ctx = m->ctx;
   pdk_particles *p = m->p;
   const int dim = st->dim;
@@ -413,7 +445,7 @@ int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k
   if (st->mask && st->version != m->bond_state_version) stencil_load_mask(m, st);
   if (st->r0_off) /* partial-volume factor of each offset's float length, as the kernels do */
     for (int o = 0; o < st->num_offsets; ++o) {
-      const double t = (k->vs_a - st->r0_off[o]) * k->vs_b;
+      const double t = (vs_a - st->r0_off[o]) * vs_b;
       st->beta_off[o] = t < 1.0 ? t : 1.0;
     }
   pdk_stencil_arrays arr;
@@ -426,7 +458,7 @@ int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k
   arr.row_lo = st->row_lo;
   arr.row_hi = st->row_hi;
   arr.site_particle = st->site_particle;
-  const double *xp[3] = {NULL, NULL, NULL};
+  for (int a = 0; a < 3; ++a) xp[a] = NULL;
   for (int a = 0; a < dim; ++a) {
     arr.X[a] = st->X[a];
     arr.x[a] = st->x[a];
@@ -443,6 +475,46 @@ int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k
   arr.changed = commit ? st->changed : NULL;
   arr.s0_next = s0_next;
   arr.w = w;
+  arr.inv_m = st->inv_m;
+  arr.theta = arr.theta_site = st->theta;
+  *out = arr;
+  return PDK_SUCCESS;
+}
+
+/* The particles' x (and s0) onto their sites; a parallel loop inside the caller's region. */
+#define STENCIL_SCATTER()                                                                          \
+  do {                                                                                             \
+    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                       \
+      const int64_t s_ = cst->particle_site[i];                                                    \
+      gx[s_] = xp[0][i];                                                                           \
+      gy[s_] = xp[1][i];                                                                           \
+      if (dim == 3) gz[s_] = xp[2][i];                                                             \
+      if (commit) gs0[s_] = s0p[i];                                                                \
+    }                                                                                              \
+  } while (0)
+
+/* The new bond state back into the model's bond list, for the particles that lost bonds. */
+#define STENCIL_SYNC()                                                                             \
+  do {                                                                                             \
+    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                       \
+      const int64_t si_ = cst->particle_site[i];                                                   \
+      if (!changed[si_]) continue;                                                                 \
+      changed[si_] = 0;                                                                            \
+      for (pdk_bond_index b_ = bs[i]; b_ < bs[i + 1]; ++b_) {                                      \
+        const int o_ = stencil_offset_of(cst, si_, cst->particle_site[bj[b_]]);                    \
+        alive[b_] = mask[(int64_t)o_ * ns + si_];                                                  \
+      }                                                                                            \
+    }                                                                                              \
+  } while (0)
+
+int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k,
+                          double *s0_next, double *w, pdk_bond_index *broken_out) {
+  pdk_ctx *ctx = m->ctx;
+  const int dim = st->dim;
+  const int commit = s0_next != NULL;
+  pdk_stencil_arrays arr;
+  const double *xp[3];
+  PDK_CALL(stencil_arrays(m, st, k->vs_a, k->vs_b, s0_next, w, &arr, xp));
   const pdk_stencil_arrays *a = &arr;
   const pdk_stencil *cst = st;
   const pdk_pmb_stencil_fn kernel = ctx->kernels.pmb_stencil;
@@ -459,29 +531,49 @@ int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k
     shared(n, cst, xp, gx, gy, gz, gs0, s0p, commit, dim, num_rows, kernel, k, a, changed, alive, \
                mask, bs, bj, ns)
   {
-#pragma omp for schedule(static)
-    for (pdk_index i = 0; i < n; ++i) {
-      const int64_t s = cst->particle_site[i];
-      gx[s] = xp[0][i];
-      gy[s] = xp[1][i];
-      if (dim == 3) gz[s] = xp[2][i];
-      if (commit) gs0[s] = s0p[i];
-    } /* implicit barrier: every site is filled before a neighbour reads it */
+    STENCIL_SCATTER(); /* implicit barrier: every site is filled before a neighbour reads it */
 #pragma omp for schedule(static)
     for (int64_t r = 0; r < num_rows; ++r) broken += kernel(k, a, r, r + 1);
-    if (commit) {
-      /* the new bond state back into the model's bond list, for the particles that lost bonds */
+    if (commit) STENCIL_SYNC();
+  }
+  *broken_out = broken;
+  return PDK_SUCCESS;
+}
+
+int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k, double *theta,
+                          double *s0_next, double *w, pdk_bond_index *broken_out) {
+  pdk_ctx *ctx = m->ctx;
+  const int dim = st->dim;
+  const int commit = s0_next != NULL;
+  PDK_CHECK(st->inv_m && st->theta, ctx, PDK_ERR_ARG, "stencil: the lps arrays were not set up");
+  pdk_stencil_arrays arr;
+  const double *xp[3];
+  PDK_CALL(stencil_arrays(m, st, k->vs_a, k->vs_b, s0_next, w, &arr, xp));
+  arr.theta_out = theta;
+  const pdk_stencil_arrays *a = &arr;
+  const pdk_stencil *cst = st;
+  const pdk_lps_stencil_dilation_fn dilation = ctx->kernels.lps_stencil_dilation;
+  const pdk_lps_stencil_force_fn force = ctx->kernels.lps_stencil_force;
+  const pdk_index n = st->n;
+  const int64_t num_rows = st->num_rows, ns = st->num_sites;
+  const double *s0p = m->s0;
+  double *gx = st->x[0], *gy = st->x[1], *gz = dim == 3 ? st->x[2] : NULL, *gs0 = st->s0;
+  uint8_t *changed = st->changed, *alive = m->bond_alive, *mask = st->mask;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  pdk_bond_index broken = 0;
+
+#pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)            \
+    shared(n, cst, xp, gx, gy, gz, gs0, s0p, commit, dim, num_rows, dilation, force, k, a,       \
+               changed, alive, mask, bs, bj, ns)
+  {
+    STENCIL_SCATTER(); /* implicit barrier: every site is filled before a neighbour reads it */
 #pragma omp for schedule(static)
-      for (pdk_index i = 0; i < n; ++i) {
-        const int64_t si = cst->particle_site[i];
-        if (!changed[si]) continue;
-        changed[si] = 0;
-        for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
-          const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
-          alive[b] = mask[(int64_t)o * ns + si];
-        }
-      }
-    }
+    for (int64_t r = 0; r < num_rows; ++r) dilation(k, a, r, r + 1);
+    /* implicit barrier: every theta is complete before any force is computed */
+#pragma omp for schedule(static)
+    for (int64_t r = 0; r < num_rows; ++r) broken += force(k, a, r, r + 1);
+    if (commit) STENCIL_SYNC();
   }
   *broken_out = broken;
   return PDK_SUCCESS;

@@ -21,6 +21,18 @@ void pdk_stencil_destroy(pdk_stencil **st);
 int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k,
                           double *s0_next, double *w, pdk_bond_index *broken);
 
+/* opts.stencil of m: off does nothing; auto and on build the layout into m->stencil when it
+ * applies (multi_material: it does not, the passes take one modulus), else record why in
+ * m->stencil_why; on then fails (PDK_ERR_UNSUPPORTED) with that reason. */
+int pdk_stencil_model_setup(pdk_model *m, const float *bond_r0, int multi_material);
+
+/* LPS: copies 1/m_i (inv_m [n], the model's) to the sites; once, after pdk_stencil_create. */
+int pdk_stencil_lps_setup(pdk_model *m, pdk_stencil *st, const double *inv_m);
+/* One LPS force pass (dilation, then force) over m's particles: theta [n_pad] (the "theta"
+ * field), "f", w and s0_next as pdk_stencil_pmb_force. */
+int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k, double *theta,
+                          double *s0_next, double *w, pdk_bond_index *broken);
+
 /* Memory the layout holds [bytes]. */
 size_t pdk_stencil_memory_bytes(const pdk_stencil *st);
 

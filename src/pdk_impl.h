@@ -59,6 +59,11 @@ typedef struct pdk_kernel_table {
   /* PMB force pass in the stencil layout (kernels/opt/pmb_stencil.h), rows r0 .. r1-1. */
   pdk_bond_index (*pmb_stencil)(const struct pdk_pmb_consts *k,
                                 const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  /* LPS dilation and force passes in the stencil layout (kernels/opt/lps_stencil.h). */
+  void (*lps_stencil_dilation)(const struct pdk_lps_consts *k,
+                               const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  pdk_bond_index (*lps_stencil_force)(const struct pdk_lps_consts *k,
+                                      const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
 } pdk_kernel_table;
 
 struct pdk_ctx {

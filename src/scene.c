@@ -1286,9 +1286,10 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if (has(ld, "model.precision")) m->precision = (pdk_precision)mo->precision;
   if (has(ld, "model.stencil")) {
     m->stencil = (pdk_stencil_mode)mo->stencil;
-    REQUIRE(ld, m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB, "model.stencil",
-            "on needs model.kind: pmb (the stencil path exists for the pmb model only; model.kind "
-            "is %s); use auto or off",
+    REQUIRE(ld, m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB || m->kind == PDK_MODEL_LPS,
+            "model.stencil",
+            "on needs model.kind pmb or lps (the stencil path exists for those models only; "
+            "model.kind is %s); use auto or off",
             kname);
   }
   REQUIRE(ld, isfinite(mo->critical_stretch) && mo->critical_stretch >= 0, "model.critical_stretch",

@@ -1,5 +1,5 @@
-/* The stencil path of the PMB force pass (model.stencil, src/model_stencil.c) against the general
- * path, on regular lattices.
+/* The stencil path of the PMB and LPS force passes (model.stencil, src/model_stencil.c) against the
+ * general path, on regular lattices.
  *
  * Tolerance. Both paths compute every bond term with the same operations on the same values (the
  * stencil recomputes r0 from the same reference coordinates, or takes the same float length), so
@@ -11,6 +11,12 @@
  * terms). Bond failure and the critical stretches depend on each bond's stretch only, so the bond
  * state and the number broken must be equal bit for bit; forces after breaking, which read the
  * s0 of earlier passes, stay within the same bound.
+ * LPS: the dilation is a family sum too, |theta_st - theta_gen| <= E_i = 2 n_i eps d/m_i sum_b |e|
+ * beta V_j, and the force terms are t_b = beta V_j (A_b r0 + B_b e) q eta with A_b = c_dil
+ * (theta_i/m_i + theta_j/m_j), B_b = c_dev (1/m_i + 1/m_j), so
+ *   |f_st - f_gen| <= 2 n_i eps S_i + sum_b beta V_j |c_dil| (E_i/m_i + E_j/m_j),
+ *   S_i = sum_b beta V_j |A_b r0 + B_b e| / r0  (theta and m as the pass computed them).
+ * Every case runs for PMB, then for LPS.
  *
  * Cases: cubes with awkward row lengths (1 particle; 3, 5, 7, 9: the SIMD widths 4 and 8 plus or
  * minus one; 63 and 65; rows of 130, walked in tiles of rows), in lattice and in Morton order; a 2-D plate
@@ -33,18 +39,24 @@ typedef struct run_out {
   double energy;
   uint8_t *alive; /* [nb] or NULL */
   int active;
+  double *theta;  /* LPS: [n] */
 } run_out;
+
+static int g_kind = PDK_MODEL_PMB; /* the model every case runs (main runs them all for both) */
+#define KN (g_kind == PDK_MODEL_LPS ? "lps" : "pmb")
 
 static void run_free(run_out *r) {
   for (int c = 0; c < 3; ++c) free(r->f[c]);
   free(r->alive);
+  free(r->theta);
   memset(r, 0, sizeof *r);
 }
 
 static pdk_model_opts opts(int precision, double s00, pdk_stencil_mode st) {
   pdk_model_opts o = pdk_model_opts_default();
-  o.kind = PDK_MODEL_PMB;
+  o.kind = (pdk_model_kind)g_kind;
   o.bulk_modulus = 2.0;
+  o.shear_modulus = 0.9;
   o.density = 1.0;
   o.lattice_constant = 1.0;
   o.critical_stretch = s00;
@@ -80,12 +92,67 @@ static run_out run(pdk_ctx *ctx, pdk_particles *p, pdk_families *fam, pdk_model_
     memcpy(r.alive, pdk_model_bond_alive(m), (size_t)r.nb);
   }
   r.broken = pdk_model_num_broken(m);
+  if (g_kind == PDK_MODEL_LPS) {
+    r.theta = malloc((size_t)r.n * sizeof(double));
+    memcpy(r.theta, pdk_particles_field_data(p, "theta", 0), (size_t)r.n * sizeof(double));
+  }
   pdk_model_destroy(&m);
   return r;
 }
 
+/* LPS: the bound of the header on theta (i) and on f (*fbound), at the current "x", from the
+ * fields "m" and "theta" the last pass left. */
+static double lps_theta_bound(pdk_particles *p, pdk_families *fam, pdk_index i) {
+  const int dim = pdk_particles_dim(p);
+  const pdk_bond_index *bs = pdk_families_bond_start(fam);
+  const pdk_index *bj = pdk_families_bond_j(fam);
+  const double *V = pdk_particles_volume(p), *mw = pdk_particles_field_data(p, "m", 0);
+  const double vs_a = pdk_families_horizon(fam) + 0.5;
+  double T = 0.0;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    double R2 = 0, r2 = 0;
+    for (int a = 0; a < dim; ++a) {
+      const double dX = pdk_particles_X(p, a)[bj[b]] - pdk_particles_X(p, a)[i];
+      const double dx = ((double *)pdk_particles_field_data(p, "x", a))[bj[b]] -
+                        ((double *)pdk_particles_field_data(p, "x", a))[i];
+      R2 += dX * dX, r2 += dx * dx;
+    }
+    const double r0 = sqrt(R2);
+    T += fabs(sqrt(r2) - r0) * fmin(1.0, vs_a - r0) * V[bj[b]];
+  }
+  return mw[i] > 0 ? 2.0 * (double)(bs[i + 1] - bs[i]) * DBL_EPSILON * dim / mw[i] * T : 0.0;
+}
+
+static double lps_force_bound(pdk_particles *p, pdk_families *fam, pdk_index i, const double *E) {
+  const int dim = pdk_particles_dim(p);
+  const pdk_bond_index *bs = pdk_families_bond_start(fam);
+  const pdk_index *bj = pdk_families_bond_j(fam);
+  const double *V = pdk_particles_volume(p), *mw = pdk_particles_field_data(p, "m", 0);
+  const double *th = pdk_particles_field_data(p, "theta", 0);
+  const double vs_a = pdk_families_horizon(fam) + 0.5, K = 2.0, G = 0.9, lambda = K - 2 * G / 3;
+  const double c_dil = dim == 3 ? 3 * K - 5 * G : 2 * (lambda - G), c_dev = dim == 3 ? 15 * G : 8 * G;
+  const double Ei = E[i];
+  double S = 0.0, D = 0.0;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    const pdk_index j = bj[b];
+    double R2 = 0, r2 = 0;
+    for (int a = 0; a < dim; ++a) {
+      const double dX = pdk_particles_X(p, a)[j] - pdk_particles_X(p, a)[i];
+      const double dx = ((double *)pdk_particles_field_data(p, "x", a))[j] -
+                        ((double *)pdk_particles_field_data(p, "x", a))[i];
+      R2 += dX * dX, r2 += dx * dx;
+    }
+    const double r0 = sqrt(R2), e = sqrt(r2) - r0, bv = fmin(1.0, vs_a - r0) * V[j];
+    const double A = c_dil * (th[i] / mw[i] + th[j] / mw[j]), B = c_dev * (1 / mw[i] + 1 / mw[j]);
+    S += bv * fabs(A * r0 + B * e) / r0;
+    D += bv * fabs(c_dil) * (Ei / mw[i] + E[j] / mw[j]);
+  }
+  return 2.0 * (double)(bs[i + 1] - bs[i]) * DBL_EPSILON * S + D + 1e-300;
+}
+
 /* The bound of the header for particle i at the current "x". */
-static double bound(pdk_particles *p, pdk_families *fam, pdk_index i) {
+static double bound(pdk_particles *p, pdk_families *fam, pdk_index i, const double *E) {
+  if (g_kind == PDK_MODEL_LPS) return lps_force_bound(p, fam, i, E);
   const int dim = pdk_particles_dim(p);
   const pdk_bond_index *bs = pdk_families_bond_start(fam);
   const pdk_index *bj = pdk_families_bond_j(fam);
@@ -109,7 +176,10 @@ static double bound(pdk_particles *p, pdk_families *fam, pdk_index i) {
 /* Stencil on vs off: forces within the bound, energy within 1e-12, bond state equal. Returns the
  * largest ratio of difference to bound. */
 static double compare(pdk_ctx *ctx, pdk_particles *p, pdk_families *fam, int precision, double s00,
-                      double amp, int num_passes, const char *what) {
+                      double amp, int num_passes, const char *what_case) {
+  char what[128];
+  snprintf(what, sizeof what, "%s%s%s", strncmp(what_case, KN, 3) ? KN : "",
+           strncmp(what_case, KN, 3) ? " " : "", what_case);
   run_out g = run(ctx, p, fam, opts(precision, s00, PDK_STENCIL_OFF), amp, num_passes);
   run_out s = run(ctx, p, fam, opts(precision, s00, PDK_STENCIL_ON), amp, num_passes);
   T_ASSERT(!g.active && s.active, "%s: stencil active %d / %d", what, g.active, s.active);
@@ -121,8 +191,18 @@ static double compare(pdk_ctx *ctx, pdk_particles *p, pdk_families *fam, int pre
                (long long)b, g.alive[b], s.alive[b]);
   T_NEAR(s.energy, g.energy, 1e-12, 1e-300, "%s: strain energy", what);
   double worst = 0.0;
+  double *E = calloc((size_t)g.n, sizeof *E);
+  T_ASSERT(E, "out of memory");
+  if (g_kind == PDK_MODEL_LPS)
+    for (pdk_index i = 0; i < g.n; ++i) {
+      E[i] = lps_theta_bound(p, fam, i);
+      const double tol = E[i] + 1e-300;
+      T_ASSERT(fabs(s.theta[i] - g.theta[i]) <= tol,
+               "%s: particle %d: theta %.17g (stencil) vs %.17g (general), bound %.3e", what,
+               (int)i, s.theta[i], g.theta[i], tol);
+    }
   for (pdk_index i = 0; i < g.n; ++i) {
-    const double tol = bound(p, fam, i);
+    const double tol = bound(p, fam, i, E);
     for (int c = 0; c < pdk_particles_dim(p); ++c) {
       const double diff = fabs(s.f[c][i] - g.f[c][i]);
       T_ASSERT(diff <= tol, "%s: particle %d component %d: f = %.17g (stencil) vs %.17g "
@@ -131,6 +211,7 @@ static double compare(pdk_ctx *ctx, pdk_particles *p, pdk_families *fam, int pre
       worst = fmax(worst, diff / tol);
     }
   }
+  free(E);
   run_free(&g);
   run_free(&s);
   return worst;
@@ -180,7 +261,7 @@ static void awkward_sizes(pdk_ctx *ctx) {
   worst = fmax(worst, compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.02, 0.01, 2, "long rows"));
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
-  printf("awkward sizes: largest difference %.3f of the bound\n", worst);
+  printf("%s awkward sizes: largest difference %.3f of the bound\n", KN, worst);
 }
 
 /* A cube in Morton order (particles not in lattice order), double and float storage. */
@@ -190,7 +271,7 @@ static void cube_morton(pdk_ctx *ctx) {
   pdk_families *fam = bm_families(ctx, p, 3.015);
   const double w0 = compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.0, 0.02, 1, "cube double");
   const double w1 = compare(ctx, p, fam, PDK_PRECISION_FLOAT, 0.0, 0.02, 1, "cube float");
-  printf("cube (Morton order): largest difference %.3f (double), %.3f (float) of the bound\n", w0,
+  printf("%s cube (Morton order): largest difference %.3f (double), %.3f (float) of the bound\n", KN, w0,
          w1);
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
@@ -214,8 +295,8 @@ static void plate_hole_precrack(pdk_ctx *ctx) {
            (long long)(nb_whole - pdk_families_num_bonds(fam)));
   const double w1 = compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.0, 0.02, 1, "pre-crack");
   const double w2 = compare(ctx, p, fam, PDK_PRECISION_FLOAT, 0.0, 0.02, 1, "pre-crack float");
-  printf("plate with a hole: %.3f; with a pre-crack: %.3f (double), %.3f (float) of the bound\n",
-         w0, w1, w2);
+  printf("%s plate with a hole: %.3f; with a pre-crack: %.3f (double), %.3f (float) of the bound\n",
+         KN, w0, w1, w2);
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
 }
@@ -228,7 +309,7 @@ static void breaking(pdk_ctx *ctx) {
                                   : plate_with_hole(ctx, 30, 20);
       pdk_families *fam = bm_families(ctx, p, 3.015);
       char what[64];
-      snprintf(what, sizeof what, "%d-D breaking %s", dim, prec ? "float" : "double");
+      snprintf(what, sizeof what, "%s %d-D breaking %s", KN, dim, prec ? "float" : "double");
       run_out g = run(ctx, p, fam, opts(prec, 0.02, PDK_STENCIL_OFF), 0.01, 4);
       T_ASSERT(g.broken > 0 && g.broken < g.nb / 2, "%s: %lld of %lld bonds broke; want some",
                what, (long long)g.broken, (long long)g.nb);
@@ -312,9 +393,12 @@ static void refusals(pdk_ctx *ctx) {
   run_free(&g);
   run_free(&a);
   o = opts(0, 0.0, PDK_STENCIL_ON);
+  o.kind = PDK_MODEL_CORRESPONDENCE;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "pmb and lps models only");
+  o = opts(0, 0.0, PDK_STENCIL_ON);
   o.kind = PDK_MODEL_LPS;
-  o.shear_modulus = 1.0;
-  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "pmb model only");
+  o.lps_use_influence = 1;
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "pmb and lps models only");
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
   /* a lattice: auto takes the stencil */
@@ -384,9 +468,9 @@ static void explicit_run(pdk_ctx *ctx) {
     for (pdk_index i = 0; i < n; ++i) worst = fmax(worst, fabs(x[1][c][i] - x[0][c][i]));
   T_ASSERT(worst <= 1e-9 * scale, "explicit run: positions differ by %.3e (displacement scale %.3e)",
            worst, scale);
-  printf("explicit run: %lld bonds broke, positions within %.3e of the general path (%.2e of the "
-         "displacement)\n",
-         (long long)broken[0], worst, worst / scale);
+  printf("%s explicit run: %lld bonds broke, positions within %.3e of the general path (%.2e of "
+         "the displacement)\n",
+         KN, (long long)broken[0], worst, worst / scale);
   for (int k = 0; k < 2; ++k) free(x[k][0]), free(x[k][1]);
 }
 
@@ -409,26 +493,29 @@ static void scene_key(pdk_ctx *ctx) {
   T_ASSERT(pdk_scene_load(ctx, path, bad, 1, &sc) != 0 &&
                strstr(pdk_ctx_error_message(ctx), "stencil"),
            "model.stencil=yes accepted or not named: %s", pdk_ctx_error_message(ctx));
-  const char *lps[] = {"model.stencil=on", "model.kind=lps", "material.shear_modulus=4e8"};
+  const char *corr[] = {"model.stencil=on", "model.kind=correspondence",
+                        "material.shear_modulus=4e8"};
   pdk_ctx_error_clear(ctx);
-  T_ASSERT(pdk_scene_load(ctx, path, lps, 3, &sc) != 0 &&
+  T_ASSERT(pdk_scene_load(ctx, path, corr, 3, &sc) != 0 &&
                strstr(pdk_ctx_error_message(ctx), "model.stencil"),
-           "model.stencil: on with lps accepted or the key not named: %s",
+           "model.stencil: on with correspondence accepted or the key not named: %s",
            pdk_ctx_error_message(ctx));
   pdk_scene_destroy(&sc);
 }
 
 int main(void) {
-  pdk_ctx *ctx = t_ctx(2);
-  awkward_sizes(ctx);
-  cube_morton(ctx);
-  plate_hole_precrack(ctx);
-  breaking(ctx);
-  refusals(ctx);
-  explicit_run(ctx);
-  scene_key(ctx);
-  pdk_ctx_destroy(&ctx);
-  variants();
-  threads();
+  for (g_kind = PDK_MODEL_PMB; g_kind <= PDK_MODEL_LPS; ++g_kind) {
+    pdk_ctx *ctx = t_ctx(2);
+    awkward_sizes(ctx);
+    cube_morton(ctx);
+    plate_hole_precrack(ctx);
+    breaking(ctx);
+    refusals(ctx);
+    explicit_run(ctx);
+    if (g_kind == PDK_MODEL_PMB) scene_key(ctx);
+    pdk_ctx_destroy(&ctx);
+    variants();
+    threads();
+  }
   return 0;
 }

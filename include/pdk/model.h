@@ -129,7 +129,8 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
-/* The stencil path of the PMB force pass (src/model_stencil.c, kernels/opt/pmb_stencil.h): when the
+/* The stencil path of the PMB and LPS force passes (src/model_stencil.c, kernels/opt/pmb_stencil.h,
+ * lps_stencil.h; LPS with LAMMPS's influence function only): when the
  * particles sit on a simple cubic (3-D) or square (2-D) lattice aligned with the axes (reference
  * positions origin + integer index x spacing within 1e-6 spacings, one particle per site), every
  * family is a subset of one fixed list of site offsets, and the pass loops over the offsets outside
@@ -142,7 +143,8 @@ typedef enum pdk_stencil_mode {
   PDK_STENCIL_OFF = 0,  /* the general (CSR) path */
   PDK_STENCIL_AUTO = 1, /* the stencil path when it applies, the general path otherwise */
   PDK_STENCIL_ON = 2    /* the stencil path; model creation fails, saying why, when it does not
-                           apply (not a lattice, model kind other than pmb, several materials) */
+                           apply (not a lattice, model kind other than pmb or lps, several
+                           materials) */
 } pdk_stencil_mode;
 
 /* One material of a multi-material body (pdk_model_opts.materials). */
@@ -215,8 +217,8 @@ typedef struct pdk_model_opts {
    * follows the stiffest and lightest material. 0 (default): one material, the values above. */
   const pdk_material *materials;
   int num_materials;
-  /* PMB force pass on a regular lattice (see pdk_stencil_mode); default off. Other kinds accept
-   * off and auto (which then means off) and refuse on. */
+  /* PMB and LPS force passes on a regular lattice (see pdk_stencil_mode); default off. Other
+   * kinds accept off and auto (which then means off) and refuse on. */
   pdk_stencil_mode stencil;
 } pdk_model_opts;
 

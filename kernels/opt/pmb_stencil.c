@@ -1,5 +1,6 @@
-/* PMB stencil pass for the baseline ISA (any x86-64 or other CPU): 2 sites per vector, the body
- * is kernels/opt/pmb_stencil.h (layout, method, equality with the general path there). */
+/* PMB force and LPS dilation / force passes on the lattice (stencil layout) for the baseline ISA
+ * (any x86-64 or other CPU): 2 sites per vector; the bodies are kernels/opt/pmb_stencil.h and
+ * lps_stencil.h (layout, method, equality with the general path there). */
 #include <math.h>
 
 #include "kernels.h"
@@ -21,3 +22,4 @@ PDK_KERNEL_FP_EXACT
 #endif
 #define SC_NAME(base) base##_base
 #include "opt/pmb_stencil.h"
+#include "opt/lps_stencil.h"

@@ -68,6 +68,16 @@ SC_INLINE sc_vd sc_ld(const double *p) { /* unaligned load */
 SC_INLINE sc_vd sc_sel(sc_vl m, sc_vd a, sc_vd b) { /* m ? a : b per lane */
   return (sc_vd)(((sc_vl)a & m) | ((sc_vl)b & ~m));
 }
+/* Mask bytes of one vector as 0.0 / 1.0, only the first nv lanes read (0 beyond): the sites past
+ * a row may belong to another thread's rows, whose mask a committing pass is writing. */
+SC_INLINE sc_vd sc_mask_lanes(const uint8_t *mk, int nv) {
+  sc_vb mb = {0};
+  if (nv >= SC_W)
+    memcpy(&mb, mk, sizeof mb);
+  else
+    for (int l = 0; l < nv; ++l) mb[l] = mk[l];
+  return __builtin_convertvector(mb, sc_vd);
+}
 
 /* One block of nu <= SC_U vectors (nu * SC_W sites from s, of which the first len are the row's). */
 SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored, const int has_mask,
@@ -128,19 +138,8 @@ SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored,
         beta = sc_sel(t < one, t, one);
       }
       const sc_vd vol = sc_ld(a->volume + j) * beta;
-      sc_vd on = one;
-      if (has_mask) {
-        /* only the block's own lanes: the sites past the row may belong to another thread's
-         * rows, whose mask a committing pass is writing */
-        const uint8_t *mk = a->mask + (int64_t)o * ns + s + u * SC_W;
-        const int nv = len - u * SC_W;
-        sc_vb mb = {0};
-        if (nv >= SC_W)
-          memcpy(&mb, mk, sizeof mb);
-        else
-          for (int l = 0; l < nv; ++l) mb[l] = mk[l];
-        on = __builtin_convertvector(mb, sc_vd);
-      }
+      const sc_vd on =
+          has_mask ? sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W) : one;
       const sc_vd g = on * c * vol * d * q;
       f0[u] += g * dx;
       f1[u] += g * dy;
