@@ -8,7 +8,7 @@
  *                [--repeat R] [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
- *                [--layout csr|sell]... [--sell-sigma S]
+ *                [--layout csr|sell|stencil]... [--sell-sigma S]
  *
  * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
  *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
@@ -16,10 +16,13 @@
  *   models (a kind that refuses one is reported and skipped). --law, --stab: correspondence law
  *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
  *
- * --layout: family layout of the PMB pass (repeatable: csr and sell side by side in one run, in
- *   the order given, each configuration with each layout in turn; other kinds refuse sell and are
- *   reported and skipped). --sell-sigma S: the sell sorting window in particles (0, the default:
- *   32 C). The `pad%` column gives the padding share of the sell entries (0 for csr).
+ * --layout: csr (default), the general path over the CSR families; sell, the PMB and LPS passes
+ *   over the sliced SELL-C-sigma layout (model layout sell, src/sell.h); stencil, the PMB and LPS
+ *   stencil path (model stencil on: bond offsets outside, runs of lattice sites inside,
+ *   src/model_stencil.c); repeatable, so they run side by side on the same lattice (each
+ *   configuration with each layout in turn). Other models skip sell and stencil.
+ *   --sell-sigma S: the sell sorting window in particles (0, the default: 32 C). The `pad%` column
+ *   gives the padding share of the sell entries (0 otherwise).
  *
  * --steps N: instead of single passes, run N velocity-Verlet steps (v += dt/2 f/rho, x += dt v,
  *   force, v += dt/2 f/rho; zero initial velocity, as the LAMMPS side-by-side in bench/lammps/)
@@ -78,7 +81,7 @@ static void usage(void) {
           "                    [--threads T]... [--repeat R] [--order morton|lattice] [--s00 S]\n"
           "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
           "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-          "                    [--stab none|silling|hourglass] [--layout csr|sell]...\n"
+          "                    [--stab none|silling|hourglass] [--layout csr|sell|stencil]...\n"
           "                    [--sell-sigma S]\n");
   exit(2);
 }
@@ -140,6 +143,21 @@ static double bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_part
   double second = per_bond + (per_particle + 16.0) / bonds_per_particle;
   if (kind == PDK_MODEL_CORRESPONDENCE) second += 72.0 / bonds_per_particle;
   return first + second;
+}
+
+/* PMB stencil path: no index stream; per bond the mask byte read and written when breaking is on;
+ * per particle x read and copied to its site (written, write-allocate), the site's X, x, V read,
+ * f written (write-allocate), and with breaking s0 read, copied to the site, s0_next written. */
+static double stencil_bytes_per_bond(pdk_model_kind kind, int dim, double bonds_per_particle,
+                                     int breaking) {
+  const double per_bond = breaking ? 2.0 : 0.0;
+  const double per_particle = dim * 8.0 + 2.0 * dim * 8.0 + (2.0 * dim * 8.0 + 8.0) +
+                              2.0 * dim * 8.0 + (breaking ? 8.0 + 16.0 + 16.0 : 0.0);
+  if (kind != PDK_MODEL_LPS) return per_bond + per_particle / bonds_per_particle;
+  /* LPS: the dilation sweep reads the sites' X, x, V, 1/m and writes theta (site and particle,
+   * write-allocate); the force sweep reads theta and 1/m per site too */
+  const double dil = 2.0 * dim * 8.0 + 8.0 + 8.0 + 2.0 * 2.0 * 8.0;
+  return (breaking ? 2.0 : 0.0) + (per_particle + dil + 16.0) / bonds_per_particle;
 }
 
 /* Correspondence, modelled compulsory bytes per directed bond for one force pass (both sweeps). */
@@ -234,8 +252,8 @@ int main(int argc, char **argv) {
   pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
   pdk_law law = PDK_LAW_LINEAR_ELASTIC;
   pdk_stabilization stab = PDK_STAB_NONE;
-  pdk_layout layouts[MAX_LIST] = {PDK_LAYOUT_CSR};
-  int num_layouts = 1, user_layouts = 0, sell_sigma = 0;
+  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0; /* 0 csr, 1 sell, 2 stencil */
+  int sell_sigma = 0;
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
       if (!user_sides) num_sides = 0, user_sides = 1;
@@ -290,9 +308,9 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[k], "--layout") && k + 1 < argc) {
       if (!user_layouts) num_layouts = 0, user_layouts = 1;
       const char *v = argv[++k];
-      if (strcmp(v, "csr") && strcmp(v, "sell")) usage();
+      if (strcmp(v, "csr") && strcmp(v, "sell") && strcmp(v, "stencil")) usage();
       if (num_layouts < MAX_LIST)
-        layouts[num_layouts++] = !strcmp(v, "sell") ? PDK_LAYOUT_SELL : PDK_LAYOUT_CSR;
+        layouts[num_layouts++] = !strcmp(v, "sell") ? 1 : !strcmp(v, "stencil") ? 2 : 0;
     } else if (!strcmp(argv[k], "--sell-sigma") && k + 1 < argc) {
       sell_sigma = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
@@ -325,8 +343,8 @@ int main(int argc, char **argv) {
          "volumes on, order %s, s00 %g, %s of %d; corr: law %s, stabilization %s\n",
          order, s00, steps ? "steps" : "median pass", steps ? steps : repeat, law_name[law],
          stab_name[stab]);
-  printf("# %-6s %-6s %-6s %-4s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s %6s\n",
-         "model", "kern", "prec", "lay", "d", "n", "bonds", "b/p", "thr",
+  printf("# %-6s %-6s %-6s %-7s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s %6s\n",
+         "model", "kern", "prec", "layout", "d", "n", "bonds", "b/p", "thr",
          steps ? "s/step" : "s/pass", "ns/b/c", "Gbond/s", "B/bond", "GB/s", "triad", "roof%",
          "cpu_ns/b", "pad%");
   pdk_ctx *kctx = NULL;
@@ -364,11 +382,13 @@ int main(int argc, char **argv) {
     const double bpp = (double)nb / n;
 
     for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
-      const pdk_layout layout = layouts[iml % num_layouts];
-      const int im = iml / num_layouts;
+      const int im = iml / num_layouts, layout = layouts[iml % num_layouts];
+      const int stencil = layout == 2;
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
-      if (experiment && layout != PDK_LAYOUT_CSR) continue;
+      if (layout && (experiment || (models[im / num_prec] != PDK_MODEL_PMB &&
+                                    models[im / num_prec] != PDK_MODEL_LPS)))
+        continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
       pmb_r0_case ex = {
@@ -382,15 +402,16 @@ int main(int argc, char **argv) {
       mo.density = rho;
       mo.lattice_constant = dx;
       mo.critical_stretch = s00;
-      mo.layout = layout;
+      mo.stencil = stencil ? PDK_STENCIL_ON : PDK_STENCIL_OFF;
+      mo.layout = layout == 1 ? PDK_LAYOUT_SELL : PDK_LAYOUT_CSR;
       mo.sell_sigma = sell_sigma;
       if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
-        printf("  %-6s %-6s %-6s %-4s (unsupported: %s)\n", short_name(models[im / num_prec]),
+        printf("  %-6s %-6s %-6s %-7s (unsupported: %s)\n", short_name(models[im / num_prec]),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == PDK_LAYOUT_SELL ? "sell" : "csr", pdk_ctx_error_message(ctx));
+               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
       }
@@ -469,13 +490,14 @@ int main(int argc, char **argv) {
             mo.kind == PDK_MODEL_CORRESPONDENCE
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
-                : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+                : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
+                          : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
-        printf("  %-6s %-6s %-6s %-4s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
+        printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
                "%7.2f %7.1f %8.3f %6.3f\n",
                short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == PDK_LAYOUT_SELL ? "sell" : "csr", dim,
+               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", dim,
                (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
                triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9,

@@ -281,6 +281,68 @@ void pdk_kernel_lps_dilation_sell_avx512(const pdk_lps_consts *k, const pdk_bond
                                          const pdk_sell_arrays *s, int64_t s0, int64_t s1);
 pdk_bond_index pdk_kernel_lps_force_sell_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                                 const pdk_sell_arrays *s, int64_t s0, int64_t s1);
+/* ---- PMB on a regular lattice: the stencil layout (kernels/opt/pmb_stencil.h) ----------------
+ * Built by src/model_stencil.c when the particles sit on a simple cubic (3-D) or square (2-D)
+ * lattice. Sites of a padded grid, s = ix + nx (iy + ny iz); a bond is a fixed site offset. Per-site
+ * arrays are [num_sites + PDK_STENCIL_SLACK] (the slack: sites past the grid that a row's last,
+ * partial vector block reads; empty); particle arrays (f, w, s0_next) are [n_pad]. */
+#define PDK_STENCIL_SLACK 64
+typedef struct pdk_stencil_arrays {
+  int dim;                       /* 2 or 3 */
+  int num_offsets;               /* bonds per full family */
+  const int64_t *offset;         /* [num_offsets] site offset of each bond, ascending */
+  int64_t num_sites;
+  int64_t num_rows;
+  const int64_t *row_lo, *row_hi; /* [num_rows] sites row_lo[r] .. row_hi[r]-1 of one grid row */
+  const pdk_index *site_particle; /* [num_sites] particle at the site, -1 when empty */
+  const double *X[3], *x[3];     /* reference, current positions per site (X[2], x[2]: 3-D) */
+  const double *volume;          /* [num_sites] 0 at empty sites */
+  /* Float storage: per offset, the bond length (the float every bond of that offset stores, as a
+   * double) and its partial-volume factor; NULL: r0 recomputed from X (double storage). */
+  const double *r0_off, *beta_off;
+  uint8_t *mask;                 /* [num_offsets * num_sites] bond present and intact, or NULL */
+  const double *s0;              /* [num_sites] critical stretches (committing pass) */
+  uint8_t *changed;              /* [num_sites] set to 1 where a bond broke (committing pass) */
+  double *s0_next;               /* [n_pad]; non-NULL: committing pass */
+  double *f[3];                  /* [n_pad] */
+  double *w;                     /* [n_pad] or NULL */
+  /* LPS (kernels/opt/lps_stencil.h): 1/m and the dilation per site (0 at empty sites), the
+   * dilation pass's outputs per site and per particle. */
+  const double *inv_m, *theta;   /* [num_sites + slack] */
+  double *theta_site;            /* [num_sites + slack] (the array theta points to) */
+  double *theta_out;             /* [n_pad] */
+} pdk_stencil_arrays;
+
+/* Rows [r0, r1) of a; returns the bonds broken (committing pass). */
+typedef pdk_bond_index (*pdk_pmb_stencil_fn)(const pdk_pmb_consts *k, const pdk_stencil_arrays *a,
+                                             int64_t r0, int64_t r1);
+pdk_bond_index pdk_kernel_pmb_stencil_base(const pdk_pmb_consts *k, const pdk_stencil_arrays *a,
+                                           int64_t r0, int64_t r1);
+pdk_bond_index pdk_kernel_pmb_stencil_avx2(const pdk_pmb_consts *k, const pdk_stencil_arrays *a,
+                                           int64_t r0, int64_t r1);
+pdk_bond_index pdk_kernel_pmb_stencil_avx512(const pdk_pmb_consts *k,
+                                             const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+/* LPS dilation (writes theta_site and theta_out) and force passes, rows [r0, r1). */
+typedef void (*pdk_lps_stencil_dilation_fn)(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                            int64_t r0, int64_t r1);
+typedef pdk_bond_index (*pdk_lps_stencil_force_fn)(const pdk_lps_consts *k,
+                                                   const pdk_stencil_arrays *a, int64_t r0,
+                                                   int64_t r1);
+void pdk_kernel_lps_stencil_dilation_base(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                          int64_t r0, int64_t r1);
+void pdk_kernel_lps_stencil_dilation_avx2(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                          int64_t r0, int64_t r1);
+void pdk_kernel_lps_stencil_dilation_avx512(const pdk_lps_consts *k, const pdk_stencil_arrays *a,
+                                            int64_t r0, int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_base(const pdk_lps_consts *k,
+                                                 const pdk_stencil_arrays *a, int64_t r0,
+                                                 int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_avx2(const pdk_lps_consts *k,
+                                                 const pdk_stencil_arrays *a, int64_t r0,
+                                                 int64_t r1);
+pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
+                                                   const pdk_stencil_arrays *a, int64_t r0,
+                                                   int64_t r1);
 
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */

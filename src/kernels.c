@@ -22,6 +22,11 @@ static void fill_ref(pdk_kernel_table *t) {
   t->pmb_force_sell = pdk_kernel_pmb_force_sell_ref;
   t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_ref;
   t->lps_force_sell = pdk_kernel_lps_force_sell_ref;
+  /* The stencil pass has no reference of its own (its oracle is the general path, tests/t160);
+   * the ref family runs it compiled for the baseline ISA. */
+  t->pmb_stencil = pdk_kernel_pmb_stencil_base;
+  t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_base;
+  t->lps_stencil_force = pdk_kernel_lps_stencil_force_base;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -55,6 +60,9 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->pmb_force_sell = pdk_kernel_pmb_force_sell_avx2;
     t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_avx2;
     t->lps_force_sell = pdk_kernel_lps_force_sell_avx2;
+    t->pmb_stencil = pdk_kernel_pmb_stencil_avx2;
+    t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx2;
+    t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx2;
   }
   if (isa & PDK_ISA_AVX512) {
     t->pmb_force = pdk_kernel_pmb_force_avx512;
@@ -64,6 +72,9 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->pmb_force_sell = pdk_kernel_pmb_force_sell_avx512;
     t->lps_dilation_sell = pdk_kernel_lps_dilation_sell_avx512;
     t->lps_force_sell = pdk_kernel_lps_force_sell_avx512;
+    t->pmb_stencil = pdk_kernel_pmb_stencil_avx512;
+    t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx512;
+    t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx512;
   }
 }
 

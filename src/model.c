@@ -4,6 +4,7 @@
 
 #include "model_bond.h"
 #include "model_impl.h"
+#include "model_stencil.h"
 
 pdk_model_opts pdk_model_opts_default(void) {
   pdk_model_opts o;
@@ -126,6 +127,14 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "%s model: layout sell does not support multi-material bodies (%d materials); use "
             "layout csr",
             pdk_model_kind_name(o->kind), o->num_materials);
+  PDK_CHECK((unsigned)o->stencil <= PDK_STENCIL_ON, ctx, PDK_ERR_ARG,
+            "stencil mode %d unknown; use off (0), auto (1) or on (2)", (int)o->stencil);
+  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind == PDK_MODEL_PMB ||
+                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence),
+            ctx, PDK_ERR_UNSUPPORTED,
+            "%s model%s: the stencil path is implemented for the pmb and lps models only (lps "
+            "with LAMMPS's influence function); use stencil off or auto",
+            name, o->lps_use_influence ? " with lps_use_influence" : "");
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
@@ -323,6 +332,7 @@ void pdk_model_destroy(pdk_model **mp) {
   if (!mp || !*mp) return;
   pdk_model *m = *mp;
   if (m->ops && m->ops->destroy) m->ops->destroy(m);
+  pdk_stencil_destroy(&m->stencil);
   pdk_free_aligned(m->bond_alive);
   pdk_free_aligned(m->s0);
   pdk_free_aligned(m->mat_bulk);
@@ -346,6 +356,8 @@ pdk_families *pdk_model_families(const pdk_model *m) { return m->fam; }
 const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m->bond_alive; }
 pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; }
 pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
+int pdk_model_stencil_active(const pdk_model *m) { return m && m->stencil != NULL; }
+const char *pdk_model_stencil_reason(const pdk_model *m) { return m ? m->stencil_why : ""; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
 
 double pdk_model_padding_fraction(const pdk_model *m) {

@@ -40,9 +40,6 @@ struct pdk_model {
   void *impl;                  /* kind-private data */
   uint8_t *bond_alive;         /* [num_bonds] or NULL when bonds never break */
   double *s0;                  /* [n_pad] LAMMPS critical stretch per particle, or NULL */
-  /* Bumped by whoever writes bond_alive outside a force pass (checkpoint restore), so a kind that
-   * keeps its own copy of the bond state (PMB layout sell) refreshes it. */
-  unsigned long bond_state_version;
   pdk_bond_index num_broken;
   pdk_index num_flagged;
   pdk_index num_failed;  /* Johnson-Cook: failed particles after the last pass */
@@ -53,6 +50,14 @@ struct pdk_model {
   double *mat_bulk, *mat_shear, *mat_density;
   double *mat_lambda, *mat_stab; /* correspondence: lambda = K - 2G/3, stabilization modulus */
   pdk_material *materials; /* copy of opts.materials (opts.materials points here) */
+  /* Incremented by whoever writes bond_alive from outside the force passes (checkpoint restore),
+   * so a kind that keeps a copy of the bond state in another layout (the stencil, layout sell)
+   * reloads it. */
+  unsigned long bond_state_version;
+  /* PMB and LPS: the lattice (stencil) layout the passes take (opts.stencil; src/model_stencil.c),
+   * or NULL; why auto fell back to the general path. */
+  struct pdk_stencil *stencil;
+  char stencil_why[512];
 };
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */

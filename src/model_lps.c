@@ -35,6 +35,7 @@
 #include "model_bond.h"
 #include "model_impl.h"
 #include "sell.h"
+#include "model_stencil.h"
 
 #define PDK_LPS_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
 
@@ -135,7 +136,13 @@ static int lps_setup(pdk_model *m) {
       if (ref4) ref4[4 * (size_t)i + 3] = inv_m[i]; /* the rows' extra column */
     }
   }
-  if (m->opts.layout == PDK_LAYOUT_SELL) {
+  /* model.stencil: the lattice layout (src/model_stencil.c) with this model's 1/m per site */
+  PDK_CALL(pdk_stencil_model_setup(m, im->bd.bond_r0, 0));
+  if (m->stencil) {
+    PDK_CALL(pdk_stencil_lps_setup(m, m->stencil, im->inv_m));
+    pdk_bond_data_free(&im->bd); /* neither rows nor per-bond lengths are read any more */
+  }
+  if (m->opts.layout == PDK_LAYOUT_SELL && !m->stencil) { /* the stencil path, when taken, wins */
     PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, m->opts.sell_sigma,
                             m->bond_alive, im->bd.bond_r0, &im->sell));
     im->use_sell = 1;
@@ -155,6 +162,29 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_lps_consts *k = &im->k;
+  if (m->stencil) {
+    double *theta = pdk_particles_field_data(p, "theta", 0);
+    PDK_CHECK(theta, ctx, PDK_ERR_NOT_FOUND,
+              "lps model: field \"theta\" is missing from the particle store");
+    double *s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
+    double *w = energy ? im->w : NULL;
+    pdk_bond_index broken = 0;
+    PDK_CALL(pdk_stencil_lps_force(m, m->stencil, k, theta, s0_next, w, &broken));
+    if (w) {
+      const double *volume = pdk_particles_volume(p);
+      double *block_energy = im->block_energy;
+#pragma omp parallel for default(none) shared(num_blocks, n, volume, w, block_energy)              \
+    schedule(static) num_threads(ctx->num_threads)
+      for (int64_t blk = 0; blk < num_blocks; ++blk) {
+        pdk_index i0, i1;
+        block_range(blk, n, &i0, &i1);
+        block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+      }
+    }
+    pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, im->block_energy, num_blocks,
+                         energy);
+    return PDK_SUCCESS;
+  }
   pdk_bond_arrays arrays;
   double *theta = pdk_particles_field_data(p, "theta", 0);
   PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays) && theta, ctx, PDK_ERR_NOT_FOUND,

@@ -31,12 +31,14 @@
  */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "kernels.h"
 #include "model_bond.h"
 #include "model_impl.h"
 #include "sell.h"
+#include "model_stencil.h"
 
 #define PDK_PMB_BLOCK 1024 /* particles per block: kernel call and energy partial sum */
 
@@ -105,7 +107,10 @@ static int pmb_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
-  if (o->layout == PDK_LAYOUT_SELL) {
+  PDK_CALL(pdk_stencil_model_setup(m, im->bd.bond_r0, im->c_particle != NULL));
+  /* the stencil pass reads neither the packed rows nor the per-bond float lengths */
+  if (m->stencil) pdk_bond_data_free(&im->bd);
+  if (o->layout == PDK_LAYOUT_SELL && !m->stencil) { /* the stencil path, when taken, wins */
     PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, o->sell_sigma, m->bond_alive,
                             im->bd.bond_r0, &im->sell));
     im->use_sell = 1;
@@ -125,6 +130,25 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   const pdk_index n = im->n;
   const int64_t num_blocks = im->num_blocks;
   const pdk_pmb_consts *k = &im->k;
+  if (m->stencil) {
+    double *s0_next = commit && m->bond_alive && m->s0 ? im->s0_next : NULL;
+    double *w = energy ? im->w : NULL;
+    pdk_bond_index broken = 0;
+    PDK_CALL(pdk_stencil_pmb_force(m, m->stencil, k, s0_next, w, &broken));
+    if (w) {
+      const double *volume = pdk_particles_volume(p);
+      double *block_energy = im->block_energy;
+#pragma omp parallel for default(none) shared(num_blocks, n, volume, w, block_energy)                  schedule(static) num_threads(ctx->num_threads)
+      for (int64_t blk = 0; blk < num_blocks; ++blk) {
+        const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+        const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+        block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+      }
+    }
+    pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, im->block_energy, num_blocks,
+                         energy);
+    return PDK_SUCCESS;
+  }
   pdk_bond_arrays arrays;
   PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays), ctx, PDK_ERR_NOT_FOUND,
             "pmb model: fields \"x\" and \"f\" are missing from the particle store");

@@ -19,6 +19,7 @@ struct pdk_pmb_consts;  /* kernels/kernels.h */
 struct pdk_lps_consts;
 struct pdk_bond_arrays;
 struct pdk_sell_arrays;
+struct pdk_stencil_arrays;
 
 /* Kernel-variant table: one function pointer per kernel kind, filled at context creation from the
  * CPU's features (or the user's forced choice). Later issues add kinds; callers never branch on
@@ -68,6 +69,14 @@ typedef struct pdk_kernel_table {
   pdk_bond_index (*lps_force_sell)(const struct pdk_lps_consts *k,
                                    const struct pdk_bond_arrays *a,
                                    const struct pdk_sell_arrays *s, int64_t s0, int64_t s1);
+  /* PMB force pass in the stencil layout (kernels/opt/pmb_stencil.h), rows r0 .. r1-1. */
+  pdk_bond_index (*pmb_stencil)(const struct pdk_pmb_consts *k,
+                                const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  /* LPS dilation and force passes in the stencil layout (kernels/opt/lps_stencil.h). */
+  void (*lps_stencil_dilation)(const struct pdk_lps_consts *k,
+                               const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  pdk_bond_index (*lps_stencil_force)(const struct pdk_lps_consts *k,
+                                      const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
 } pdk_kernel_table;
 
 struct pdk_ctx {

@@ -91,7 +91,7 @@ typedef struct sc_material {
   sc_jc *johnson_cook;
 } sc_material;
 typedef struct sc_model {
-  int kind, influence, stabilization, law, precision, connectivity, layout;
+  int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
       ul_skin;
   bool partial_volume, failed_keeps_bonds;
@@ -173,6 +173,8 @@ static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
+static const cyaml_strval_t stencil_names[] = {
+    {"off", PDK_STENCIL_OFF}, {"auto", PDK_STENCIL_AUTO}, {"on", PDK_STENCIL_ON}};
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
                                                {"velocity", PDK_BC_VELOCITY},
                                                {"body_force", PDK_BC_BODY_FORCE}};
@@ -344,6 +346,8 @@ static void schema_build(scene_schema *sc, int dim) {
                               N_OF(precision_names)));
   ADD(model, CYAML_FIELD_ENUM("layout", ENUM_FLAGS, sc_model, layout, layout_names,
                               N_OF(layout_names)));
+  ADD(model, CYAML_FIELD_ENUM("stencil", ENUM_FLAGS, sc_model, stencil, stencil_names,
+                              N_OF(stencil_names)));
   ADD(model, CYAML_FIELD_FLOAT("critical_stretch", OPT, sc_model, critical_stretch));
   ADD(model, CYAML_FIELD_FLOAT("alpha", OPT, sc_model, alpha));
   ADD(model, CYAML_FIELD_BOOL("partial_volume", OPT, sc_model, partial_volume));
@@ -1284,6 +1288,14 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if (has(ld, "model.law")) m->law = (pdk_law)mo->law;
   if (has(ld, "model.precision")) m->precision = (pdk_precision)mo->precision;
   if (has(ld, "model.layout")) m->layout = (pdk_layout)mo->layout;
+  if (has(ld, "model.stencil")) {
+    m->stencil = (pdk_stencil_mode)mo->stencil;
+    REQUIRE(ld, m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB || m->kind == PDK_MODEL_LPS,
+            "model.stencil",
+            "on needs model.kind pmb or lps (the stencil path exists for those models only; "
+            "model.kind is %s); use auto or off",
+            kname);
+  }
   REQUIRE(ld, isfinite(mo->critical_stretch) && mo->critical_stretch >= 0, "model.critical_stretch",
           "must be >= 0 (0: bonds never break), got %g", mo->critical_stretch);
   m->critical_stretch = mo->critical_stretch;

@@ -141,6 +141,23 @@ typedef enum pdk_layout {
                          summation order; bond failure bit for bit. Speed against csr:
                          bench/README.md, "Force loops" (an option, not the default) */
 } pdk_layout;
+/* The stencil path of the PMB and LPS force passes (src/model_stencil.c, kernels/opt/pmb_stencil.h,
+ * lps_stencil.h; LPS with LAMMPS's influence function only): when the
+ * particles sit on a simple cubic (3-D) or square (2-D) lattice aligned with the axes (reference
+ * positions origin + integer index x spacing within 1e-6 spacings, one particle per site), every
+ * family is a subset of one fixed list of site offsets, and the pass loops over the offsets outside
+ * and over runs of sites along x inside, reading neighbours as contiguous vector loads (no bond
+ * index stream, no gathers). Bonds missing from a family (boundaries, holes, pre-cracks) and
+ * broken bonds are honoured exactly. Same per-bond arithmetic as the general path, so stretches and
+ * bond failure are the same bits; forces and energies differ by the order of the family sums only
+ * (round-off, tests/t160). */
+typedef enum pdk_stencil_mode {
+  PDK_STENCIL_OFF = 0,  /* the general (CSR) path */
+  PDK_STENCIL_AUTO = 1, /* the stencil path when it applies, the general path otherwise */
+  PDK_STENCIL_ON = 2    /* the stencil path; model creation fails, saying why, when it does not
+                           apply (not a lattice, model kind other than pmb or lps, several
+                           materials) */
+} pdk_stencil_mode;
 
 /* One material of a multi-material body (pdk_model_opts.materials). */
 typedef struct pdk_material {
@@ -214,11 +231,15 @@ typedef struct pdk_model_opts {
   int num_materials;
   /* Family layout of the force passes (default csr). sell: PMB and LPS (LAMMPS's omega, not
    * lps_use_influence), one material; other kinds and multi-material bodies refuse it
-   * (PDK_ERR_UNSUPPORTED). */
+   * (PDK_ERR_UNSUPPORTED). When the stencil path is taken (stencil on, or auto on a lattice) it
+   * replaces both layouts and sell builds nothing. */
   pdk_layout layout;
   /* sell: the sorting window in particles, rounded up to a multiple of C; 0 (default): 32 C (256
    * with AVX-512). C or less: no sorting. */
   int sell_sigma;
+  /* PMB and LPS force passes on a regular lattice (see pdk_stencil_mode); default off. Other
+   * kinds accept off and auto (which then means off) and refuse on. */
+  pdk_stencil_mode stencil;
 } pdk_model_opts;
 
 pdk_model_opts pdk_model_opts_default(void);
@@ -264,6 +285,11 @@ double pdk_model_float_stretch_ratio(const pdk_model *m);
 /* Layout sell: the fraction of the stored bond entries that are padding, (entries - bonds) /
  * entries, the share of the SIMD lanes' work spent on nothing; 0 for layout csr. */
 double pdk_model_padding_fraction(const pdk_model *m);
+/* 1 when the force passes take the stencil path (opts.stencil on, or auto on a lattice), else 0.
+ * pdk_model_stencil_reason: why auto fell back to the general path ("" when it did not, or the
+ * stencil is off). */
+int pdk_model_stencil_active(const pdk_model *m);
+const char *pdk_model_stencil_reason(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 pdk_index pdk_model_num_failed(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */

@@ -174,6 +174,13 @@ static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
           (int)pdk_particles_count(p), (long long)pdk_families_num_bonds(f),
           (double)pdk_families_num_bonds(f) / pdk_particles_count(p),
           pdk_model_kind_name(mo->kind));
+  if (mo->stencil != PDK_STENCIL_OFF) {
+    pdk_model *m = pdk_sim_model(sim);
+    if (pdk_model_stencil_active(m))
+      fprintf(out, "stencil: force passes on the lattice stencil\n");
+    else
+      fprintf(out, "stencil: auto took the general path: %s\n", pdk_model_stencil_reason(m));
+  }
   if (e) {
     fprintf(out, "explicit: dt %.4g (stable estimate %.4g), %ld steps to t = %.4g, %d thread(s)\n",
             pdk_explicit_dt(e), pdk_explicit_stable_dt(e), pdk_sim_num_steps(sim),
