@@ -466,7 +466,7 @@ int main(int argc, char **argv) {
           const double h = 0.5 * dt / rho;
           double c0 = cpu_time(), t0 = pdk_wtime();
           for (int s = 0; s < steps; ++s) {
-#pragma omp parallel for default(none) shared(v, x, f, n, h, dim) schedule(static) num_threads(nt)
+#pragma omp parallel for default(none) shared(v, x, f, n, h, dt, dim) schedule(static) num_threads(nt)
             for (pdk_index i = 0; i < n; ++i)
               for (int a = 0; a < dim; ++a) {
                 v[a][i] += h * f[a][i];
