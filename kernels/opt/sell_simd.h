@@ -13,6 +13,31 @@
  * opens with PDK_KERNEL_FP_EXACT), so failure decisions and s0_next are the reference's bits.
  */
 
+/* One column of C bonds: the reference length from the neighbours' reference rows t (X, Y, Z),
+ * and the bond-state mask (1 intact, 0 broken or padding; 1 everywhere without bond state). */
+BS_INLINE bs_vd sell_ref_length(const int dim, const bs_vd *t, const bs_vd Xi, const bs_vd Yi,
+                                const bs_vd Zi) {
+  const bs_vd dX = t[0] - Xi, dY = t[1] - Yi;
+  bs_vd rr0 = dX * dX + dY * dY;
+  if (dim == 3) {
+    const bs_vd dZ = t[2] - Zi;
+    rr0 = rr0 + dZ * dZ;
+  }
+  return BS_SQRT(rr0);
+}
+
+BS_INLINE bs_vd sell_alive(const int has_state, const pdk_sell_arrays *s, const int64_t e,
+                           const bs_vd one) {
+  bs_vd on = one;
+  if (has_state) {
+    double o[BS_W];
+    for (int l = 0; l < BS_W; ++l)
+      o[l] = (double)s->alive[e + l];
+    memcpy(&on, o, sizeof o);
+  }
+  return on;
+}
+
 BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, const int commit,
                                          const int want_energy, const int stored,
                                          const pdk_pmb_consts *k, const pdk_bond_arrays *a,
@@ -46,21 +71,9 @@ BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, con
         r0 = BS_CVT_F(s->r0 + e);
       } else {
         BS_LOAD4(a->ref4, j, t);
-        const bs_vd dX = t[0] - Xi, dY = t[1] - Yi;
-        bs_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const bs_vd dZ = t[2] - Zi;
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = BS_SQRT(rr0);
+        r0 = sell_ref_length(dim, t, Xi, Yi, Zi);
       }
-      bs_vd on = one;
-      if (has_state) {
-        double o[BS_W];
-        for (int l = 0; l < BS_W; ++l)
-          o[l] = (double)s->alive[e + l];
-        memcpy(&on, o, sizeof o);
-      }
+      const bs_vd on = sell_alive(has_state, s, e, one);
       const bs_vd d = r - r0;
       const bs_vd q = bs_sel(r > zero, one / (r0 * r), zero);
       const bs_vd vol = vj * bs_min1((vs_a - r0) * vs_b);
@@ -148,21 +161,9 @@ BS_INLINE void sell_lps_theta_slices(const int dim, const int has_state, const i
         r0 = BS_CVT_F(s->r0 + e);
       } else {
         BS_LOAD4(a->ref4, j, t);
-        const bs_vd dX = t[0] - Xi, dY = t[1] - Yi;
-        bs_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const bs_vd dZ = t[2] - Zi;
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = BS_SQRT(rr0);
+        r0 = sell_ref_length(dim, t, Xi, Yi, Zi);
       }
-      bs_vd on = one;
-      if (has_state) {
-        double o[BS_W];
-        for (int l = 0; l < BS_W; ++l)
-          o[l] = (double)s->alive[e + l];
-        memcpy(&on, o, sizeof o);
-      }
+      const bs_vd on = sell_alive(has_state, s, e, one);
       sum += on * (r - r0) * (vj * bs_min1((vs_a - r0) * vs_b));
     }
     for (int l = 0; l < BS_W; ++l) {
@@ -202,25 +203,8 @@ BS_INLINE pdk_bond_index sell_lps_force_slices(const int dim, const int has_stat
       const bs_vd r = BS_SQRT(rr);
       BS_LOAD4(a->ref4, j, t);
       const bs_vd inv_m_j = t[3];
-      bs_vd r0;
-      if (stored) {
-        r0 = BS_CVT_F(s->r0 + e);
-      } else {
-        const bs_vd dX = t[0] - Xi, dY = t[1] - Yi;
-        bs_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const bs_vd dZ = t[2] - Zi;
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = BS_SQRT(rr0);
-      }
-      bs_vd on = one;
-      if (has_state) {
-        double o[BS_W];
-        for (int l = 0; l < BS_W; ++l)
-          o[l] = (double)s->alive[e + l];
-        memcpy(&on, o, sizeof o);
-      }
+      const bs_vd r0 = stored ? BS_CVT_F(s->r0 + e) : sell_ref_length(dim, t, Xi, Yi, Zi);
+      const bs_vd on = sell_alive(has_state, s, e, one);
       const bs_vd ext = r - r0;
       const bs_vd q = bs_sel(r > zero, one / (r0 * r), zero);
       const bs_vd vol = on * (vj * bs_min1((vs_a - r0) * vs_b));
