@@ -31,6 +31,28 @@ PDK_KERNEL_FP_EXACT
 
 static inline __attribute__((always_inline)) double min1(double t) { return t < 1.0 ? t : 1.0; }
 
+/* The failure rule of kernels/ref/pmb.c on sliced entry e (lane l of slice rows, column (e - e0) / C):
+ * a bond intact at entry breaks when its extension ext exceeds min(s0_i, s0_j) r0, and is cleared
+ * in the sliced and in the CSR bond state; an intact bond offers s00 - alpha s to s0_next (s the
+ * stretch ext r q = ext / r0, -1 for r = 0). Returns 1 when the bond broke. */
+static inline __attribute__((always_inline)) int
+sell_break(const pdk_bond_arrays *a, uint8_t *al, const pdk_index *rows, int l, int64_t e,
+           int64_t e0, int C, pdk_index i, pdk_index j, double ext, double r, double q, double r0,
+           double s00, double alpha, double *s0_max) {
+  const double sv = r > 0.0 ? ext * (r * q) : -1.0;
+  const int alive = al[e + l] != 0;
+  const double s0_i = a->s0[i];
+  const double s0_min = a->s0[j] < s0_i ? a->s0[j] : s0_i;
+  const int brk = alive && ext > s0_min * r0;
+  if (brk) {
+    al[e + l] = 0;
+    a->bond_alive[a->bond_start[rows[l]] + (e - e0) / C] = 0;
+  }
+  const double cand = alive ? s00 - alpha * sv : -DBL_MAX;
+  s0_max[l] = cand > s0_max[l] ? cand : s0_max[l];
+  return brk;
+}
+
 static inline __attribute__((always_inline)) pdk_bond_index
 sell_slices(const int dim, const int has_state, const int commit, const int want_energy,
             const int stored, const pdk_pmb_consts *k, const pdk_bond_arrays *a,
@@ -38,7 +60,7 @@ sell_slices(const int dim, const int has_state, const int commit, const int want
   const int C = s->width;
   const double *restrict X = a->X[0], *restrict Y = a->X[1], *restrict Z = a->X[2];
   const double *restrict x = a->x[0], *restrict y = a->x[1], *restrict z = a->x[2];
-  const double *restrict volume = a->volume, *restrict s0v = a->s0;
+  const double *restrict volume = a->volume;
   const pdk_index *restrict sj = s->sj;
   const float *restrict r0s = s->r0;
   uint8_t *restrict al = s->alive;
@@ -67,20 +89,8 @@ sell_slices(const int dim, const int has_state, const int commit, const int want
         f1[l] += g * dy;
         if (dim == 3) f2[l] += g * dz;
         if (want_energy) wi[l] += 0.25 * g * d * r;
-        if (has_state && commit) {
-          const double sv = r > 0.0 ? d * (r * q) : -1.0;
-          const int alive = al[e + l] != 0;
-          const double s0_i = s0v[i];
-          const double s0_min = s0v[j] < s0_i ? s0v[j] : s0_i;
-          const int brk = alive && d > s0_min * r0;
-          if (brk) {
-            ++broken;
-            al[e + l] = 0;
-            a->bond_alive[a->bond_start[rows[l]] + (e - e0) / C] = 0;
-          }
-          const double cand = alive ? s00 - alpha * sv : -DBL_MAX;
-          s0_max[l] = cand > s0_max[l] ? cand : s0_max[l];
-        }
+        if (has_state && commit)
+          broken += sell_break(a, al, rows, l, e, e0, C, i, j, d, r, q, r0, s00, alpha, s0_max);
       }
     for (int l = 0; l < C; ++l) {
       if (sl * C + l >= s->n) break;
@@ -166,7 +176,7 @@ sell_lps_force(const int dim, const int has_state, const int commit, const int w
   const int C = s->width;
   const double *restrict X = a->X[0], *restrict Y = a->X[1], *restrict Z = a->X[2];
   const double *restrict x = a->x[0], *restrict y = a->x[1], *restrict z = a->x[2];
-  const double *restrict volume = a->volume, *restrict s0v = a->s0;
+  const double *restrict volume = a->volume;
   const double *restrict theta = a->theta, *restrict inv_m = a->inv_m;
   const pdk_index *restrict sj = s->sj;
   const float *restrict r0s = s->r0;
@@ -204,20 +214,8 @@ sell_lps_force(const int dim, const int has_state, const int commit, const int w
           const double ed = ext - sd_i * r0;
           wdev[l] += ed * ed / r0 * vol;
         }
-        if (has_state && commit) {
-          const double sv = r > 0.0 ? ext * (r * q) : -1.0;
-          const int alive = al[e + l] != 0;
-          const double s0_i = s0v[i];
-          const double s0_min = s0v[j] < s0_i ? s0v[j] : s0_i;
-          const int brk = alive && ext > s0_min * r0;
-          if (brk) {
-            ++broken;
-            al[e + l] = 0;
-            a->bond_alive[a->bond_start[rows[l]] + (e - e0) / C] = 0;
-          }
-          const double cand = alive ? s00 - alpha * sv : -DBL_MAX;
-          s0_max[l] = cand > s0_max[l] ? cand : s0_max[l];
-        }
+        if (has_state && commit)
+          broken += sell_break(a, al, rows, l, e, e0, C, i, j, ext, r, q, r0, s00, alpha, s0_max);
       }
     for (int l = 0; l < C; ++l) {
       if (sl * C + l >= s->n) break;
