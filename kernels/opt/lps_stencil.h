@@ -36,18 +36,7 @@ SC_INLINE void sc_lps_theta_block(const int nu, const int dim, const int stored,
     for (int u = 0; u < nu; ++u) {
       const int64_t j = j0 + u * SC_W;
       const sc_vd dx = sc_ld(a->x[0] + j) - xi[u], dy = sc_ld(a->x[1] + j) - yi[u];
-      sc_vd r0;
-      if (stored) {
-        r0 = r0_o;
-      } else {
-        const sc_vd dX = sc_ld(a->X[0] + j) - Xi[u], dY = sc_ld(a->X[1] + j) - Yi[u];
-        sc_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const sc_vd dZ = sc_ld(a->X[2] + j) - Zi[u];
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = SC_SQRT(rr0);
-      }
+      const sc_vd r0 = stored ? r0_o : sc_ref_length(dim, a->X, j, Xi[u], Yi[u], Zi[u]);
       sc_vd rr = dx * dx + dy * dy;
       if (dim == 3) {
         const sc_vd dz = sc_ld(a->x[2] + j) - zi[u];
@@ -122,18 +111,7 @@ SC_INLINE pdk_bond_index sc_lps_force_block(const int nu, const int dim, const i
       const int64_t j = j0 + u * SC_W;
       const sc_vd dx = sc_ld(a->x[0] + j) - xi[u], dy = sc_ld(a->x[1] + j) - yi[u];
       const sc_vd dz = dim == 3 ? sc_ld(a->x[2] + j) - zi[u] : zero;
-      sc_vd r0;
-      if (stored) {
-        r0 = r0_o;
-      } else {
-        const sc_vd dX = sc_ld(a->X[0] + j) - Xi[u], dY = sc_ld(a->X[1] + j) - Yi[u];
-        sc_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const sc_vd dZ = sc_ld(a->X[2] + j) - Zi[u];
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = SC_SQRT(rr0);
-      }
+      const sc_vd r0 = stored ? r0_o : sc_ref_length(dim, a->X, j, Xi[u], Yi[u], Zi[u]);
       sc_vd rr = dx * dx + dy * dy;
       if (dim == 3) rr = rr + dz * dz;
       const sc_vd r = SC_SQRT(rr);

@@ -80,6 +80,18 @@ SC_INLINE sc_vd sc_mask_lanes(const uint8_t *mk, int nv) {
 }
 
 /* One block of nu <= SC_U vectors (nu * SC_W sites from s, of which the first len are the row's). */
+/* Reference length of the bonds to sites j .. j + SC_W - 1 from the reference positions X. */
+SC_INLINE sc_vd sc_ref_length(const int dim, const double *const *X, const int64_t j,
+                              const sc_vd Xi, const sc_vd Yi, const sc_vd Zi) {
+  const sc_vd dX = sc_ld(X[0] + j) - Xi, dY = sc_ld(X[1] + j) - Yi;
+  sc_vd rr0 = dX * dX + dY * dY;
+  if (dim == 3) {
+    const sc_vd dZ = sc_ld(X[2] + j) - Zi;
+    rr0 = rr0 + dZ * dZ;
+  }
+  return SC_SQRT(rr0);
+}
+
 SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored, const int has_mask,
                                   const int commit, const int want_energy,
                                   const pdk_pmb_consts *k, const pdk_stencil_arrays *a,
@@ -112,18 +124,7 @@ SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored,
       const int64_t j = j0 + u * SC_W;
       const sc_vd dx = sc_ld(a->x[0] + j) - xi[u], dy = sc_ld(a->x[1] + j) - yi[u];
       const sc_vd dz = dim == 3 ? sc_ld(a->x[2] + j) - zi[u] : zero;
-      sc_vd r0;
-      if (stored) {
-        r0 = r0_o;
-      } else {
-        const sc_vd dX = sc_ld(a->X[0] + j) - Xi[u], dY = sc_ld(a->X[1] + j) - Yi[u];
-        sc_vd rr0 = dX * dX + dY * dY;
-        if (dim == 3) {
-          const sc_vd dZ = sc_ld(a->X[2] + j) - Zi[u];
-          rr0 = rr0 + dZ * dZ;
-        }
-        r0 = SC_SQRT(rr0);
-      }
+      const sc_vd r0 = stored ? r0_o : sc_ref_length(dim, a->X, j, Xi[u], Yi[u], Zi[u]);
       sc_vd rr = dx * dx + dy * dy;
       if (dim == 3) rr = rr + dz * dz;
       const sc_vd r = SC_SQRT(rr);
