@@ -104,7 +104,7 @@ def main():
              statistics.median(triads[2] or [0])))
     print()
     print("| model | layout | storage | particles | ns/bond 1 thr | cpu ns/bond | goal | "
-          "| ns/bond/core 2 thr | speed-up | ≥ 1.8 |")
+          "verdict | ns/bond/core 2 thr | speed-up | ≥ 1.8 |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     met = missed = 0
     for key in sorted(med, key=lambda k: (k[0], k[3], k[1], k[2], k[4])):
