@@ -447,11 +447,14 @@ typedef struct pdk_corr_arrays {
   uint8_t *detach;  /* [n] semi-TL: particle detached in this round; NULL in TL */
 } pdk_corr_arrays;
 
-/* Pass-2 row of particle i (double storage), 96 bytes, 32-byte aligned: the three columns of
- * B_i (B = A - k (F - I) for Silling, A without stabilization) in c[0..2], c[4..6], c[8..10]
- * (column c of the d x d tensor, rows 0..d-1, zeros beyond), k_i in c[3], c[7] = c[11] = 0. */
+/* Pass-2 record of particle i (double storage), 128 bytes, 64-byte aligned (two cache lines):
+ * everything a neighbour's pass-2 bond reads of i, so a bond is one index and loads at fixed
+ * offsets from one address. The three columns of V_i B_i (B = A - k (F - I) for Silling, A
+ * without stabilization; V_i the volume) in c[0..2], c[4..6], c[8..10] (column c of the d x d
+ * tensor, rows 0..d-1, zeros beyond), V_i k_i in c[3], X_i in c[7], c[11], c[15] (Z = 0 in 2-D),
+ * and -u_i = X_i - x_i in c[12..14] (0 for z in 2-D). */
 typedef struct pdk_corr_row {
-  double c[12];
+  double c[16];
 } pdk_corr_row;
 /* The same in float storage, 64 bytes (one cache line): the columns as floats (the values of
  * Bf), k_i in double (it multiplies the relative displacement, as the double kst does). */

@@ -235,11 +235,19 @@ CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
     R->k = ki;
     R->pad = 0.0;
   } else {
+    /* the record of pdk_corr_row: V B, V k, X, -u */
     pdk_corr_row *restrict R = a->row + i;
+    const double *restrict ri = a->ref4 + 4 * (size_t)i, *restrict ci = a->cur4 + 4 * (size_t)i;
+    const double Vi = ri[3];
     for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 4; ++r)
-        R->c[4 * c + r] = r < 3 ? B[r][c] : 0.0;
-    R->c[3] = ki;
+      for (int r = 0; r < 3; ++r)
+        R->c[4 * c + r] = Vi * B[r][c];
+    R->c[3] = Vi * ki;
+    R->c[7] = ri[0];
+    R->c[11] = ri[1];
+    R->c[15] = ri[2];
+    for (int r = 0; r < 3; ++r)
+      R->c[12 + r] = -ci[r];
   }
 }
 
@@ -269,7 +277,8 @@ CORR_INLINE void rp1_row(const int d, const int has_alive, const int fl, const p
 
 /* One intact bond of pass 2 into *acc (lanes 0..d-1 of the force). */
 CORR_INLINE void rp2_bond(const int d, const int fl, const int stab, const pdk_corr_arrays *a,
-                          pdk_bond_index b, const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc) {
+                          pdk_bond_index b, const corr_v4 *Xi, corr_v4 ui, corr_v4 nui,
+                          corr_v4 *acc) {
   const pdk_index j = a->bond_j[b];
   const double *restrict rj = a->ref4 + 4 * (size_t)j;
   corr_v4 g;
@@ -279,10 +288,15 @@ CORR_INLINE void rp2_bond(const int d, const int fl, const int stab, const pdk_c
     if (d == 3) g += cv_loadf(R->c + 8) * (cv_bcast(rj + 2) - Xi[2]);
     if (stab) g += cv_bcast(&R->k) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
   } else {
+    /* One record (pdk_corr_row): V_j is in the columns and in k, so the weight is omega alone;
+     * lane 3 of g carries junk (finite) that nobody reads. */
     const pdk_corr_row *restrict R = a->row + j;
-    g = cv_load(R->c) * (cv_bcast(rj) - Xi[0]) + cv_load(R->c + 4) * (cv_bcast(rj + 1) - Xi[1]);
-    if (d == 3) g += cv_load(R->c + 8) * (cv_bcast(rj + 2) - Xi[2]);
-    if (stab) g += cv_bcast(R->c + 3) * (cv_load(a->cur4 + 4 * (size_t)j) - ui);
+    g = cv_load(R->c) * (cv_bcast(R->c + 7) - Xi[0]) +
+        cv_load(R->c + 4) * (cv_bcast(R->c + 11) - Xi[1]);
+    if (d == 3) g += cv_load(R->c + 8) * (cv_bcast(R->c + 15) - Xi[2]);
+    if (stab) g += cv_bcast(R->c + 3) * (nui - cv_load(R->c + 12));
+    *acc += cv_bcast(a->bond_omega + b) * g;
+    return;
   }
   *acc += (cv_bcast(a->bond_omega + b) * cv_bcast(rj + 3)) * g;
 }
@@ -291,9 +305,9 @@ CORR_INLINE void rp2_row(const int d, const int has_alive, const int fl, const i
                          const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
   const double *restrict ri = a->ref4 + 4 * (size_t)i, *restrict ci = a->cur4 + 4 * (size_t)i;
   const corr_v4 Xi[3] = {cv_set1(ri[0]), cv_set1(ri[1]), cv_set1(ri[2])};
-  const corr_v4 ui = {ci[0], ci[1], ci[2], 0.0};
+  const corr_v4 ui = {ci[0], ci[1], ci[2], 0.0}, nui = -ui;
   corr_v4 p = cv_set1(0.0), q = p;
-#define RP2_BOND(b, acc) rp2_bond(d, fl, stab, a, b, Xi, ui, &acc)
+#define RP2_BOND(b, acc) rp2_bond(d, fl, stab, a, b, Xi, ui, nui, &acc)
   ROWS_WALK(has_alive, a, i, RP2_BOND, p, q);
 #undef RP2_BOND
   p += q;
