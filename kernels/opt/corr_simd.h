@@ -44,6 +44,7 @@
 
 #include "kernels.h"
 #include "pdk/model.h"
+#include "ref/corr_law.h"
 
 #define CORR_CAT2(a, b) a##b
 #define CORR_CAT(a, b) CORR_CAT2(a, b)
@@ -177,15 +178,18 @@ CORR_INLINE double rows_kst(const pdk_corr_consts *k, const pdk_corr_arrays *a, 
 
 /* One intact bond of pass 1 into acc[0..4] = D_0, D_1, D_2, U, Q. */
 CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index b,
-                          const corr_v4 *Xi, corr_v4 ui, corr_v4 *acc, int32_t *count) {
+                          corr_v4 Xi4, corr_v4 ui, corr_v4 *acc, int32_t *count) {
   const pdk_index j = a->bond_j[b];
   const double *restrict rj = a->ref4 + 4 * (size_t)j;
   ++*count;
   const corr_v4 v = cv_load(a->cur4 + 4 * (size_t)j) - ui;
   const corr_v4 wv = (cv_bcast(a->bond_omega + b) * cv_bcast(rj + 3)) * v;
-  acc[0] += wv * (cv_bcast(rj) - Xi[0]);
-  acc[1] += wv * (cv_bcast(rj + 1) - Xi[1]);
-  if (d == 3) acc[2] += wv * (cv_bcast(rj + 2) - Xi[2]);
+  /* ne = X_i - X_j in lanes 0..2 (one subtraction from memory), spread by permutes; acc -= wv ne
+   * is the same rounding as acc += wv xi (negation is exact) */
+  const __m256d ne = _mm256_sub_pd((__m256d)Xi4, _mm256_load_pd(rj));
+  acc[0] -= wv * (corr_v4)_mm256_permute4x64_pd(ne, 0x00);
+  acc[1] -= wv * (corr_v4)_mm256_permute4x64_pd(ne, 0x55);
+  if (d == 3) acc[2] -= wv * (corr_v4)_mm256_permute4x64_pd(ne, 0xAA);
   acc[3] += wv;
   acc[4] += wv * v;
 }
@@ -194,15 +198,13 @@ CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index 
  * row holds (float) B, the reference's Bf. */
 CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
                             const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
-                            const corr_v4 *acc) {
+                            const corr_v4 *acc, const double A[3][3], const double F[3][3]) {
   const int silling = k->stab == PDK_STAB_SILLING;
   const double ki = rows_kst(k, a, i);
   double B[3][3] = {{0}};
   for (int r = 0; r < d; ++r)
-    for (int c = 0; c < d; ++c) {
-      const double A = a->A[r * d + c][i];
-      B[r][c] = silling ? A - ki * (a->F[r * d + c][i] - (r == c ? 1.0 : 0.0)) : A;
-    }
+    for (int c = 0; c < d; ++c)
+      B[r][c] = silling ? A[r][c] - ki * (F[r][c] - (r == c ? 1.0 : 0.0)) : A[r][c];
   double *restrict own = a->own + 4 * (size_t)i;
   for (int r = 0; r < 3; ++r) {
     double f = 0.0;
@@ -251,15 +253,57 @@ CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
   }
 }
 
+/* The per-particle end of pass 1 from D: the reference's (pdk_kernel_corr_point_disp_ref), here
+ * inline for the elastic laws with F, A, K^-1 kept in registers for the rows (the same
+ * operations: ref/corr_law.h; the target may contract them into FMAs), the reference's own call
+ * otherwise (Johnson-Cook, a family that does not span, the reference's pass-2 arrays). */
+CORR_INLINE void rows_end(const int d, const int fl, const pdk_corr_consts *k,
+                          const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
+                          const corr_v4 *acc) {
+  double A[3][3] = {{0}}, F[3][3] = {{0}};
+  if (k->law == PDK_LAW_JC || (a->flag[i] & PDK_CORR_FLAG_SPAN) || a->kst || a->Bf[0]) {
+    pdk_kernel_corr_point_disp_ref(k, a, i, D);
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) {
+        A[r][c] = a->A[r * d + c][i];
+        F[r][c] = a->F[r * d + c][i];
+      }
+  } else {
+    pdk_corr_consts k_i; /* multi-material: particle i's lambda, mu */
+    const pdk_corr_consts *ki = pdk_corr_consts_at(k, i, &k_i);
+    double Kinv[3][3] = {{0}}, P[3][3] = {{0}}, W = 0.0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        Kinv[r][c] = a->Kinv[r * d + c][i];
+    pdk_corr_mul_d(d, D, Kinv, F);
+    for (int c = 0; c < d; ++c)
+      F[c][c] += 1.0;
+    if (pdk_corr_law_eval_d(d, ki, F, P, &W)) {
+      pdk_corr_mul_d(d, P, Kinv, A);
+      a->W[i] = W;
+      a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
+    } else {
+      a->W[i] = 0.0;
+      a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
+    }
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) {
+        a->F[r * d + c][i] = F[r][c];
+        a->A[r * d + c][i] = A[r][c];
+      }
+  }
+  rows_store(d, fl, k, a, i, D, acc, A, F);
+}
+
 CORR_INLINE void rp1_row(const int d, const int has_alive, const int fl, const pdk_corr_consts *k,
                          const pdk_corr_arrays *a, pdk_index i) {
   const double *restrict ri = a->ref4 + 4 * (size_t)i, *restrict ci = a->cur4 + 4 * (size_t)i;
-  const corr_v4 Xi[3] = {cv_set1(ri[0]), cv_set1(ri[1]), cv_set1(ri[2])};
+  const corr_v4 Xi4 = {ri[0], ri[1], ri[2], 0.0};
   const corr_v4 ui = {ci[0], ci[1], ci[2], 0.0};
   const corr_v4 z = cv_set1(0.0);
   corr_v4 p[5] = {z, z, z, z, z}, q[5] = {z, z, z, z, z};
   int32_t count = 0;
-#define RP1_BOND(b, acc) rp1_bond(d, a, b, Xi, ui, acc, &count)
+#define RP1_BOND(b, acc) rp1_bond(d, a, b, Xi4, ui, acc, &count)
   ROWS_WALK(has_alive, a, i, RP1_BOND, p, q);
 #undef RP1_BOND
   for (int t = 0; t < 5; ++t)
@@ -271,8 +315,7 @@ CORR_INLINE void rp1_row(const int d, const int has_alive, const int fl, const p
   for (int r = 0; r < d; ++r)
     for (int c = 0; c < d; ++c)
       D[r][c] = p[c][r];
-  pdk_kernel_corr_point_disp_ref(k, a, i, D);
-  rows_store(d, fl, k, a, i, D, p);
+  rows_end(d, fl, k, a, i, D, p);
 }
 
 /* One intact bond of pass 2 into *acc (lanes 0..d-1 of the force). */

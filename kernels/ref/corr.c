@@ -107,47 +107,9 @@
 
 #include "kernels.h"
 #include "pdk/model.h" /* pdk_law, pdk_stabilization, pdk_jc_update */
+#include "ref/corr_law.h"
 
-/* ---- small dense tensors (row-major, d x d in the top-left of 3 x 3) ------------------------- */
-
-static double det_d(const int d, const double T[3][3]) {
-  if (d == 2) return T[0][0] * T[1][1] - T[0][1] * T[1][0];
-  return T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1]) -
-         T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0]) +
-         T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]);
-}
-
-/* Inverse by the adjugate; the caller checks det != 0. */
-static void inv_d(const int d, const double T[3][3], double det, double R[3][3]) {
-  const double s = 1.0 / det;
-  if (d == 2) {
-    R[0][0] = T[1][1] * s;
-    R[0][1] = -T[0][1] * s;
-    R[1][0] = -T[1][0] * s;
-    R[1][1] = T[0][0] * s;
-    return;
-  }
-  R[0][0] = (T[1][1] * T[2][2] - T[1][2] * T[2][1]) * s;
-  R[0][1] = (T[0][2] * T[2][1] - T[0][1] * T[2][2]) * s;
-  R[0][2] = (T[0][1] * T[1][2] - T[0][2] * T[1][1]) * s;
-  R[1][0] = (T[1][2] * T[2][0] - T[1][0] * T[2][2]) * s;
-  R[1][1] = (T[0][0] * T[2][2] - T[0][2] * T[2][0]) * s;
-  R[1][2] = (T[0][2] * T[1][0] - T[0][0] * T[1][2]) * s;
-  R[2][0] = (T[1][0] * T[2][1] - T[1][1] * T[2][0]) * s;
-  R[2][1] = (T[0][1] * T[2][0] - T[0][0] * T[2][1]) * s;
-  R[2][2] = (T[0][0] * T[1][1] - T[0][1] * T[1][0]) * s;
-}
-
-/* R = S T */
-static void mul_d(const int d, const double S[3][3], const double T[3][3], double R[3][3]) {
-  for (int a = 0; a < d; ++a)
-    for (int c = 0; c < d; ++c) {
-      double s = 0.0;
-      for (int e = 0; e < d; ++e)
-        s += S[a][e] * T[e][c];
-      R[a][c] = s;
-    }
-}
+/* ---- small dense tensors and the elastic laws: ref/corr_law.h ------------------------------- */
 
 static void load_d(const int d, double *const *restrict src, pdk_index i, double T[3][3]) {
   for (int a = 0; a < d; ++a)
@@ -166,64 +128,8 @@ static void store_zero_d(const int d, double *const *restrict dst, pdk_index i) 
     dst[c][i] = 0.0;
 }
 
-/* ---- material laws: P(F) and W(F); return 0 if the law is undefined at F ----------------------
- */
-
 static int law_eval(const pdk_corr_consts *k, const double F[3][3], double P[3][3], double *W) {
-  const int d = k->dim;
-  const double lambda = k->lambda, mu = k->mu;
-  switch (k->law) {
-  case PDK_LAW_LINEAR_ELASTIC: {
-    double eps[3][3], tr = 0.0, ee = 0.0;
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        eps[a][c] = 0.5 * (F[a][c] + F[c][a]) - (a == c ? 1.0 : 0.0);
-        ee += eps[a][c] * eps[a][c];
-      }
-    for (int a = 0; a < d; ++a)
-      tr += eps[a][a];
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        P[a][c] = 2.0 * mu * eps[a][c] + (a == c ? lambda * tr : 0.0);
-    *W = 0.5 * lambda * tr * tr + mu * ee;
-    return 1;
-  }
-  case PDK_LAW_SVK: {
-    double E[3][3], S[3][3], tr = 0.0, ee = 0.0;
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        double C = 0.0;
-        for (int e = 0; e < d; ++e)
-          C += F[e][a] * F[e][c];
-        E[a][c] = 0.5 * (C - (a == c ? 1.0 : 0.0));
-        ee += E[a][c] * E[a][c];
-      }
-    for (int a = 0; a < d; ++a)
-      tr += E[a][a];
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        S[a][c] = 2.0 * mu * E[a][c] + (a == c ? lambda * tr : 0.0);
-    mul_d(d, F, S, P);
-    *W = 0.5 * lambda * tr * tr + mu * ee;
-    return 1;
-  }
-  case PDK_LAW_NEO_HOOKE: {
-    const double J = det_d(d, F);
-    if (!(J > 0.0) || !isfinite(J)) return 0;
-    double Finv[3][3], ff = 0.0;
-    inv_d(d, F, J, Finv);
-    const double lnJ = log(J);
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        const double FinvT = Finv[c][a];
-        P[a][c] = mu * (F[a][c] - FinvT) + lambda * lnJ * FinvT;
-        ff += F[a][c] * F[a][c];
-      }
-    *W = 0.5 * mu * (ff - d) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
-    return 1;
-  }
-  }
-  return 0;
+  return pdk_corr_law_eval_d(k->dim, k, F, P, W);
 }
 
 /* ---- shape ------------------------------------------------------------------------------------
@@ -237,13 +143,13 @@ int pdk_kernel_corr_shape_point_ref(const pdk_corr_consts *k, const pdk_corr_arr
   double tr = 0.0;
   for (int c = 0; c < d; ++c)
     tr += K[c][c];
-  const double det = det_d(d, K);
+  const double det = pdk_corr_det_d(d, K);
   const double mean = tr / d;
   const double scale = d == 2 ? mean * mean : mean * mean * mean;
   const int spans = tr > 0.0 && isfinite(tr) && isfinite(det) && det >= k->span_rtol * scale;
   if (spans) {
     double Kinv[3][3];
-    inv_d(d, K, det, Kinv);
+    pdk_corr_inv_d(d, K, det, Kinv);
     store_d(d, a->Kinv, i, Kinv);
   } else {
     store_zero_d(d, a->Kinv, i);
@@ -325,7 +231,7 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
     if (k->commit) a->eps_p_rate[i] = 0.0;
     return;
   }
-  mul_d(d, P, Kinv, A);
+  pdk_corr_mul_d(d, P, Kinv, A);
   store_d(d, a->A, i, A);
   a->W[i] = res.W;
   const unsigned failed = (out.failed ? PDK_CORR_FLAG_FAILED : 0u) |
@@ -387,7 +293,7 @@ static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_in
   }
   double Kinv[3][3], F[3][3], P[3][3], A[3][3], W = 0.0;
   load_d(d, a->Kinv, i, Kinv);
-  mul_d(d, N, Kinv, F);
+  pdk_corr_mul_d(d, N, Kinv, F);
   if (disp)
     for (int c = 0; c < d; ++c)
       F[c][c] += 1.0;
@@ -395,7 +301,7 @@ static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_in
   if (k->law == PDK_LAW_JC) {
     pass1_jc(d, k, a, i, F, Kinv);
   } else if (law_eval(k, F, P, &W)) {
-    mul_d(d, P, Kinv, A);
+    pdk_corr_mul_d(d, P, Kinv, A);
     store_d(d, a->A, i, A);
     a->W[i] = W;
     a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
@@ -725,7 +631,7 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   double Kinv[3][3], F[3][3], P[3][3], e = 0.0;
   int stress_free = 0;
   load_d(d, a->Kinv, i, Kinv);
-  mul_d(d, N, Kinv, F);
+  pdk_corr_mul_d(d, N, Kinv, F);
   if (k->law == PDK_LAW_JC) {
     pdk_jc_state in, out;
     pdk_jc_result res;
