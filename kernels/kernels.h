@@ -417,7 +417,8 @@ typedef struct pdk_corr_arrays {
    *   cur4 [4 n_pad] (u_x, u_y, u_z, 1), u = x - X the displacement (u_z = 0 in 2-D); written by
    *        the driver before pass 1 (pdk_corr_pack_cur)
    *   row  [n_pad]   (double storage) or rowf [n_pad] (float storage): B_i and k_i of
-   *        pdk_corr_row / pdk_corr_rowf, written by pass 1 for its neighbours' pass 2
+   *        pdk_corr_row (with V_i, X_i, -u_i: a neighbour's whole pass-2 bond) / pdk_corr_rowf,
+   *        written by pass 1 for its neighbours' pass 2
    *   own  [4 n_pad] i's own terms from pass 1 for its pass 2: (B_i s_i + k_i u_i, zz_i), see
    *        corr_simd.h */
   const double *ref4, *cur4;

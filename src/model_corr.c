@@ -18,8 +18,9 @@
  *   Optimized kernels without hourglass stabilization (pdk_corr_pair_layout bit 32) read packed
  *   rows instead of gathering: ref4 (X, V) written here at setup, cur4 (x - X, 1) packed at the
  *   start of each force pass (its own barrier: both passes read neighbours' rows), and the
- *   pass-2 rows and own terms pass 1 writes (kernels/opt/corr_simd.h): 96 + 96 bytes per
- *   particle in double storage, 64 + 96 in float, replacing the 80 (40) bytes of kst and B.
+ *   pass-2 rows and own terms pass 1 writes (kernels/opt/corr_simd.h): 128 + 96 bytes per
+ *   particle in double storage (the 128-byte pass-2 record), 64 + 96 in float, replacing the 80
+ *   (40) bytes of kst and B.
  *   num_flagged counts particles with flag bit SPAN or INVERTED after a force pass (after setup:
  *   those whose family does not span). A flagged particle has F = A = 0 (F = 0 for SPAN only) and
  *   W = 0.

@@ -105,11 +105,14 @@ pdk_index CORR_FN(pdk_kernel_corr_shape_)(const pdk_corr_consts *k, const pdk_co
 }
 
 /* ---- Packed-row passes (pdk_corr_arrays own set: no or Silling stabilization) ---------------
- * The neighbour data of a bond are whole rows: ref4 (X, V), cur4 (u = x - X, 1), and pass 1's
- * pdk_corr_row / pdk_corr_rowf (B_j, k_j). A bond is one step of 4-lane vectors whose
- * lanes are a row's components (within the bond, not across bonds): the neighbour's X_c and the
- * scalars come as broadcast loads and its vectors as aligned loads, so there is no gather and no
- * transpose. Two accumulator sets (intact bonds alternately) halve the dependency chains.
+ * The neighbour data of a bond are whole rows: in pass 1 ref4 (X, V) and cur4 (u = x - X, 1); in
+ * pass 2 pass 1's pdk_corr_row (double storage: one 128-byte record per particle with V_j B_j,
+ * V_j k_j, X_j and -u_j, so a bond is one index and loads at fixed offsets from one address) or
+ * pdk_corr_rowf (float storage: B_j, k_j, with ref4 and cur4). A bond is one step of 4-lane
+ * vectors whose lanes are a row's components (within the bond, not across bonds): the
+ * neighbour's X_c and the scalars come as broadcast loads (pass 1: X_i - X_j as one subtraction,
+ * spread by permutes) and its vectors as aligned loads, so there is no gather and no transpose.
+ * Two accumulator sets (intact bonds alternately) halve the dependency chains.
  *
  * Pass 1 of i, per intact bond (broken bonds are skipped; w = omega V_j, e = xi, v = u_j - u_i = Y - xi, and the 4th lane
  * of v equal to 1 from cur4):
@@ -117,12 +120,14 @@ pdk_index CORR_FN(pdk_kernel_corr_shape_)(const pdk_corr_consts *k, const pdk_co
  *   U   += w v               lanes 0..d-1: u = sum w v
  *   Q   += w v v             lanes 0..d-1 summed: vv = sum w |v|^2
  * then the reference's per-particle end from D (pdk_kernel_corr_point_disp_ref: F = I + D K^-1,
- * the law, A, W, flags) and i's rows: B_i, k_i for the neighbours, and for itself
+ * the law, A, W, flags; inline for the elastic laws, rows_end) and i's rows: B_i, k_i for the
+ * neighbours, and for itself
  *   own = (B_i s + k_i u, zz),  zz = sum w |v - H e|^2 = vv - H : D,  H = D K^-1
  * (the identity holds because H K = D, K = sum w e (x) e with the same weights; zz is clamped at
  * 0 against round-off). B = A - k (F - I) (Silling) or A, k = stab_modulus_i / m_i (0 when
  * flagged), as the reference's store_pair.
- * Pass 2 of i: f_i = own_i + sum_b w (B_j e + k_j v), and the Silling energy
+ * Pass 2 of i: f_i = own_i + sum_b w (B_j e + k_j v) (double storage: omega (V_j B_j e +
+ * V_j k_j v), the volume taken from the record), and the Silling energy
  * W_i += k_i/2 zz_i (or, in the commit pass where i fails, w_damage_i += (stab_modulus/m_i)/2 zz_i)
  * as the reference's pass 2. The reference's pair term sum w [(B_i + B_j) e + (k_i + k_j) v] is
  * the same sum with i's part factored out. */
@@ -177,8 +182,8 @@ CORR_INLINE double rows_kst(const pdk_corr_consts *k, const pdk_corr_arrays *a, 
   } while (0)
 
 /* One intact bond of pass 1 into acc[0..4] = D_0, D_1, D_2, U, Q. */
-CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index b,
-                          corr_v4 Xi4, corr_v4 ui, corr_v4 *acc, int32_t *count) {
+CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index b, corr_v4 Xi4,
+                          corr_v4 ui, corr_v4 *acc, int32_t *count) {
   const pdk_index j = a->bond_j[b];
   const double *restrict rj = a->ref4 + 4 * (size_t)j;
   ++*count;
