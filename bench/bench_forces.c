@@ -19,8 +19,9 @@
  * --layout: csr (default), the general path over the CSR families; sell, the PMB and LPS passes
  *   over the sliced SELL-C-sigma layout (model layout sell, src/sell.h); stencil, the PMB and LPS
  *   stencil path (model stencil on: bond offsets outside, runs of lattice sites inside,
- *   src/model_stencil.c); repeatable, so they run side by side on the same lattice (each
- *   configuration with each layout in turn). Other models skip sell and stencil.
+ *   src/model_stencil.c; for corr the correspondence stencil passes, kernels/opt/corr_stencil.h);
+ *   repeatable, so they run side by side on the same lattice (each configuration with each layout
+ *   in turn). Other models skip sell and stencil (corr skips sell).
  *   --sell-sigma S: the sell sorting window in particles (0, the default: 32 C). The `pad%` column
  *   gives the padding share of the sell entries (0 otherwise).
  *
@@ -158,6 +159,21 @@ static double stencil_bytes_per_bond(pdk_model_kind kind, int dim, double bonds_
    * write-allocate); the force sweep reads theta and 1/m per site too */
   const double dil = 2.0 * dim * 8.0 + 8.0 + 8.0 + 2.0 * 2.0 * 8.0;
   return (breaking ? 2.0 : 0.0) + (per_particle + dil + 16.0) / bonds_per_particle;
+}
+
+/* Correspondence stencil path, modelled compulsory bytes per directed bond (both sweeps, every
+ * site's data read once per sweep, i.e. the neighbour planes stay in cache): per particle x, X
+ * read and u written to its site (write-allocate); pass 1 the site's u, V, K^-1, m, flag read,
+ * F, A, W written (write-allocate), B and k written per site (and the float copy); pass 2 the
+ * site's u, V, k, B (double for the own term, the float copy for neighbours) read, f written;
+ * with a mask 1 byte per bond and sweep. */
+static double corr_stencil_bytes_per_bond(int dim, double bpp, int fl, int masked) {
+  const double dd = dim * dim;
+  const double scatter = 2.0 * dim * 8.0 + 2.0 * dim * 8.0;
+  const double p1 = (dim + 1) * 8.0 + dd * 8.0 + 8.0 + 1.0 + 2.0 * (2.0 * dd * 8.0 + 8.0) +
+                    2.0 * (dd * 8.0 + 8.0) + (fl ? 2.0 * dd * 4.0 : 0.0);
+  const double p2 = (dim + 2) * 8.0 + dd * 8.0 + (fl ? dd * 4.0 : 0.0) + 2.0 * dim * 8.0;
+  return (masked ? 2.0 : 0.0) + (scatter + p1 + p2) / bpp;
 }
 
 /* Correspondence, modelled compulsory bytes per directed bond for one force pass (both sweeps). */
@@ -386,8 +402,10 @@ int main(int argc, char **argv) {
       const int stencil = layout == 2;
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
-      if (layout && (experiment || (models[im / num_prec] != PDK_MODEL_PMB &&
-                                    models[im / num_prec] != PDK_MODEL_LPS)))
+      if (layout &&
+          (experiment ||
+           (models[im / num_prec] != PDK_MODEL_PMB && models[im / num_prec] != PDK_MODEL_LPS &&
+            !(stencil && models[im / num_prec] == PDK_MODEL_CORRESPONDENCE))))
         continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
@@ -487,11 +505,13 @@ int main(int argc, char **argv) {
             memcpy(x[a], pdk_particles_X(p, a), (size_t)n * sizeof(double));
         }
         const double bb =
-            mo.kind == PDK_MODEL_CORRESPONDENCE
+            mo.kind == PDK_MODEL_CORRESPONDENCE && stencil
+                ? corr_stencil_bytes_per_bond(dim, bpp, prec == PDK_PRECISION_FLOAT, s00 > 0)
+            : mo.kind == PDK_MODEL_CORRESPONDENCE
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
-                : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
-                          : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+            : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
+                      : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
         printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
                "%7.2f %7.1f %8.3f %6.3f\n",

@@ -311,6 +311,15 @@ typedef struct pdk_stencil_arrays {
   const double *inv_m, *theta;   /* [num_sites + slack] */
   double *theta_site;            /* [num_sites + slack] (the array theta points to) */
   double *theta_out;             /* [n_pad] */
+  /* Correspondence (kernels/opt/corr_stencil.h): u [sites] the displacement x - X per site (0 at
+   * empty sites; the grid's x arrays hold it); per offset the reference bond vector xi_off[c][o]
+   * and influence omega_off[o], which set-up checked against every bond of that offset; per site
+   * the pass-2 data pass 1 writes: cB[r d + c] = B_rc (B = A - k (F - I) with Silling, A without;
+   * 0 at empty sites), ck = k, and with float storage cBf, the float copy neighbours read. */
+  const double *u[3];
+  const double *xi_off[3], *omega_off;
+  double *cB[9], *ck;
+  float *cBf[9];
 } pdk_stencil_arrays;
 
 /* Rows [r0, r1) of a; returns the bonds broken (committing pass). */
@@ -448,6 +457,31 @@ typedef struct pdk_corr_arrays {
   uint8_t *detach;  /* [n] semi-TL: particle detached in this round; NULL in TL */
 } pdk_corr_arrays;
 
+/* Stabilization coefficient k_i = stab_modulus_i / m_i of particle i (0 when flagged, without a
+ * weighted volume or without stabilization): the value pass 1 stores for pass 2. */
+static inline double pdk_corr_kst(const struct pdk_corr_consts *k, const pdk_corr_arrays *a,
+                                  pdk_index i) {
+  if (k->stab == 0 || a->flag[i] || !(a->m[i] > 0.0)) return 0.0; /* 0: PDK_STAB_NONE */
+  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) / a->m[i];
+}
+
+/* Silling energy sum of particle i, zz = sum w |v - H xi|^2 = vv - H : D with H = D K^-1,
+ * vv = sum w |v|^2, D = sum w v (x) xi (v = u_j - u_i; H K = D with the same weights), clamped at
+ * 0 against round-off. */
+static inline double pdk_corr_silling_zz(const int d, const double D[3][3],
+                                         const pdk_corr_arrays *a, pdk_index i, double vv) {
+  double HD = 0.0;
+  for (int r = 0; r < d; ++r)
+    for (int c = 0; c < d; ++c) {
+      double h = 0.0;
+      for (int e = 0; e < d; ++e)
+        h += D[r][e] * a->Kinv[e * d + c][i];
+      HD += h * D[r][c];
+    }
+  const double zz = vv - HD;
+  return zz > 0.0 ? zz : 0.0;
+}
+
 /* Pass-2 record of particle i (double storage), 128 bytes, 64-byte aligned (two cache lines):
  * everything a neighbour's pass-2 bond reads of i, so a bond is one index and loads at fixed
  * offsets from one address. The three columns of V_i B_i (B = A - k (F - I) for Silling, A
@@ -528,6 +562,26 @@ void pdk_kernel_corr_pass1_avx512(const pdk_corr_consts *k, const pdk_corr_array
                                   pdk_index i0, pdk_index i1);
 void pdk_kernel_corr_pass2_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                   pdk_index i0, pdk_index i1);
+
+/* Correspondence passes 1 and 2 on the lattice (stencil layout; kernels/opt/corr_stencil.h, driven
+ * by src/model_stencil.c): rows r0 .. r1-1 of the site grid a; c is the model's arrays (the
+ * per-particle end writes F, A, W, flags, history through it; its pass-2 arrays are NULL).
+ * Baseline ISA, AVX2 + FMA, AVX-512 variants; results equal the general path's up to the order
+ * of the family sums (round-off, tests/t163). */
+typedef void (*pdk_corr_stencil_fn)(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                    const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass1_base(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                        const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass2_base(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                        const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass1_avx2(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                        const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass2_avx2(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                        const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass1_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                          const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+void pdk_kernel_corr_stencil_pass2_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                          const pdk_stencil_arrays *a, int64_t r0, int64_t r1);
 
 /* Bond failure (commit passes): the s0 rule (when s0 != NULL) and, with break_failed, every bond
  * with a failed end; sets changed[i] to 3 for rows that lost bonds, 0 otherwise. Returns the

@@ -27,6 +27,8 @@ static void fill_ref(pdk_kernel_table *t) {
   t->pmb_stencil = pdk_kernel_pmb_stencil_base;
   t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_base;
   t->lps_stencil_force = pdk_kernel_lps_stencil_force_base;
+  t->corr_stencil_pass1 = pdk_kernel_corr_stencil_pass1_base;
+  t->corr_stencil_pass2 = pdk_kernel_corr_stencil_pass2_base;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {
@@ -63,6 +65,8 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->pmb_stencil = pdk_kernel_pmb_stencil_avx2;
     t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx2;
     t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx2;
+    t->corr_stencil_pass1 = pdk_kernel_corr_stencil_pass1_avx2;
+    t->corr_stencil_pass2 = pdk_kernel_corr_stencil_pass2_avx2;
   }
   if (isa & PDK_ISA_AVX512) {
     t->pmb_force = pdk_kernel_pmb_force_avx512;
@@ -75,6 +79,8 @@ static void fill_simd(pdk_kernel_table *t, unsigned isa) {
     t->pmb_stencil = pdk_kernel_pmb_stencil_avx512;
     t->lps_stencil_dilation = pdk_kernel_lps_stencil_dilation_avx512;
     t->lps_stencil_force = pdk_kernel_lps_stencil_force_avx512;
+    t->corr_stencil_pass1 = pdk_kernel_corr_stencil_pass1_avx512;
+    t->corr_stencil_pass2 = pdk_kernel_corr_stencil_pass2_avx512;
   }
 }
 

@@ -130,11 +130,27 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
   PDK_CHECK((unsigned)o->stencil <= PDK_STENCIL_ON, ctx, PDK_ERR_ARG,
             "stencil mode %d unknown; use off (0), auto (1) or on (2)", (int)o->stencil);
   PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind == PDK_MODEL_PMB ||
-                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence),
+                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence) ||
+                o->kind == PDK_MODEL_CORRESPONDENCE,
             ctx, PDK_ERR_UNSUPPORTED,
-            "%s model%s: the stencil path is implemented for the pmb and lps models only (lps "
-            "with LAMMPS's influence function); use stencil off or auto",
+            "%s model%s: the stencil path is implemented for the pmb, lps (with LAMMPS's "
+            "influence function) and correspondence models only; use stencil off or auto",
             name, o->lps_use_influence ? " with lps_use_influence" : "");
+  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
+                o->connectivity == PDK_CONNECTIVITY_TL,
+            ctx, PDK_ERR_UNSUPPORTED,
+            "correspondence model with %s connectivity: the stencil path implements tl only (%s); "
+            "use stencil off or auto, or connectivity tl",
+            o->connectivity == PDK_CONNECTIVITY_UL ? "ul" : "semi_tl",
+            o->connectivity == PDK_CONNECTIVITY_UL ? "ul rebuilds its families in the current "
+                                                     "configuration"
+                                                   : "semi_tl compacts its bond list");
+  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
+                o->stabilization != PDK_STAB_HOURGLASS,
+            ctx, PDK_ERR_UNSUPPORTED,
+            "correspondence model with hourglass stabilization: the stencil path implements "
+            "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
+            "stencil off or auto, or stabilization silling");
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
@@ -295,6 +311,10 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   case PDK_MODEL_CORRESPONDENCE:
     m->ops = opts->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul
                                                        : &pdk_model_ops_corr;
+    if (opts->connectivity == PDK_CONNECTIVITY_UL && opts->stencil != PDK_STENCIL_OFF)
+      snprintf(m->stencil_why, sizeof m->stencil_why,
+               "correspondence with ul connectivity (its families are rebuilt in the current "
+               "configuration)");
     break;
   }
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,

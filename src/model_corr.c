@@ -84,6 +84,7 @@
 
 #include "kernels.h"
 #include "model_impl.h"
+#include "model_stencil.h"
 
 /* Particles per block: the unit of work of both passes and of the energy reduction. A constant,
  * not the thread count, so the reduction order never depends on how many threads run. */
@@ -421,6 +422,44 @@ static int corr_setup(pdk_model *m) {
     flagged += c->shape(k, &a, i0, i1);
   }
   m->num_flagged = flagged;
+
+  /* model.stencil: the lattice layout (src/model_stencil.c) for TL with no or Silling
+   * stabilization; K^-1 and m above stay the general path's. When it is taken the packed rows
+   * are not needed. */
+  if (o->stencil != PDK_STENCIL_OFF) {
+    if (o->connectivity != PDK_CONNECTIVITY_TL || o->stabilization == PDK_STAB_HOURGLASS) {
+      snprintf(m->stencil_why, sizeof m->stencil_why, "%s",
+               o->connectivity != PDK_CONNECTIVITY_TL
+                   ? "correspondence with semi_tl connectivity (its bond list is compacted)"
+                   : "correspondence with hourglass stabilization (the stencil passes implement "
+                     "none and silling)");
+      PDK_CHECK(o->stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
+                "correspondence model: stencil on, but the stencil path does not apply: %s; use "
+                "stencil auto (the general path then) or off",
+                m->stencil_why);
+    } else {
+      PDK_CALL(pdk_stencil_model_setup(m, NULL, 0));
+      PDK_CALL(pdk_stencil_corr_setup(m, c->bond_omega, o->precision == PDK_PRECISION_FLOAT));
+    }
+  }
+  if (m->stencil) {
+    pdk_free_aligned(c->ref4);
+    pdk_free_aligned(c->cur4);
+    pdk_free_aligned(c->own);
+    pdk_free_aligned(c->row);
+    pdk_free_aligned(c->rowf);
+    pdk_free_aligned(c->pair_d);
+    pdk_free_aligned(c->pair_f);
+    c->ref4 = c->cur4 = c->own = NULL;
+    c->row = NULL;
+    c->rowf = NULL;
+    c->pair_d = c->pair_f = NULL;
+    c->kst = NULL;
+    for (int t = 0; t < 9; ++t) {
+      c->B[t] = c->G[t] = NULL;
+      c->Bf[t] = c->Gf[t] = NULL;
+    }
+  }
   return PDK_SUCCESS;
 }
 
@@ -628,9 +667,12 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   const int dim = k->dim;
   double *cur4 = c->cur4;
 
+  pdk_stencil *st = m->stencil;
+  if (st) PDK_CALL(pdk_stencil_corr_passes(m, st, k, &a));
+
 #pragma omp parallel default(none)                                                              \
-    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2, dim, cur4)  \
-    reduction(+ : flagged, num_failed) num_threads(nt)
+    shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2, dim, cur4,  \
+               st) reduction(+ : flagged, num_failed) num_threads(nt)
   {
     if (cur4) {
       /* the displacement rows pass 1 and pass 2 read from neighbours (implicit barrier) */
@@ -640,16 +682,18 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
         pdk_corr_pack_cur(dim, a.X, a.x, cur4, i0, i1);
       }
     }
+    if (!st) {
 #pragma omp for schedule(static)
-    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      CORR_BLOCK_RANGE(blk, n, i0, i1);
-      pass1(k, &a, i0, i1);
+      for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+        CORR_BLOCK_RANGE(blk, n, i0, i1);
+        pass1(k, &a, i0, i1);
+      }
     }
     /* implicit barrier: pass 2 reads A and F of neighbours in other blocks */
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);
-      pass2(k, &a, i0, i1);
+      if (!st) pass2(k, &a, i0, i1);
       double e = 0.0;
       for (pdk_index i = i0; i < i1; ++i) {
         e += volume[i] * W[i];
@@ -694,6 +738,7 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       double released = 0.0;
       PDK_CALL(corr_after_breaking(m, k, broken, &released));
       if (energy) *energy -= released;
+      if (m->stencil) pdk_stencil_mask_rows(m, m->stencil, c->changed);
     }
   }
   return PDK_SUCCESS;

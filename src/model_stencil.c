@@ -1,4 +1,5 @@
-/* The stencil layout of a particle set on a regular lattice, and the PMB force pass over it.
+/* The stencil layout of a particle set on a regular lattice, and the PMB, LPS and correspondence
+ * passes over it (correspondence: the section at the end of this file).
  *
  * Detection (pdk_stencil_create). The spacing h is the shortest bond of the families; the origin
  * is the smallest reference coordinate per axis. Every particle must sit within 1e-6 h of a lattice
@@ -45,6 +46,7 @@ struct pdk_stencil {
   int64_t *offset;               /* [num_offsets] ascending */
   int64_t num_sites, num_rows;
   int64_t *row_lo, *row_hi;      /* [num_rows] */
+  int64_t tile;                  /* rows per tile along y (3-D), see stencil_rows */
   pdk_index *site_particle;      /* [num_sites] */
   int64_t *particle_site;        /* [n] */
   int64_t lut_min;               /* lut[d - lut_min]: offset index of site offset d, or -1 */
@@ -57,6 +59,11 @@ struct pdk_stencil {
   uint8_t *changed;              /* [num_sites] when bonds can break */
   unsigned long version;         /* m->bond_state_version the mask holds */
   double *inv_m, *theta;         /* LPS [num_sites + slack]: 1/m, dilation (0 at empty sites) */
+  /* correspondence: xi and omega per offset [num_offsets]; per site [num_sites + slack] B (d*d
+   * arrays), its float copy (float storage) and k; x then holds the displacements */
+  double *xi_off[3], *omega_off;
+  double *cB[9], *ck;
+  float *cBf[9];
 };
 
 void pdk_stencil_destroy(pdk_stencil **stp) {
@@ -80,6 +87,14 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
   pdk_free_aligned(st->changed);
   pdk_free_aligned(st->inv_m);
   pdk_free_aligned(st->theta);
+  for (int a = 0; a < 3; ++a)
+    free(st->xi_off[a]);
+  free(st->omega_off);
+  for (int t = 0; t < 9; ++t) {
+    pdk_free_aligned(st->cB[t]);
+    pdk_free_aligned(st->cBf[t]);
+  }
+  pdk_free_aligned(st->ck);
   free(st);
   *stp = NULL;
 }
@@ -93,6 +108,11 @@ size_t pdk_stencil_memory_bytes(const pdk_stencil *st) {
   if (st->s0) b += ns * (sizeof(double) + 1);
   if (st->mask) b += ns * (size_t)st->num_offsets;
   if (st->inv_m) b += 2 * ns * sizeof(double);
+  for (int t = 0; t < 9; ++t) {
+    if (st->cB[t]) b += ns * sizeof(double);
+    if (st->cBf[t]) b += ns * sizeof(float);
+  }
+  if (st->ck) b += ns * sizeof(double);
   return b;
 }
 
@@ -153,6 +173,46 @@ static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
     }
   }
   st->version = m->bond_state_version;
+}
+
+/* The row list: each grid row from its first to its last occupied site. 3-D: in tiles of `tile`
+ * rows along y, z outer within a tile, so the 2P + 1 planes of neighbour rows a tile reads (about
+ * 768 KiB for site_bytes bytes read per neighbour site) stay in the L2 cache while z advances;
+ * each row is then read from memory about (tile + 2P) / tile times instead of 2P + 1. The order
+ * does not change any result. Returns -1 when out of memory. */
+static int stencil_rows(pdk_stencil *st, double site_bytes) {
+  const int64_t nx = st->nx, ny = st->ny;
+  const int pad = st->pad, dim = st->dim;
+  const int64_t nrow_max = ny * st->nz;
+  if (!st->row_lo) {
+    st->row_lo = malloc((size_t)nrow_max * sizeof *st->row_lo);
+    st->row_hi = malloc((size_t)nrow_max * sizeof *st->row_hi);
+    if (!st->row_lo || !st->row_hi) return -1;
+  }
+  const double row_bytes = (double)nx * site_bytes;
+  int64_t tile = (int64_t)(768.0 * 1024.0 / ((2 * pad + 1) * row_bytes)) - 2 * pad;
+  if (tile < 2 * pad + 1) tile = 2 * pad + 1;
+  if (dim == 2 || tile > ny) tile = ny;
+  int64_t nr = 0;
+  for (int64_t row_k = 0; row_k < nrow_max; ++row_k) {
+    /* row_k counts rows in tile order: tile, then z, then y within the tile */
+    const int64_t y0 = (row_k / (tile * st->nz)) * tile;
+    const int64_t th = y0 + tile <= ny ? tile : ny - y0; /* this tile's height */
+    const int64_t in = row_k - y0 * st->nz;
+    const int64_t iz = in / th, iy = y0 + in % th;
+    const int64_t row = iy + ny * iz;
+    const int64_t s0 = row * nx;
+    int64_t lo = -1, hi = -1;
+    for (int64_t ix = 0; ix < nx; ++ix)
+      if (st->site_particle[s0 + ix] >= 0) {
+        if (lo < 0) lo = s0 + ix;
+        hi = s0 + ix + 1;
+      }
+    if (lo >= 0) st->row_lo[nr] = lo, st->row_hi[nr] = hi, ++nr;
+  }
+  st->num_rows = nr;
+  st->tile = tile;
+  return 0;
 }
 
 #define WHY(...)                                                                                   \
@@ -336,38 +396,9 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     st->volume[s] = i >= 0 ? V[i] : 0.0;
   }
 
-  /* 4. rows: each grid row from its first to its last occupied site. 3-D: in tiles of `tile` rows
-   * along y, z outer within a tile, so the 2P + 1 planes of neighbour rows a tile reads (about
-   * 768 KiB) stay in the L2 cache while z advances; each row is then read from memory about
-   * (tile + 2P) / tile times instead of 2P + 1. The order does not change any result. */
-  {
-    const int64_t nrow_max = ny * st->nz;
-    st->row_lo = malloc((size_t)nrow_max * sizeof *st->row_lo);
-    st->row_hi = malloc((size_t)nrow_max * sizeof *st->row_hi);
-    PDK_CHECK_GOTO(st->row_lo && st->row_hi, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-    const double row_bytes = (double)nx * 8.0 * (2 * dim + 1);
-    int64_t tile = (int64_t)(768.0 * 1024.0 / ((2 * pad + 1) * row_bytes)) - 2 * pad;
-    if (tile < 2 * pad + 1) tile = 2 * pad + 1;
-    if (dim == 2 || tile > ny) tile = ny;
-    int64_t nr = 0;
-    for (int64_t row_k = 0; row_k < nrow_max; ++row_k) {
-      /* row_k counts rows in tile order: tile, then z, then y within the tile */
-      const int64_t y0 = (row_k / (tile * st->nz)) * tile;
-      const int64_t th = y0 + tile <= ny ? tile : ny - y0; /* this tile's height */
-      const int64_t in = row_k - y0 * st->nz;
-      const int64_t iz = in / th, iy = y0 + in % th;
-      const int64_t row = iy + ny * iz;
-      const int64_t s0 = row * nx;
-      int64_t lo = -1, hi = -1;
-      for (int64_t ix = 0; ix < nx; ++ix)
-        if (st->site_particle[s0 + ix] >= 0) {
-          if (lo < 0) lo = s0 + ix;
-          hi = s0 + ix + 1;
-        }
-      if (lo >= 0) st->row_lo[nr] = lo, st->row_hi[nr] = hi, ++nr;
-    }
-    st->num_rows = nr;
-  }
+  /* 4. rows (stencil_rows) */
+  PDK_CHECK_GOTO(stencil_rows(st, 8.0 * (2 * dim + 1)) == 0, ctx, PDK_ERR_MEMORY,
+                 "stencil: out of memory");
 
   /* 5. float storage: one float length per offset */
   if (bond_r0) {
@@ -576,5 +607,195 @@ int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k
     if (commit) STENCIL_SYNC();
   }
   *broken_out = broken;
+  return PDK_SUCCESS;
+}
+
+/* ---- correspondence ----------------------------------------------------------------------------
+ * Set-up takes xi and omega per offset from the first bond of each offset and checks every other
+ * bond against them (a particle off its lattice point by round-off only: |xi_b - xi_o| <=
+ * STENCIL_CORR_XI_TOL h per component, |omega_b - omega_o| <= STENCIL_CORR_OMEGA_RTOL omega_o);
+ * K^-1 and m stay the general path's (computed at set-up from the families). Per site: the
+ * displacement in the x arrays, the pass-2 data cB, ck (and cBf with float storage). The passes
+ * (pdk_stencil_corr_passes): scatter u, pass 1 over the rows, barrier, pass 2 over the rows, in
+ * one parallel region. Bond breaking stays the general path's (over the families, after pass 2);
+ * the driver then refreshes the mask of the rows that lost bonds (pdk_stencil_mask_rows). */
+#define STENCIL_CORR_XI_TOL 1e-10
+#define STENCIL_CORR_OMEGA_RTOL 1e-9
+
+int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_storage) {
+  pdk_stencil *st = m->stencil;
+  pdk_ctx *ctx = m->ctx;
+  if (!st) return PDK_SUCCESS;
+  const int dim = st->dim, no = st->num_offsets;
+  const pdk_index n = st->n;
+  const int64_t *ids = pdk_particles_id(m->p);
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int a = 0; a < dim; ++a)
+    X[a] = pdk_particles_X(m->p, a);
+  /* the bond-breaking copies of the PMB pass are not used: breaking stays the general path's */
+  pdk_free_aligned(st->s0);
+  pdk_free_aligned(st->changed);
+  st->s0 = NULL;
+  st->changed = NULL;
+  const size_t nof = (size_t)(no > 0 ? no : 1);
+  for (int a = 0; a < dim; ++a) {
+    st->xi_off[a] = malloc(nof * sizeof(double));
+    PDK_CHECK(st->xi_off[a], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+  }
+  st->omega_off = malloc(nof * sizeof(double));
+  uint8_t *seen = calloc(nof, 1);
+  PDK_CHECK(st->omega_off && seen, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+  char *why = m->stencil_why;
+  const size_t why_len = sizeof m->stencil_why;
+  int bad = 0;
+  for (pdk_index i = 0; i < n && !bad; ++i)
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1] && !bad; ++b) {
+      const pdk_index j = bj[b];
+      const int o = stencil_offset_of(st, st->particle_site[i], st->particle_site[j]);
+      double xi[3] = {0, 0, 0}, r2 = 0.0;
+      for (int a = 0; a < dim; ++a) {
+        xi[a] = X[a][j] - X[a][i];
+        r2 += xi[a] * xi[a];
+      }
+      if (!seen[o]) {
+        seen[o] = 1;
+        for (int a = 0; a < dim; ++a)
+          st->xi_off[a][o] = xi[a];
+        st->omega_off[o] = bond_omega[b];
+        continue;
+      }
+      const double tol = STENCIL_CORR_XI_TOL * sqrt(r2);
+      for (int a = 0; a < dim; ++a)
+        if (fabs(xi[a] - st->xi_off[a][o]) > tol) {
+          snprintf(why, why_len,
+                   "correspondence: the bond from particle id %lld to %lld differs from another "
+                   "bond along the same lattice offset by %.3g along axis %c (more than %g of its "
+                   "length); the correspondence stencil takes one reference bond per offset, so "
+                   "particles must sit on their lattice points to round-off",
+                   (long long)ids[i], (long long)ids[j], fabs(xi[a] - st->xi_off[a][o]), "xyz"[a],
+                   STENCIL_CORR_XI_TOL);
+          bad = 1;
+          break;
+        }
+      if (!bad && fabs(bond_omega[b] - st->omega_off[o]) >
+                      STENCIL_CORR_OMEGA_RTOL * fabs(st->omega_off[o])) {
+        snprintf(why, why_len,
+                 "correspondence: the influence weight of the bond from particle id %lld to %lld "
+                 "(%.17g) differs from another bond along the same lattice offset (%.17g); the "
+                 "correspondence stencil takes one weight per offset",
+                 (long long)ids[i], (long long)ids[j], bond_omega[b], st->omega_off[o]);
+        bad = 1;
+      }
+    }
+  free(seen); /* every offset is some bond's (the offsets are the union of the families') */
+  if (bad) {
+    pdk_stencil_destroy(&m->stencil);
+    PDK_CHECK(m->opts.stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
+              "correspondence model: stencil on, but the stencil path does not apply: %s; use "
+              "stencil auto (the general path then) or off",
+              why);
+    return PDK_SUCCESS;
+  }
+  const size_t ns_all = (size_t)(st->num_sites + PDK_STENCIL_SLACK);
+  for (int t = 0; t < dim * dim; ++t) {
+    st->cB[t] = pdk_alloc_aligned(ns_all, sizeof(double));
+    PDK_CHECK(st->cB[t], ctx, PDK_ERR_MEMORY, "stencil: out of memory for a grid of %lld sites",
+              (long long)st->num_sites);
+    memset(st->cB[t], 0, ns_all * sizeof(double));
+    if (float_storage) {
+      st->cBf[t] = pdk_alloc_aligned(ns_all, sizeof(float));
+      PDK_CHECK(st->cBf[t], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+      memset(st->cBf[t], 0, ns_all * sizeof(float));
+    }
+  }
+  /* tiles for the pass-2 neighbour data: u, V, k and B (double, or its float copy) */
+  PDK_CHECK(stencil_rows(st, 8.0 * (dim + 2) + (float_storage ? 4.0 : 8.0) * dim * dim) == 0, ctx,
+            PDK_ERR_MEMORY, "stencil: out of memory");
+  st->ck = pdk_alloc_aligned(ns_all, sizeof(double));
+  PDK_CHECK(st->ck, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+  memset(st->ck, 0, ns_all * sizeof(double));
+  /* the x arrays hold displacements: 0 at empty sites and in the slack */
+  for (int a = 0; a < dim; ++a)
+    memset(st->x[a], 0, ns_all * sizeof(double));
+  return PDK_SUCCESS;
+}
+
+void pdk_stencil_mask_rows(pdk_model *m, pdk_stencil *st, const uint8_t *changed) {
+  if (!st || !st->mask) return;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const uint8_t *alive = m->bond_alive;
+  const pdk_index n = st->n;
+  const int64_t ns = st->num_sites;
+  const pdk_stencil *cst = st;
+  uint8_t *mask = st->mask;
+#pragma omp parallel for default(none) shared(n, bs, bj, alive, cst, mask, ns, changed)            \
+    schedule(static) num_threads(m->ctx->num_threads)
+  for (pdk_index i = 0; i < n; ++i) {
+    if (!(changed[i] & 2u)) continue;
+    const int64_t si = cst->particle_site[i];
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
+      mask[(int64_t)o * ns + si] = alive ? alive[b] : 1;
+    }
+  }
+}
+
+int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts *k,
+                            const pdk_corr_arrays *c) {
+  pdk_ctx *ctx = m->ctx;
+  const int dim = st->dim;
+  PDK_CHECK(st->ck && st->omega_off, ctx, PDK_ERR_ARG,
+            "stencil: the correspondence arrays were not set up");
+  if (st->mask && st->version != m->bond_state_version) stencil_load_mask(m, st);
+  pdk_stencil_arrays arr;
+  memset(&arr, 0, sizeof arr);
+  arr.dim = dim;
+  arr.num_offsets = st->num_offsets;
+  arr.offset = st->offset;
+  arr.num_sites = st->num_sites;
+  arr.num_rows = st->num_rows;
+  arr.row_lo = st->row_lo;
+  arr.row_hi = st->row_hi;
+  arr.site_particle = st->site_particle;
+  arr.volume = st->volume;
+  arr.mask = st->mask;
+  for (int a = 0; a < dim; ++a) {
+    arr.u[a] = st->x[a];
+    arr.xi_off[a] = st->xi_off[a];
+  }
+  arr.omega_off = st->omega_off;
+  for (int t = 0; t < dim * dim; ++t) {
+    arr.cB[t] = st->cB[t];
+    arr.cBf[t] = st->cBf[t];
+  }
+  arr.ck = st->ck;
+  const pdk_stencil_arrays *a = &arr;
+  const pdk_stencil *cst = st;
+  const pdk_corr_stencil_fn pass1 = ctx->kernels.corr_stencil_pass1;
+  const pdk_corr_stencil_fn pass2 = ctx->kernels.corr_stencil_pass2;
+  const pdk_index n = st->n;
+  const int64_t num_rows = st->num_rows;
+  double *gu[3] = {st->x[0], st->x[1], dim == 3 ? st->x[2] : NULL};
+#pragma omp parallel default(none) num_threads(ctx->num_threads)                                   \
+    shared(n, cst, c, gu, dim, num_rows, pass1, pass2, k, a)
+  {
+#pragma omp for schedule(static)
+    for (pdk_index i = 0; i < n; ++i) {
+      const int64_t s = cst->particle_site[i];
+      for (int d = 0; d < dim; ++d)
+        gu[d][s] = c->x[d][i] - c->X[d][i];
+    }
+    /* implicit barrier: every site's u is in place before a neighbour reads it */
+#pragma omp for schedule(static)
+    for (int64_t r = 0; r < num_rows; ++r)
+      pass1(k, c, a, r, r + 1);
+      /* implicit barrier: pass 2 reads the neighbours' B and k */
+#pragma omp for schedule(static)
+    for (int64_t r = 0; r < num_rows; ++r)
+      pass2(k, c, a, r, r + 1);
+  }
   return PDK_SUCCESS;
 }

@@ -1,5 +1,6 @@
-/* Private: the stencil layout of a particle set on a regular lattice, for the PMB force pass
- * (src/model_stencil.c builds it and drives kernels/opt/pmb_stencil.h; src/model_pmb.c calls it). */
+/* Private: the stencil layout of a particle set on a regular lattice, for the PMB, LPS and
+ * correspondence passes (src/model_stencil.c builds it and drives kernels/opt/pmb_stencil.h,
+ * lps_stencil.h, corr_stencil.h; src/model_pmb.c, model_lps.c, model_corr.c call it). */
 #ifndef PDK_MODEL_STENCIL_H
 #define PDK_MODEL_STENCIL_H
 
@@ -32,6 +33,20 @@ int pdk_stencil_lps_setup(pdk_model *m, pdk_stencil *st, const double *inv_m);
  * field), "f", w and s0_next as pdk_stencil_pmb_force. */
 int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k, double *theta,
                           double *s0_next, double *w, pdk_bond_index *broken);
+
+/* Correspondence: xi and omega per offset from the families (bond_omega: the model's [num_bonds])
+ * and the per-site pass-2 arrays (float_storage: also their float copy); once, after
+ * pdk_stencil_model_setup built m->stencil. When some bond's xi or omega differs from its
+ * offset's beyond round-off, the stencil does not apply: m->stencil is destroyed and the reason
+ * recorded (stencil on: PDK_ERR_UNSUPPORTED with it). */
+int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_storage);
+/* Correspondence passes 1 and 2 over the grid (one parallel region): the per-particle outputs
+ * through c (the model's arrays, pass-2 arrays NULL), "f" included. */
+int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts *k,
+                            const pdk_corr_arrays *c);
+/* The mask entries of the particles with changed[i] & 2 (rows that lost bonds in this commit
+ * pass, pdk_kernel_corr_break_ref) from m->bond_alive. */
+void pdk_stencil_mask_rows(pdk_model *m, pdk_stencil *st, const uint8_t *changed);
 
 /* Memory the layout holds [bytes]. */
 size_t pdk_stencil_memory_bytes(const pdk_stencil *st);

@@ -77,6 +77,11 @@ typedef struct pdk_kernel_table {
                                const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
   pdk_bond_index (*lps_stencil_force)(const struct pdk_lps_consts *k,
                                       const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  /* Correspondence passes 1 and 2 in the stencil layout (kernels/opt/corr_stencil.h). */
+  void (*corr_stencil_pass1)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *c,
+                             const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  void (*corr_stencil_pass2)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *c,
+                             const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
 } pdk_kernel_table;
 
 struct pdk_ctx {

@@ -1290,10 +1290,12 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if (has(ld, "model.layout")) m->layout = (pdk_layout)mo->layout;
   if (has(ld, "model.stencil")) {
     m->stencil = (pdk_stencil_mode)mo->stencil;
-    REQUIRE(ld, m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB || m->kind == PDK_MODEL_LPS,
+    REQUIRE(ld,
+            m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB || m->kind == PDK_MODEL_LPS ||
+                m->kind == PDK_MODEL_CORRESPONDENCE,
             "model.stencil",
-            "on needs model.kind pmb or lps (the stencil path exists for those models only; "
-            "model.kind is %s); use auto or off",
+            "on needs model.kind pmb, lps or correspondence (the stencil path exists for those "
+            "models only; model.kind is %s); use auto or off",
             kname);
   }
   REQUIRE(ld, isfinite(mo->critical_stretch) && mo->critical_stretch >= 0, "model.critical_stretch",

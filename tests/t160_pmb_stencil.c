@@ -19,13 +19,13 @@
  * Every case runs for PMB, then for LPS.
  *
  * Cases: cubes with awkward row lengths (1 particle; 3, 5, 7, 9: the SIMD widths 4 and 8 plus or
- * minus one; 63 and 65; rows of 130, walked in tiles of rows), in lattice and in Morton order; a 2-D plate
- * with a hole; a 2-D plate with a pre-crack (bonds missing from interior families); bond breaking
- * over several committing passes (double and float storage); each kernel variant the CPU has
- * (baseline, AVX2, AVX-512); 1 vs 2 threads bitwise; a short explicit run (trajectories within
+ * minus one; 63 and 65; rows of 130, walked in tiles of rows), in lattice and in Morton order; a
+ * 2-D plate with a hole; a 2-D plate with a pre-crack (bonds missing from interior families); bond
+ * breaking over several committing passes (double and float storage); each kernel variant the CPU
+ * has (baseline, AVX2, AVX-512); 1 vs 2 threads bitwise; a short explicit run (trajectories within
  * 1e-9 of the displacement scale: round-off amplified over 200 steps stays far below); refusals:
- * on for a jittered lattice and for lps, auto falling back there with the general path's bits.
- * labels: unit physics threads */
+ * on for a jittered lattice and for lps with lps_use_influence, auto falling back there with the
+ * general path's bits. labels: unit physics threads */
 #include <float.h>
 #include <stdint.h>
 
@@ -393,12 +393,9 @@ static void refusals(pdk_ctx *ctx) {
   run_free(&g);
   run_free(&a);
   o = opts(0, 0.0, PDK_STENCIL_ON);
-  o.kind = PDK_MODEL_CORRESPONDENCE;
-  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "pmb and lps models only");
-  o = opts(0, 0.0, PDK_STENCIL_ON);
   o.kind = PDK_MODEL_LPS;
   o.lps_use_influence = 1;
-  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "pmb and lps models only");
+  T_FAILS(ctx, pdk_model_create(p, fam, &o, &m), PDK_ERR_UNSUPPORTED, "correspondence models only");
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
   /* a lattice: auto takes the stencil */
@@ -493,14 +490,7 @@ static void scene_key(pdk_ctx *ctx) {
   T_ASSERT(pdk_scene_load(ctx, path, bad, 1, &sc) != 0 &&
                strstr(pdk_ctx_error_message(ctx), "stencil"),
            "model.stencil=yes accepted or not named: %s", pdk_ctx_error_message(ctx));
-  const char *corr[] = {"model.stencil=on", "model.kind=correspondence",
-                        "material.shear_modulus=4e8"};
-  pdk_ctx_error_clear(ctx);
-  T_ASSERT(pdk_scene_load(ctx, path, corr, 3, &sc) != 0 &&
-               strstr(pdk_ctx_error_message(ctx), "model.stencil"),
-           "model.stencil: on with correspondence accepted or the key not named: %s",
-           pdk_ctx_error_message(ctx));
-  pdk_scene_destroy(&sc);
+  pdk_scene_destroy(&sc); /* correspondence with stencil on: tests/t163_corr_stencil.c */
 }
 
 int main(void) {

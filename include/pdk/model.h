@@ -141,8 +141,10 @@ typedef enum pdk_layout {
                          summation order; bond failure bit for bit. Speed against csr:
                          bench/README.md, "Force loops" (an option, not the default) */
 } pdk_layout;
-/* The stencil path of the PMB and LPS force passes (src/model_stencil.c, kernels/opt/pmb_stencil.h,
- * lps_stencil.h; LPS with LAMMPS's influence function only): when the
+/* The stencil path of the PMB, LPS and correspondence force passes (src/model_stencil.c,
+ * kernels/opt/pmb_stencil.h, lps_stencil.h, corr_stencil.h; LPS with LAMMPS's influence function
+ * only; correspondence with tl connectivity and stabilization none or silling, xi and omega taken
+ * per offset, so particles on their lattice points to round-off): when the
  * particles sit on a simple cubic (3-D) or square (2-D) lattice aligned with the axes (reference
  * positions origin + integer index x spacing within 1e-6 spacings, one particle per site), every
  * family is a subset of one fixed list of site offsets, and the pass loops over the offsets outside
@@ -155,8 +157,8 @@ typedef enum pdk_stencil_mode {
   PDK_STENCIL_OFF = 0,  /* the general (CSR) path */
   PDK_STENCIL_AUTO = 1, /* the stencil path when it applies, the general path otherwise */
   PDK_STENCIL_ON = 2    /* the stencil path; model creation fails, saying why, when it does not
-                           apply (not a lattice, model kind other than pmb or lps, several
-                           materials) */
+                           apply (not a lattice, several materials for pmb and lps,
+                           correspondence with semi_tl, ul or hourglass stabilization) */
 } pdk_stencil_mode;
 
 /* One material of a multi-material body (pdk_model_opts.materials). */
@@ -237,8 +239,8 @@ typedef struct pdk_model_opts {
   /* sell: the sorting window in particles, rounded up to a multiple of C; 0 (default): 32 C (256
    * with AVX-512). C or less: no sorting. */
   int sell_sigma;
-  /* PMB and LPS force passes on a regular lattice (see pdk_stencil_mode); default off. Other
-   * kinds accept off and auto (which then means off) and refuse on. */
+  /* PMB, LPS and correspondence force passes on a regular lattice (see pdk_stencil_mode); default
+   * off. lps with lps_use_influence accepts off and auto (which then means off), refuses on. */
   pdk_stencil_mode stencil;
 } pdk_model_opts;
 

@@ -145,12 +145,6 @@ CORR_INLINE corr_v4 cv_bcast(const double *p) {
   return (corr_v4)v;
 }
 
-/* Stabilization coefficient of particle i (the reference's stab_coef). */
-CORR_INLINE double rows_kst(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i) {
-  if (k->stab == PDK_STAB_NONE || a->flag[i] || !(a->m[i] > 0.0)) return 0.0;
-  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) / a->m[i];
-}
-
 /* The intact bonds of row i in order, alternately into the accumulators p and q (BOND(b, acc)):
  * broken bonds are skipped, so a row with broken bonds gives bit for bit what the same row
  * without them gives (semi-TL's compacted list against the full one). */
@@ -205,7 +199,7 @@ CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
                             const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
                             const corr_v4 *acc, const double A[3][3], const double F[3][3]) {
   const int silling = k->stab == PDK_STAB_SILLING;
-  const double ki = rows_kst(k, a, i);
+  const double ki = pdk_corr_kst(k, a, i);
   double B[3][3] = {{0}};
   for (int r = 0; r < d; ++r)
     for (int c = 0; c < d; ++c)
@@ -220,19 +214,8 @@ CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
     }
     own[r] = f;
   }
-  double zz = 0.0;
-  if (silling) {
-    double HD = 0.0;
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c < d; ++c) {
-        double h = 0.0;
-        for (int e = 0; e < d; ++e)
-          h += D[r][e] * a->Kinv[e * d + c][i];
-        HD += h * D[r][c];
-      }
-    zz = (acc[4][0] + acc[4][1] + acc[4][2]) - HD;
-    zz = zz > 0.0 ? zz : 0.0;
-  }
+  const double zz =
+      silling ? pdk_corr_silling_zz(d, D, a, i, acc[4][0] + acc[4][1] + acc[4][2]) : 0.0;
   own[3] = zz;
   if (fl) {
     pdk_corr_rowf *restrict R = a->rowf + i;
@@ -364,7 +347,7 @@ CORR_INLINE void rp2_row(const int d, const int has_alive, const int fl, const i
     a->f[r][i] = own[r] + p[r];
   if (stab) {
     const double zz = own[3];
-    a->W[i] += 0.5 * rows_kst(k, a, i) * zz;
+    a->W[i] += 0.5 * pdk_corr_kst(k, a, i) * zz;
     if ((a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
       a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
   }

@@ -45,39 +45,8 @@
  * the same bits.
  */
 #include <float.h>
-#include <string.h>
 
-typedef double sc_vd __attribute__((vector_size(SC_W * 8)));
-typedef long long sc_vl __attribute__((vector_size(SC_W * 8)));
-typedef uint8_t sc_vb __attribute__((vector_size(SC_W)));
-
-#define SC_INLINE static inline __attribute__((always_inline))
-#define SC_B (SC_U * SC_W) /* sites per block */
-_Static_assert(SC_B <= PDK_STENCIL_SLACK, "a block reads past the row into the slack");
-
-SC_INLINE sc_vd sc_set1(double a) {
-  sc_vd v;
-  for (int l = 0; l < SC_W; ++l) v[l] = a;
-  return v;
-}
-SC_INLINE sc_vd sc_ld(const double *p) { /* unaligned load */
-  sc_vd v;
-  memcpy(&v, p, sizeof v);
-  return v;
-}
-SC_INLINE sc_vd sc_sel(sc_vl m, sc_vd a, sc_vd b) { /* m ? a : b per lane */
-  return (sc_vd)(((sc_vl)a & m) | ((sc_vl)b & ~m));
-}
-/* Mask bytes of one vector as 0.0 / 1.0, only the first nv lanes read (0 beyond): the sites past
- * a row may belong to another thread's rows, whose mask a committing pass is writing. */
-SC_INLINE sc_vd sc_mask_lanes(const uint8_t *mk, int nv) {
-  sc_vb mb = {0};
-  if (nv >= SC_W)
-    memcpy(&mb, mk, sizeof mb);
-  else
-    for (int l = 0; l < nv; ++l) mb[l] = mk[l];
-  return __builtin_convertvector(mb, sc_vd);
-}
+#include "opt/stencil_simd.h"
 
 /* One block of nu <= SC_U vectors (nu * SC_W sites from s, of which the first len are the row's). */
 /* Reference length of the bonds to sites j .. j + SC_W - 1 from the reference positions X. */

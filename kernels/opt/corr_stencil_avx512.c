@@ -1,0 +1,22 @@
+/* Correspondence passes on the lattice (stencil layout) for AVX-512 CPUs: 8 sites per vector, one
+ * vector per block; the body is kernels/opt/corr_stencil.h. src/kernels.c installs it only on CPUs
+ * with AVX-512. */
+#include "kernels.h"
+#include "pdk/model.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")
+#define SC_W 8
+#define SC_U 1
+#define SC_NAME(base) base##_avx512
+#include "opt/corr_stencil.h"
+#else /* never installed without the ISA; keep the symbols defined */
+void pdk_kernel_corr_stencil_pass1_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                          const pdk_stencil_arrays *a, int64_t r0, int64_t r1) {
+  pdk_kernel_corr_stencil_pass1_base(k, c, a, r0, r1);
+}
+void pdk_kernel_corr_stencil_pass2_avx512(const pdk_corr_consts *k, const pdk_corr_arrays *c,
+                                          const pdk_stencil_arrays *a, int64_t r0, int64_t r1) {
+  pdk_kernel_corr_stencil_pass2_base(k, c, a, r0, r1);
+}
+#endif
