@@ -312,12 +312,16 @@ typedef struct pdk_stencil_arrays {
   double *theta_site;            /* [num_sites + slack] (the array theta points to) */
   double *theta_out;             /* [n_pad] */
   /* Correspondence (kernels/opt/corr_stencil.h): u [sites] the displacement x - X per site (0 at
-   * empty sites; the grid's x arrays hold it); per offset the reference bond vector xi_off[c][o]
-   * and influence omega_off[o], which set-up checked against every bond of that offset; per site
-   * the pass-2 data pass 1 writes: cB[r d + c] = B_rc (B = A - k (F - I) with Silling, A without;
-   * 0 at empty sites), ck = k, and with float storage cBf, the float copy neighbours read. */
+   * empty sites; the grid's x arrays hold it); per offset the influence omega_off[o] and the
+   * weighted reference bond wxi_off[c][o] = omega xi_c, which set-up checked against every bond
+   * of that offset (the list is symmetric: offset[no - 1 - o] = -offset[o], same omega, opposite
+   * xi); per site cs[c] = sum over the intact bonds of omega V_j xi_c (a reference-configuration
+   * sum, 0 at empty sites, kept current by the driver when bonds break), and the pass-2 data pass
+   * 1 writes: cB[r d + c] = B_rc (B = A - k (F - I) with Silling, A without; 0 at empty sites),
+   * ck = k, and with float storage cBf, the float copy neighbours read. */
   const double *u[3];
-  const double *xi_off[3], *omega_off;
+  const double *wxi_off[3], *omega_off;
+  const double *cs[3];
   double *cB[9], *ck;
   float *cBf[9];
 } pdk_stencil_arrays;

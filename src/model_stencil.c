@@ -61,7 +61,8 @@ struct pdk_stencil {
   double *inv_m, *theta;         /* LPS [num_sites + slack]: 1/m, dilation (0 at empty sites) */
   /* correspondence: xi and omega per offset [num_offsets]; per site [num_sites + slack] B (d*d
    * arrays), its float copy (float storage) and k; x then holds the displacements */
-  double *xi_off[3], *omega_off;
+  double *xi_off[3], *wxi_off[3], *omega_off;
+  double *cs[3]; /* [num_sites + slack] sum of omega V_j xi over the intact bonds */
   double *cB[9], *ck;
   float *cBf[9];
 };
@@ -87,8 +88,11 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
   pdk_free_aligned(st->changed);
   pdk_free_aligned(st->inv_m);
   pdk_free_aligned(st->theta);
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) {
     free(st->xi_off[a]);
+    free(st->wxi_off[a]);
+    pdk_free_aligned(st->cs[a]);
+  }
   free(st->omega_off);
   for (int t = 0; t < 9; ++t) {
     pdk_free_aligned(st->cB[t]);
@@ -113,6 +117,8 @@ size_t pdk_stencil_memory_bytes(const pdk_stencil *st) {
     if (st->cBf[t]) b += ns * sizeof(float);
   }
   if (st->ck) b += ns * sizeof(double);
+  for (int a = 0; a < 3; ++a)
+    if (st->cs[a]) b += ns * sizeof(double);
   return b;
 }
 
@@ -153,6 +159,21 @@ static inline int stencil_offset_of(const pdk_stencil *st, int64_t si, int64_t s
   return d >= 0 && d < st->lut_len ? st->lut[d] : -1;
 }
 
+/* Correspondence: cs of particle i's site, sum over the offsets whose bond is present (mask, or
+ * an occupied site without one) of omega V_j xi. */
+static void stencil_corr_s(pdk_stencil *st, pdk_index i) {
+  const int64_t si = st->particle_site[i], ns = st->num_sites;
+  double acc[3] = {0, 0, 0};
+  for (int o = 0; o < st->num_offsets; ++o) {
+    const int64_t sj = si + st->offset[o];
+    const double on = st->mask ? (double)st->mask[(int64_t)o * ns + si] : 1.0;
+    for (int a = 0; a < st->dim; ++a)
+      acc[a] += on * st->volume[sj] * st->wxi_off[a][o];
+  }
+  for (int a = 0; a < st->dim; ++a)
+    st->cs[a][si] = acc[a];
+}
+
 /* mask[o][s] = bond present in the family and intact; the whole mask from m's families. */
 static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
@@ -171,6 +192,7 @@ static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
       const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
       mask[(int64_t)o * ns + si] = alive ? alive[b] : 1;
     }
+    if (cst->cs[0]) stencil_corr_s((pdk_stencil *)cst, i);
   }
   st->version = m->bond_state_version;
 }
@@ -690,6 +712,25 @@ int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_sto
       }
     }
   free(seen); /* every offset is some bond's (the offsets are the union of the families') */
+  /* pass 1 takes the offsets in pairs o, no - 1 - o: the list must be symmetric, with opposite xi
+   * and equal omega (families are symmetric, so it is; checked to the same tolerances) */
+  for (int o = 0; o < no && !bad; ++o) {
+    const int o2 = no - 1 - o;
+    double r2 = 0.0, dev = 0.0;
+    for (int a = 0; a < dim; ++a) {
+      r2 += st->xi_off[a][o] * st->xi_off[a][o];
+      dev = fmax(dev, fabs(st->xi_off[a][o] + st->xi_off[a][o2]));
+    }
+    if (st->offset[o2] != -st->offset[o] || dev > STENCIL_CORR_XI_TOL * sqrt(r2) ||
+        fabs(st->omega_off[o] - st->omega_off[o2]) >
+            STENCIL_CORR_OMEGA_RTOL * fabs(st->omega_off[o])) {
+      snprintf(why, why_len,
+               "correspondence: the bond offsets are not symmetric (offset %d of %d: the families "
+               "are not symmetric, or xi / omega differ between a bond and its reverse)",
+               o, no);
+      bad = 1;
+    }
+  }
   if (bad) {
     pdk_stencil_destroy(&m->stencil);
     PDK_CHECK(m->opts.stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
@@ -699,6 +740,22 @@ int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_sto
     return PDK_SUCCESS;
   }
   const size_t ns_all = (size_t)(st->num_sites + PDK_STENCIL_SLACK);
+  for (int a = 0; a < dim; ++a) {
+    st->wxi_off[a] = malloc(nof * sizeof(double));
+    st->cs[a] = pdk_alloc_aligned(ns_all, sizeof(double));
+    PDK_CHECK(st->wxi_off[a] && st->cs[a], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+    memset(st->cs[a], 0, ns_all * sizeof(double));
+    for (int o = 0; o < no; ++o)
+      st->wxi_off[a][o] = st->omega_off[o] * st->xi_off[a][o];
+  }
+  /* the pair (o, no - 1 - o) uses omega_o and -wxi_o for both: make the stored pair exact */
+  for (int o = no / 2; o < no; ++o) {
+    st->omega_off[o] = st->omega_off[no - 1 - o];
+    for (int a = 0; a < dim; ++a)
+      st->wxi_off[a][o] = -st->wxi_off[a][no - 1 - o];
+  }
+  for (pdk_index i = 0; i < n; ++i)
+    stencil_corr_s(st, i);
   for (int t = 0; t < dim * dim; ++t) {
     st->cB[t] = pdk_alloc_aligned(ns_all, sizeof(double));
     PDK_CHECK(st->cB[t], ctx, PDK_ERR_MEMORY, "stencil: out of memory for a grid of %lld sites",
@@ -740,6 +797,7 @@ void pdk_stencil_mask_rows(pdk_model *m, pdk_stencil *st, const uint8_t *changed
       const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
       mask[(int64_t)o * ns + si] = alive ? alive[b] : 1;
     }
+    if (cst->cs[0]) stencil_corr_s((pdk_stencil *)cst, i);
   }
 }
 
@@ -764,7 +822,8 @@ int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts
   arr.mask = st->mask;
   for (int a = 0; a < dim; ++a) {
     arr.u[a] = st->x[a];
-    arr.xi_off[a] = st->xi_off[a];
+    arr.wxi_off[a] = st->wxi_off[a];
+    arr.cs[a] = st->cs[a];
   }
   arr.omega_off = st->omega_off;
   for (int t = 0; t < dim * dim; ++t) {

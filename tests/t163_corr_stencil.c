@@ -15,6 +15,9 @@
  *   f (pass 2): |df_i| <= 2 n_i eps Sf_i + sum_b w |xi| d (L + k_j) tolF_j kn_j,
  *                Sf_i = sum_b w (|B_j| |xi| + k_j |v|) + |B_i| sum w |xi| + k_i sum w |v|,
  *                |B| = d max |B_rc|;
+ *   xi and omega: the stencil takes one bond's per offset; other bonds of that offset differ
+ *                from it by round-off of X_j - X_i (rho = largest relative deviation of a bond
+ *                from its ideal lattice vector): 18 rho more on the sums of F and f;
  *   float storage: the neighbours' B are rounded to float from doubles that may differ by the
  *                above, so one rounding can fall either side: + sum_b w |xi| 2^-24 |B_j|;
  *   energy sum_i V_i W_i: |dE| <= sum_i V_i (d^2 |P_i| tolF_i + k_i/2 dzz_i) + 2 n eps |E|, |P| <=
@@ -186,6 +189,22 @@ static bounds make_bounds(pdk_ctx *ctx, const body *b, const pdk_model_opts *o, 
   const double ks = o->stabilization == PDK_STAB_SILLING
                         ? o->stab_coefficient * (d == 3 ? 72.0 / 5.0 : 36.0 / 5.0) * K
                         : 0.0;
+  /* rho: the largest relative deviation of a bond's xi from its ideal lattice vector (spacing 1):
+   * the stencil's per-offset xi and omega are some bond's, so they differ from another bond's by
+   * up to 2 rho in xi and (influence functions up to the Gaussian's d ln omega / d ln r = 8) 16
+   * rho in omega; its terms carry that relative difference */
+  double rho = 0.0;
+  for (pdk_index i = 0; i < n; ++i)
+    for (pdk_bond_index e = bs[i]; e < bs[i + 1]; ++e) {
+      double r2 = 0, dev = 0;
+      for (int c = 0; c < d; ++c) {
+        const double xi = pdk_particles_X(p, c)[bj[e]] - pdk_particles_X(p, c)[i];
+        r2 += xi * xi;
+        dev = fmax(dev, fabs(xi - nearbyint(xi)));
+      }
+      rho = fmax(rho, dev / sqrt(r2));
+    }
+  const double geo = 18.0 * rho;
   double *kk = calloc((size_t)n, sizeof(double)), *kn = calloc((size_t)n, sizeof(double));
   double *Bn = calloc((size_t)n, sizeof(double)), *mw = calloc((size_t)n, sizeof(double));
   bounds bd = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double)), 0.0};
@@ -223,7 +242,7 @@ static bounds make_bounds(pdk_ctx *ctx, const body *b, const pdk_model_opts *o, 
       for (int c = 0; c < d; ++c)
         Bmax = fmax(Bmax, fabs(g->A[r * d + c][i] - kk[i] * (g->F[r * d + c][i] - (r == c))));
     Bn[i] = d * Bmax;
-    bd.F[i] = (2.0 * nb + 2.0 * d) * EPS * SD * kn[i] + 4 * EPS;
+    bd.F[i] = ((2.0 * nb + 2.0 * d) * EPS + geo) * SD * kn[i] + 4 * EPS;
     const double Pn = d * maxabs(g->A, dd, i) * m;
     const double dzz = (2.0 * nb + 4.0 * dd) * EPS * (vv + 2.0 * SD * SD * kn[i]);
     bd.E += V[i] * (dd * Pn * bd.F[i] + 0.5 * kk[i] * dzz);
@@ -251,7 +270,7 @@ static bounds make_bounds(pdk_ctx *ctx, const body *b, const pdk_model_opts *o, 
       ++nb;
     }
     S += Bn[i] * sw + kk[i] * su;
-    bd.f[i] = 2.0 * nb * EPS * S + prop + fl + 1e-300;
+    bd.f[i] = (2.0 * nb * EPS + geo) * S + prop + fl + 1e-300;
   }
   free(kk), free(kn), free(Bn), free(mw);
   pdk_families_destroy(&fam);

@@ -257,28 +257,7 @@ CORR_INLINE void rows_end(const int d, const int fl, const pdk_corr_consts *k,
         F[r][c] = a->F[r * d + c][i];
       }
   } else {
-    pdk_corr_consts k_i; /* multi-material: particle i's lambda, mu */
-    const pdk_corr_consts *ki = pdk_corr_consts_at(k, i, &k_i);
-    double Kinv[3][3] = {{0}}, P[3][3] = {{0}}, W = 0.0;
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c < d; ++c)
-        Kinv[r][c] = a->Kinv[r * d + c][i];
-    pdk_corr_mul_d(d, D, Kinv, F);
-    for (int c = 0; c < d; ++c)
-      F[c][c] += 1.0;
-    if (pdk_corr_law_eval_d(d, ki, F, P, &W)) {
-      pdk_corr_mul_d(d, P, Kinv, A);
-      a->W[i] = W;
-      a->flag[i] = (uint8_t)(a->flag[i] & ~PDK_CORR_FLAG_INVERTED);
-    } else {
-      a->W[i] = 0.0;
-      a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
-    }
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c < d; ++c) {
-        a->F[r * d + c][i] = F[r][c];
-        a->A[r * d + c][i] = A[r][c];
-      }
+    pdk_corr_end_elastic(d, k, a, i, D, F, A);
   }
   rows_store(d, fl, k, a, i, D, acc, A, F);
 }

@@ -7,23 +7,29 @@
  * Layout: kernels/opt/pmb_stencil.h (sites of a padded grid, a bond is a fixed site offset, rows
  * of sites cut into blocks whose lanes are sites). On a lattice the reference bond xi and the
  * influence omega depend on the offset only (set-up checked both against every bond), so per
- * offset o they are broadcast constants and the neighbour data of a vector of sites are
- * contiguous loads: the volume V_j, the displacement u_j, and in pass 2 the 9 (2-D: 4) entries of
- * B_j and k_j. Empty sites have V = 0 (and u = 0, B = 0, k = 0): their bonds add exact zeros.
- * mask (NULL: every bond to an occupied site is in the family and intact) multiplies the weight
- * by 0 / 1 per bond. Formulas: kernels/ref/corr.c; the split into own and neighbour terms is that
- * of the packed-row general path (kernels/opt/corr_simd.h), with w = omega_o V_j mask,
- * e = xi_o, v = u_j - u_i:
+ * offset o they are broadcast constants (omega_o and a_o = omega_o xi_o) and the neighbour data
+ * of a vector of sites are contiguous loads: the volume V_j, the displacement u_j, and in pass 2
+ * the 9 (2-D: 4) entries of B_j and k_j. Empty sites have V = 0 (and u = 0, B = 0, k = 0): their
+ * bonds add exact zeros. mask (NULL: every bond to an occupied site is in the family and intact)
+ * multiplies V_j by 0 / 1 per bond. Formulas: kernels/ref/corr.c; the split into own and
+ * neighbour terms is that of the packed-row general path (kernels/opt/corr_simd.h). With
+ * w = omega_o V_j mask, e = xi_o, v = u_j - u_i:
  *
- * Pass 1, per site i (offsets in order): D = sum w v (x) e, vv = sum w |v|^2 (Silling), and with a
- * mask the intact count; then the general path's per-particle end: the reference shape where the
- * count differs from num_alive (bonds broke since K^-1, or a restored checkpoint),
- * pdk_kernel_corr_point_disp_ref (F = I + D K^-1, the law, A, W, flags, Johnson-Cook history),
- * k_i = pdk_corr_kst, B_i = A - k_i (F - I) (Silling) or A, stored per site for the neighbours
- * (cB, and the float copy cBf with float storage), and the Silling energy W_i += k_i/2 zz_i,
- * zz = pdk_corr_silling_zz (in the commit pass where i fails, w_damage as the general pass 2).
- * Pass 2, per site i: f_i = sum w (B_j e + k_j v) + B_i s + k_i U with s = sum w e, U = sum w v
- * summed in the same sweep (B_i in double from cB; B_j from cBf with float storage).
+ * Pass 1, per site i: D = sum w v (x) e, vv = sum w |v|^2 (Silling), and with a mask the intact
+ * count. The offsets come in pairs o, o' = no - 1 - o with offset[o'] = -offset[o] (the list is
+ * symmetric and sorted), e' = -e, omega' = omega, so a pair adds (V_+ v_+ - V_- v_-) (x) a_o to D
+ * with one set of d^2 FMAs (about 30% fewer operations per bond than one offset at a time). Then
+ * the general path's per-particle end: the reference shape where the count differs from
+ * num_alive (bonds broke since K^-1, or a restored checkpoint); F = I + D K^-1, the law, A, W,
+ * flags (pdk_corr_end_elastic inline for the elastic laws, pdk_kernel_corr_point_disp_ref for
+ * Johnson-Cook and families that do not span); k_i = pdk_corr_kst, B_i = A - k_i (F - I)
+ * (Silling) or A, stored per site for the neighbours (cB, and the float copy cBf with float
+ * storage), and the Silling energy W_i += k_i/2 zz_i, zz = pdk_corr_silling_zz (in the commit
+ * pass where i fails, w_damage as the general pass 2).
+ * Pass 2, per site i: f_i = sum_o V_j (B_j a_o + omega_o (k_j + k_i) v) + B_i s_i, the general
+ * path's sum w (B_j e + k_j v) + B_i s + k_i U with k_i U folded into the bond term; s = sum w e
+ * depends on the reference configuration only and is kept per site (cs, recomputed where bonds
+ * break). B_i in double from cB; B_j from cBf with float storage.
  *
  * So every family sum runs in offset order, per site, whatever the vector width and the thread
  * partition of the rows: results are bitwise the same for any number of threads. Against the
@@ -34,6 +40,7 @@
  * pass 1 wrote (the driver puts a barrier between the passes).
  */
 #include "opt/stencil_simd.h"
+#include "ref/corr_law.h"
 
 typedef float sc_vf __attribute__((vector_size(SC_W * 4)));
 
@@ -64,31 +71,40 @@ SC_INLINE void sc_corr1_block(const int nu, const int d, const int has_mask, con
     }
     Q[u] = cnt[u] = zero;
   }
-  for (int o = 0; o < a->num_offsets; ++o) {
-    const int64_t j0 = s + a->offset[o];
+  /* offsets in pairs o, o' = no - 1 - o with offset[o'] = -offset[o] (the list is symmetric and
+   * sorted; set-up checked it): xi' = -xi, omega' = omega, so the pair adds
+   * (V_+ v_+ - V_- v_-) (x) (omega xi) to D with one set of FMAs, and omega (V_+ |v_+|^2 + V_-
+   * |v_-|^2) to vv. Each accumulator takes one FMA or add per pair: the loop-carried chains stay
+   * one operation long. */
+  const int no = a->num_offsets;
+  for (int o = 0; o < no / 2; ++o) {
+    const int o2 = no - 1 - o;
+    const int64_t jp0 = s + a->offset[o], jm0 = s + a->offset[o2];
     sc_vd e[3];
     for (int q = 0; q < d; ++q)
-      e[q] = sc_bcast(a->xi_off[q][o]);
+      e[q] = sc_bcast(a->wxi_off[q][o]);
     const sc_vd om = sc_bcast(a->omega_off[o]);
     for (int u = 0; u < nu; ++u) {
-      const int64_t j = j0 + u * SC_W;
-      sc_vd w = om * sc_ld(a->volume + j);
+      const int64_t jp = jp0 + u * SC_W, jm = jm0 + u * SC_W;
+      sc_vd Vp = sc_ld(a->volume + jp), Vm = sc_ld(a->volume + jm);
       if (has_mask) {
-        const sc_vd on = sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W);
-        w *= on;
-        cnt[u] += on;
+        const int nv = len - u * SC_W;
+        const sc_vd onp = sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, nv);
+        const sc_vd onm = sc_mask_lanes(a->mask + (int64_t)o2 * ns + s + u * SC_W, nv);
+        Vp *= onp;
+        Vm *= onm;
+        cnt[u] += onp + onm;
       }
-      /* each accumulator takes one FMA or add per offset: the loop-carried chains stay one
-       * operation long (a chain of three would bound the loop at 3 latencies per offset) */
       sc_vd qq = zero;
       for (int r = 0; r < d; ++r) {
-        const sc_vd v = sc_ld(a->u[r] + j) - ui[u][r];
-        const sc_vd t = w * v;
+        const sc_vd vp = sc_ld(a->u[r] + jp) - ui[u][r], vm = sc_ld(a->u[r] + jm) - ui[u][r];
+        const sc_vd tp = Vp * vp, tm = Vm * vm;
+        const sc_vd t = tp - tm;
         for (int q = 0; q < d; ++q)
           D[u][r][q] += t * e[q];
-        if (silling) qq = r ? qq + t * v : t * v;
+        if (silling) qq = r ? qq + tp * vp + tm * vm : tp * vp + tm * vm;
       }
-      if (silling) Q[u] += qq;
+      if (silling) Q[u] += om * qq;
     }
   }
   const pdk_index *restrict sp = a->site_particle + s;
@@ -102,12 +118,23 @@ SC_INLINE void sc_corr1_block(const int nu, const int d, const int has_mask, con
         Dp[r][q] = D[u][r][q][l];
     if (has_mask && c->num_alive && (int32_t)cnt[u][l] != c->num_alive[p])
       pdk_kernel_corr_shape_ref(k, c, p, p + 1);
-    pdk_kernel_corr_point_disp_ref(k, c, p, Dp);
+    /* the per-particle end: inline for the elastic laws (F, A stay in registers), the
+     * reference's otherwise, as the packed-row path's rows_end */
+    double A[3][3] = {{0}}, F[3][3] = {{0}};
+    if (k->law == PDK_LAW_JC || (c->flag[p] & PDK_CORR_FLAG_SPAN)) {
+      pdk_kernel_corr_point_disp_ref(k, c, p, Dp);
+      for (int r = 0; r < d; ++r)
+        for (int q = 0; q < d; ++q) {
+          A[r][q] = c->A[r * d + q][p];
+          F[r][q] = c->F[r * d + q][p];
+        }
+    } else {
+      pdk_corr_end_elastic(d, k, c, p, Dp, F, A);
+    }
     const double ki = pdk_corr_kst(k, c, p);
     for (int r = 0; r < d; ++r)
       for (int q = 0; q < d; ++q) {
-        const double A = c->A[r * d + q][p];
-        const double B = silling ? A - ki * (c->F[r * d + q][p] - (r == q ? 1.0 : 0.0)) : A;
+        const double B = silling ? A[r][q] - ki * (F[r][q] - (r == q ? 1.0 : 0.0)) : A[r][q];
         a->cB[r * d + q][s + t] = B;
         if (fl) a->cBf[r * d + q][s + t] = (float)B;
       }
@@ -129,41 +156,36 @@ SC_INLINE void sc_corr2_block(const int nu, const int d, const int has_mask, con
                               int64_t s, int len) {
   const sc_vd zero = sc_bcast(0.0);
   const int64_t ns = a->num_sites;
-  sc_vd ui[SC_U][3], f[SC_U][3], sw[SC_U][3], U[SC_U][3];
-  for (int u = 0; u < nu; ++u)
+  sc_vd ui[SC_U][3], ki[SC_U], f[SC_U][3];
+  for (int u = 0; u < nu; ++u) {
+    ki[u] = silling ? sc_ld(a->ck + s + u * SC_W) : zero;
     for (int r = 0; r < 3; ++r) {
       ui[u][r] = r < d ? sc_ld(a->u[r] + s + u * SC_W) : zero;
-      f[u][r] = sw[u][r] = U[u][r] = zero;
+      f[u][r] = zero;
     }
+  }
+  /* per bond: f += V_j (B_j (omega xi) + omega (k_j + k_i) v), i.e. the k_i U part of the own
+   * terms folded into the bond (B_i s stays outside: s is a reference-configuration sum, kept
+   * per site, pdk_stencil_arrays cs) */
   for (int o = 0; o < a->num_offsets; ++o) {
     const int64_t j0 = s + a->offset[o];
     sc_vd e[3];
     for (int q = 0; q < d; ++q)
-      e[q] = sc_bcast(a->xi_off[q][o]);
+      e[q] = sc_bcast(a->wxi_off[q][o]);
     const sc_vd om = sc_bcast(a->omega_off[o]);
     for (int u = 0; u < nu; ++u) {
       const int64_t j = j0 + u * SC_W;
-      sc_vd w = om * sc_ld(a->volume + j);
-      if (has_mask) w *= sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W);
-      sc_vd we[3];
-      for (int q = 0; q < d; ++q) {
-        we[q] = w * e[q];
-        sw[u][q] += we[q];
-      }
-      const sc_vd wk = silling ? w * sc_ld(a->ck + j) : zero;
+      sc_vd V = sc_ld(a->volume + j);
+      if (has_mask) V *= sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W);
+      const sc_vd okk = silling ? om * (sc_ld(a->ck + j) + ki[u]) : zero;
       for (int r = 0; r < d; ++r) {
-        /* g = B_j e w + k_j w v, then one add into the accumulator (see pass 1) */
         sc_vd g = zero;
         for (int q = 0; q < d; ++q) {
           const sc_vd Bj = fl ? sc_ldf(a->cBf[r * d + q] + j) : sc_ld(a->cB[r * d + q] + j);
-          g = q ? g + we[q] * Bj : we[q] * Bj;
+          g = q ? g + e[q] * Bj : e[q] * Bj;
         }
-        if (silling) {
-          const sc_vd v = sc_ld(a->u[r] + j) - ui[u][r];
-          g += wk * v;
-          U[u][r] += w * v;
-        }
-        f[u][r] += g;
+        if (silling) g += okk * (sc_ld(a->u[r] + j) - ui[u][r]);
+        f[u][r] += V * g;
       }
     }
   }
@@ -172,11 +194,10 @@ SC_INLINE void sc_corr2_block(const int nu, const int d, const int has_mask, con
     const pdk_index p = sp[t];
     if (p < 0) continue;
     const int u = t / SC_W, l = t % SC_W;
-    const double ki = a->ck[s + t];
     for (int r = 0; r < d; ++r) {
-      double own = silling ? ki * U[u][r][l] : 0.0;
+      double own = 0.0;
       for (int q = 0; q < d; ++q)
-        own += a->cB[r * d + q][s + t] * sw[u][q][l];
+        own += a->cB[r * d + q][s + t] * a->cs[q][s + t];
       c->f[r][p] = own + f[u][r][l];
     }
   }
