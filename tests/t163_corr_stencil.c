@@ -30,7 +30,9 @@
  *
  * Cases: awkward row lengths (1 particle; 3, 5, 7, 9: the SIMD widths 4 and 8 plus or minus one;
  * 2-D rows of 63 and 65), every law x influence x stabilization (none, silling) in 2-D and 3-D,
- * Morton order, a plate with a hole and with a pre-crack, bond breaking over committing passes,
+ * Morton order, a plate with a hole and with a pre-crack, a two-material cube (per-particle
+ * lambda, mu and stabilization modulus in the shared per-particle end), bond breaking over
+ * committing passes,
  * float storage, Johnson-Cook plasticity (committing passes, the history advanced by the shared
  * per-particle end), every kernel variant the CPU has against the baseline C stencil, 1 vs 2
  * threads bitwise, a 200-step explicit run of a plate under tension (positions within 1e-9 of the
@@ -82,7 +84,11 @@ typedef struct body {
   int dim, nx, ny, nz;
   int hole, precrack, morton;
   double vol_noise;
+  int two_materials; /* "material" 1 for x >= nx / 2 (the model then needs opts.materials) */
 } body;
+
+/* The two materials of the two-material case: stiffer and softer than CU_BULK, CU_SHEAR. */
+static const pdk_material two_mats[2] = {{2.0, 1.0, 1.0}, {5.0, 1.7, 1.0}};
 
 static void body_build(pdk_ctx *ctx, const body *b, pdk_particles **pp, pdk_families **ff) {
   pdk_particles *p = bm_body(ctx, b->dim, b->nx, b->ny, b->nz, 1.0, 0.0, b->vol_noise, 3);
@@ -94,6 +100,12 @@ static void body_build(pdk_ctx *ctx, const body *b, pdk_particles **pp, pdk_fami
     T_ASSERT(removed > 0, "the hole removed nothing");
   }
   if (b->morton) T_OK(ctx, pdk_particles_reorder_morton(p, pdk_families_cell_edge(p, 3.015), NULL));
+  if (b->two_materials) {
+    T_OK(ctx, pdk_particles_field_add(p, "material", PDK_I32, 1));
+    int32_t *mat = pdk_particles_field_data(p, "material", 0);
+    for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
+      mat[i] = pdk_particles_X(p, 0)[i] >= 0.5 * b->nx;
+  }
   pdk_families_opts fo = pdk_families_opts_default();
   fo.horizon = 3.015;
   const double v[4] = {-1.0, 0.5 * b->ny - 0.05, 0.5 * b->nx, 0.5 * b->ny - 0.05};
@@ -185,9 +197,14 @@ static bounds make_bounds(pdk_ctx *ctx, const body *b, const pdk_model_opts *o, 
                                         : o->shear_modulus;
   const double K = o->law == PDK_LAW_JC ? o->jc.young_modulus / (3 * (1 - 2 * o->jc.poisson_ratio))
                                         : o->bulk_modulus;
-  const double L = 3.0 * (K - 2.0 * G / 3.0 + 2.0 * G);
+  double Kmax = K, Gmax = G; /* multi-material: the stiffest */
+  for (int t = 0; t < o->num_materials; ++t) {
+    Kmax = fmax(Kmax, o->materials[t].bulk_modulus);
+    Gmax = fmax(Gmax, o->materials[t].shear_modulus);
+  }
+  const double L = 3.0 * (Kmax - 2.0 * Gmax / 3.0 + 2.0 * Gmax);
   const double ks = o->stabilization == PDK_STAB_SILLING
-                        ? o->stab_coefficient * (d == 3 ? 72.0 / 5.0 : 36.0 / 5.0) * K
+                        ? o->stab_coefficient * (d == 3 ? 72.0 / 5.0 : 36.0 / 5.0) * Kmax
                         : 0.0;
   /* rho: the largest relative deviation of a bond's xi from its ideal lattice vector (spacing 1):
    * the stencil's per-offset xi and omega are some bond's, so they differ from another bond's by
@@ -315,6 +332,7 @@ static double check(const char *what, const res *g, const res *s, const bounds *
 /* Stencil on vs off on body b; returns the worst ratio to the bound. */
 static double compare(pdk_ctx *ctx, const body *b, pdk_model_opts o, double amp, int passes,
                       int commit, const char *what) {
+  if (b->two_materials) o.materials = two_mats, o.num_materials = 2;
   o.stencil = PDK_STENCIL_OFF;
   res g = run(ctx, b, o, amp, passes, commit);
   o.stencil = PDK_STENCIL_ON;
@@ -336,14 +354,14 @@ static void awkward_sizes(pdk_ctx *ctx) {
       copts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_INV_R, PDK_STAB_SILLING, 0, 0.0, PDK_STENCIL_ON);
   for (int k = 0; k < 5; ++k) {
     const int w = widths[k];
-    const body b = {3, w, w == 1 ? 1 : 6, w == 1 ? 1 : 5, 0, 0, 0, 0.2};
+    const body b = {3, w, w == 1 ? 1 : 6, w == 1 ? 1 : 5, 0, 0, 0, 0.2, 0};
     char what[64];
     snprintf(what, sizeof what, "3-D rows of %d", w);
     worst = fmax(worst, compare(ctx, &b, o, 0.02, 1, 0, what));
   }
   const int rows[] = {63, 65};
   for (int k = 0; k < 2; ++k) {
-    const body b = {2, rows[k], 7, 1, 0, 0, 0, 0.2};
+    const body b = {2, rows[k], 7, 1, 0, 0, 0, 0.2, 0};
     worst = fmax(worst, compare(ctx, &b, o, 0.02, 1, 0, "2-D rows of 63 / 65"));
   }
   printf("awkward sizes: largest difference %.3g of the bound\n", worst);
@@ -353,7 +371,8 @@ static void awkward_sizes(pdk_ctx *ctx) {
 static void laws_influences(pdk_ctx *ctx) {
   double worst = 0;
   for (int dim = 2; dim <= 3; ++dim) {
-    const body b = dim == 3 ? (body){3, 8, 7, 6, 0, 0, 1, 0.1} : (body){2, 17, 13, 1, 0, 0, 1, 0.1};
+    const body b =
+        dim == 3 ? (body){3, 8, 7, 6, 0, 0, 1, 0.1, 0} : (body){2, 17, 13, 1, 0, 0, 1, 0.1, 0};
     for (int law = PDK_LAW_LINEAR_ELASTIC; law <= PDK_LAW_NEO_HOOKE; ++law)
       for (int infl = PDK_INFLUENCE_CONSTANT; infl <= PDK_INFLUENCE_QUADRATIC; ++infl)
         for (int stab = PDK_STAB_NONE; stab <= PDK_STAB_SILLING; ++stab) {
@@ -372,17 +391,19 @@ static void hole_precrack_float(pdk_ctx *ctx) {
       copts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_LINEAR, PDK_STAB_SILLING, 0, 0.0, PDK_STENCIL_ON);
   pdk_model_opts of = o;
   of.precision = PDK_PRECISION_FLOAT;
-  const body hole = {2, 40, 30, 1, 1, 0, 0, 0.0};
-  const body crack = {2, 40, 30, 1, 1, 1, 0, 0.0};
-  const body cube = {3, 12, 10, 9, 0, 0, 1, 0.0};
+  const body hole = {2, 40, 30, 1, 1, 0, 0, 0.0, 0};
+  const body crack = {2, 40, 30, 1, 1, 1, 0, 0.0, 0};
+  const body cube = {3, 12, 10, 9, 0, 0, 1, 0.0, 0};
   const double w0 = compare(ctx, &hole, o, 0.02, 1, 0, "plate with a hole");
   const double w1 = compare(ctx, &crack, o, 0.02, 1, 0, "pre-crack");
   const double w2 = compare(ctx, &crack, of, 0.02, 1, 0, "pre-crack float");
   const double w3 = compare(ctx, &cube, of, 0.02, 1, 0, "cube float");
   const double w4 = compare(ctx, &cube, o, 0.02, 1, 0, "cube double");
-  printf("hole %.3g, pre-crack %.3g, pre-crack float %.3g, cube float %.3g, cube double %.3g of "
-         "the bound\n",
-         w0, w1, w2, w3, w4);
+  const body two = {3, 12, 10, 9, 0, 0, 1, 0.0, 1};
+  const double w5 = compare(ctx, &two, o, 0.02, 1, 0, "two materials");
+  printf("hole %.3g, pre-crack %.3g, pre-crack float %.3g, cube float %.3g, cube double %.3g, two "
+         "materials %.3g of the bound\n",
+         w0, w1, w2, w3, w4, w5);
 }
 
 /* Bond breaking over 4 committing passes (2-D with a hole, 3-D; double and float); then
@@ -391,7 +412,7 @@ static void breaking_jc(pdk_ctx *ctx) {
   for (int dim = 2; dim <= 3; ++dim)
     for (int prec = 0; prec <= 1; ++prec) {
       const body b =
-          dim == 3 ? (body){3, 11, 9, 8, 0, 0, 0, 0.1} : (body){2, 30, 20, 1, 1, 0, 0, 0};
+          dim == 3 ? (body){3, 11, 9, 8, 0, 0, 0, 0.1, 0} : (body){2, 30, 20, 1, 1, 0, 0, 0, 0};
       char what[64];
       snprintf(what, sizeof what, "%d-D breaking %s", dim, prec ? "float" : "double");
       pdk_model_opts o = copts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CONSTANT, PDK_STAB_SILLING, prec,
@@ -406,7 +427,7 @@ static void breaking_jc(pdk_ctx *ctx) {
   pdk_model_opts o = copts(0, PDK_INFLUENCE_INV_R, PDK_STAB_SILLING, 0, 0.0, PDK_STENCIL_OFF);
   o.law = PDK_LAW_JC;
   o.bulk_modulus = o.shear_modulus = o.density = 0.0; /* from o.jc */
-  const body b = {3, 9, 8, 7, 0, 0, 0, 0.0};
+  const body b = {3, 9, 8, 7, 0, 0, 0, 0.0, 0};
   printf("Johnson-Cook: largest difference %.3g of the bound\n",
          compare(ctx, &b, o, 0.004, 3, 1, "Johnson-Cook"));
 }
@@ -414,8 +435,8 @@ static void breaking_jc(pdk_ctx *ctx) {
 /* Every kernel variant the CPU has against the baseline C stencil (the ref family's). */
 static void variants(void) {
   const char *names[] = {"ref", "avx2", "avx512"};
-  const body b = {3, 11, 9, 7, 1, 0, 0, 0.1};
-  const body b2 = {2, 37, 21, 1, 1, 1, 0, 0.1};
+  const body b = {3, 11, 9, 7, 1, 0, 0, 0.1, 0};
+  const body b2 = {2, 37, 21, 1, 1, 1, 0, 0.1, 0};
   res base[2];
   for (int k = 0; k < 3; ++k) {
     pdk_ctx_opts co = pdk_ctx_opts_default();
@@ -453,7 +474,7 @@ static void threads(void) {
   for (int dim = 2; dim <= 3; ++dim) {
     res r[2];
     const body b =
-        dim == 3 ? (body){3, 13, 12, 11, 0, 0, 1, 0.1} : (body){2, 50, 40, 1, 1, 0, 0, 0};
+        dim == 3 ? (body){3, 13, 12, 11, 0, 0, 1, 0.1, 0} : (body){2, 50, 40, 1, 1, 0, 0, 0, 0};
     for (int t = 0; t < 2; ++t) {
       pdk_ctx *ctx = t_ctx(t + 1);
       r[t] = run(
@@ -484,7 +505,7 @@ static void explicit_run(pdk_ctx *ctx) {
   double *x[2][2];
   pdk_index n = 0;
   double scale = 0, energy[2];
-  const body b = {2, 40, 24, 1, 1, 0, 0, 0.0};
+  const body b = {2, 40, 24, 1, 1, 0, 0, 0.0, 0};
   for (int k = 0; k < 2; ++k) {
     pdk_particles *p = NULL;
     pdk_families *fam = NULL;
@@ -546,7 +567,7 @@ static void explicit_run(pdk_ctx *ctx) {
 
 /* on refused where the stencil does not apply, naming why; auto then takes the general path. */
 static void refusals(pdk_ctx *ctx) {
-  const body b = {2, 20, 15, 1, 0, 0, 0, 0.0};
+  const body b = {2, 20, 15, 1, 0, 0, 0, 0.0, 0};
   pdk_particles *p = NULL;
   pdk_families *fam = NULL;
   body_build(ctx, &b, &p, &fam);
