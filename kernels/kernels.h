@@ -324,6 +324,12 @@ typedef struct pdk_stencil_arrays {
   const double *cs[3];
   double *cB[9], *ck;
   float *cBf[9];
+  /* the same per-site arrays as one block with a fixed stride (pass 2 addresses them from one
+   * pointer): component c of site s at cbase[c * cstride + s], c = 0 .. d-1 u, d V, d + 1 k,
+   * d + 2 + t cB[t]; cbase_f[t * cstride + s] = cBf[t][s] (NULL without float storage) */
+  const double *cbase;
+  const float *cbase_f;
+  int64_t cstride;
 } pdk_stencil_arrays;
 
 /* Rows [r0, r1) of a; returns the bonds broken (committing pass). */

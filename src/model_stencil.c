@@ -65,6 +65,12 @@ struct pdk_stencil {
   double *cs[3]; /* [num_sites + slack] sum of omega V_j xi over the intact bonds */
   double *cB[9], *ck;
   float *cBf[9];
+  /* correspondence: one block of the pass-2 site arrays, component c at cblk + c * cstride
+   * (u_0 .. u_{d-1}, V, k, B_0 .. B_{d^2-1}; x, volume, ck and cB point into it), and the float
+   * copies of B at cBfblk + t * cstride; NULL before set-up */
+  double *cblk;
+  float *cBfblk;
+  int64_t cstride;
 };
 
 void pdk_stencil_destroy(pdk_stencil **stp) {
@@ -78,9 +84,9 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
   free(st->lut);
   for (int a = 0; a < 3; ++a) {
     pdk_free_aligned(st->X[a]);
-    pdk_free_aligned(st->x[a]);
+    if (!st->cblk) pdk_free_aligned(st->x[a]);
   }
-  pdk_free_aligned(st->volume);
+  if (!st->cblk) pdk_free_aligned(st->volume);
   pdk_free_aligned(st->s0);
   free(st->r0_off);
   free(st->beta_off);
@@ -94,11 +100,8 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
     pdk_free_aligned(st->cs[a]);
   }
   free(st->omega_off);
-  for (int t = 0; t < 9; ++t) {
-    pdk_free_aligned(st->cB[t]);
-    pdk_free_aligned(st->cBf[t]);
-  }
-  pdk_free_aligned(st->ck);
+  pdk_free_aligned(st->cblk); /* x, volume, cB, ck point into it */
+  pdk_free_aligned(st->cBfblk);
   free(st);
   *stp = NULL;
 }
@@ -756,26 +759,37 @@ int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_sto
   }
   for (pdk_index i = 0; i < n; ++i)
     stencil_corr_s(st, i);
-  for (int t = 0; t < dim * dim; ++t) {
-    st->cB[t] = pdk_alloc_aligned(ns_all, sizeof(double));
-    PDK_CHECK(st->cB[t], ctx, PDK_ERR_MEMORY, "stencil: out of memory for a grid of %lld sites",
-              (long long)st->num_sites);
-    memset(st->cB[t], 0, ns_all * sizeof(double));
-    if (float_storage) {
-      st->cBf[t] = pdk_alloc_aligned(ns_all, sizeof(float));
-      PDK_CHECK(st->cBf[t], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-      memset(st->cBf[t], 0, ns_all * sizeof(float));
-    }
+  /* the pass-2 site arrays in one block with a fixed stride (a multiple of 8 doubles, so every
+   * component starts 64-byte aligned): pass 2 addresses its 14 (2-D: 8) streams from one pointer.
+   * The grid's x (which holds u) and volume move into it. */
+  const int64_t cstr = (int64_t)((ns_all + 7) / 8 * 8);
+  const int ncomp = dim + 2 + dim * dim;
+  double *blk = pdk_alloc_aligned((size_t)(ncomp * cstr), sizeof(double));
+  PDK_CHECK(blk, ctx, PDK_ERR_MEMORY, "stencil: out of memory for a grid of %lld sites",
+            (long long)st->num_sites);
+  memset(blk, 0, (size_t)(ncomp * cstr) * sizeof(double));
+  memcpy(blk + dim * cstr, st->volume, ns_all * sizeof(double));
+  pdk_free_aligned(st->volume);
+  st->volume = blk + dim * cstr;
+  for (int a = 0; a < dim; ++a) { /* x holds displacements: 0 at empty sites and in the slack */
+    pdk_free_aligned(st->x[a]);
+    st->x[a] = blk + a * cstr;
+  }
+  st->ck = blk + (dim + 1) * cstr;
+  for (int t = 0; t < dim * dim; ++t)
+    st->cB[t] = blk + (dim + 2 + t) * cstr;
+  st->cblk = blk;
+  st->cstride = cstr;
+  if (float_storage) {
+    st->cBfblk = pdk_alloc_aligned((size_t)(dim * dim * cstr), sizeof(float));
+    PDK_CHECK(st->cBfblk, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
+    memset(st->cBfblk, 0, (size_t)(dim * dim * cstr) * sizeof(float));
+    for (int t = 0; t < dim * dim; ++t)
+      st->cBf[t] = st->cBfblk + t * cstr;
   }
   /* tiles for the pass-2 neighbour data: u, V, k and B (double, or its float copy) */
   PDK_CHECK(stencil_rows(st, 8.0 * (dim + 2) + (float_storage ? 4.0 : 8.0) * dim * dim) == 0, ctx,
             PDK_ERR_MEMORY, "stencil: out of memory");
-  st->ck = pdk_alloc_aligned(ns_all, sizeof(double));
-  PDK_CHECK(st->ck, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-  memset(st->ck, 0, ns_all * sizeof(double));
-  /* the x arrays hold displacements: 0 at empty sites and in the slack */
-  for (int a = 0; a < dim; ++a)
-    memset(st->x[a], 0, ns_all * sizeof(double));
   return PDK_SUCCESS;
 }
 
@@ -831,6 +845,9 @@ int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts
     arr.cBf[t] = st->cBf[t];
   }
   arr.ck = st->ck;
+  arr.cbase = st->cblk;
+  arr.cbase_f = st->cBfblk;
+  arr.cstride = st->cstride;
   const pdk_stencil_arrays *a = &arr;
   const pdk_stencil *cst = st;
   const pdk_corr_stencil_fn pass1 = ctx->kernels.corr_stencil_pass1;

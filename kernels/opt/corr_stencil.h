@@ -29,7 +29,9 @@
  * Pass 2, per site i: f_i = sum_o V_j (B_j a_o + omega_o (k_j + k_i) v) + B_i s_i, the general
  * path's sum w (B_j e + k_j v) + B_i s + k_i U with k_i U folded into the bond term; s = sum w e
  * depends on the reference configuration only and is kept per site (cs, recomputed where bonds
- * break). B_i in double from cB; B_j from cBf with float storage.
+ * break). B_i in double from cB; B_j from cBf with float storage. Pass 2 addresses its
+ * neighbour streams (u, V, k, B) from one pointer with a fixed stride between them (cbase,
+ * cstride: the driver allocates them as one block), so they take one general register, not 14.
  *
  * So every family sum runs in offset order, per site, whatever the vector width and the thread
  * partition of the rows: results are bitwise the same for any number of threads. Against the
@@ -157,10 +159,15 @@ SC_INLINE void sc_corr2_block(const int nu, const int d, const int has_mask, con
   const sc_vd zero = sc_bcast(0.0);
   const int64_t ns = a->num_sites;
   sc_vd ui[SC_U][3], ki[SC_U], f[SC_U][3];
+  /* the 2 + d + d^2 neighbour streams from one pointer: component c of site j at
+   * cb[c * S + j] (u, V, k, B; pdk_stencil_arrays cbase), B's float copy at cbf[t * S + j] */
+  const double *restrict cb = a->cbase;
+  const float *restrict cbf = a->cbase_f;
+  const int64_t S = a->cstride;
   for (int u = 0; u < nu; ++u) {
-    ki[u] = silling ? sc_ld(a->ck + s + u * SC_W) : zero;
+    ki[u] = silling ? sc_ld(cb + (d + 1) * S + s + u * SC_W) : zero;
     for (int r = 0; r < 3; ++r) {
-      ui[u][r] = r < d ? sc_ld(a->u[r] + s + u * SC_W) : zero;
+      ui[u][r] = r < d ? sc_ld(cb + r * S + s + u * SC_W) : zero;
       f[u][r] = zero;
     }
   }
@@ -175,16 +182,18 @@ SC_INLINE void sc_corr2_block(const int nu, const int d, const int has_mask, con
     const sc_vd om = sc_bcast(a->omega_off[o]);
     for (int u = 0; u < nu; ++u) {
       const int64_t j = j0 + u * SC_W;
-      sc_vd V = sc_ld(a->volume + j);
+      const double *restrict pj = cb + j;
+      sc_vd V = sc_ld(pj + d * S);
       if (has_mask) V *= sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W);
-      const sc_vd okk = silling ? om * (sc_ld(a->ck + j) + ki[u]) : zero;
+      const sc_vd okk = silling ? om * (sc_ld(pj + (d + 1) * S) + ki[u]) : zero;
       for (int r = 0; r < d; ++r) {
         sc_vd g = zero;
         for (int q = 0; q < d; ++q) {
-          const sc_vd Bj = fl ? sc_ldf(a->cBf[r * d + q] + j) : sc_ld(a->cB[r * d + q] + j);
+          const sc_vd Bj =
+              fl ? sc_ldf(cbf + (r * d + q) * S + j) : sc_ld(pj + (d + 2 + r * d + q) * S);
           g = q ? g + e[q] * Bj : e[q] * Bj;
         }
-        if (silling) g += okk * (sc_ld(a->u[r] + j) - ui[u][r]);
+        if (silling) g += okk * (sc_ld(pj + r * S) - ui[u][r]);
         f[u][r] += V * g;
       }
     }
