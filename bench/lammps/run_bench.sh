@@ -6,10 +6,12 @@
 # speed ratio (LAMMPS time / pdk time).
 #
 #   bench/lammps/run_bench.sh [-b BUILD_DIR] [-s "46 100"] [-n STEPS] [-m "pmb lps"] [-r "1 2"]
+#                             [-l csr|sell|stencil]
 #
 # -s: cube sides (46 -> 97 336 particles, 100 -> 10^6; the 10^6 LAMMPS runs take minutes);
 # -n: steps per run (default 10); BUILD_DIR defaults to build-native (configure it with
-# -DPDK_NATIVE=ON, see bench/README.md "Force loops"). Logs stay in $PDK_BENCH_LOGS if set.
+# -DPDK_NATIVE=ON, see bench/README.md "Force loops"); -l: pdk's layout (bench_forces --layout,
+# default csr). Logs stay in $PDK_BENCH_LOGS if set.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=$here/../../build-native
@@ -17,14 +19,16 @@ sides="46 100"
 steps=10
 styles="pmb lps"
 ranks="1 2"
-while getopts "b:s:n:m:r:" opt; do
+layout=csr
+while getopts "b:s:n:m:r:l:" opt; do
   case $opt in
     b) build=$OPTARG ;;
     s) sides=$OPTARG ;;
     n) steps=$OPTARG ;;
     m) styles=$OPTARG ;;
     r) ranks=$OPTARG ;;
-    *) sed -n 2,12p "$0"; exit 2 ;;
+    l) layout=$OPTARG ;;
+    *) sed -n 2,14p "$0"; exit 2 ;;
   esac
 done
 bench=$build/bench/bench_forces
@@ -39,7 +43,7 @@ echo "# pdk vs LAMMPS $(lmp -h | awk '/^Large-scale/ {print $(NF-5), $(NF-4), $(
 src=$(awk -F= '/^CMAKE_HOME_DIRECTORY/ {print $2}' "$build/CMakeCache.txt" 2>/dev/null || true)
 commit=$(git -C "${src:-$here}" rev-parse --short HEAD 2>/dev/null || echo '?')
 git -C "${src:-$here}" diff --quiet HEAD 2>/dev/null || commit="$commit+local changes"
-echo "# pdk: source ${src:-?} at $commit, $bench"
+echo "# pdk: source ${src:-?} at $commit, $bench, layout $layout"
 printf "# %-5s %8s %10s %3s %11s %11s %11s %9s %9s %8s\n" style n bonds P lmp_s/step lmp_pair_s pdk_s/step \
   lmp_ns/b/c pdk_ns/b/c lmp/pdk
 for L in $sides; do
@@ -47,7 +51,7 @@ for L in $sides; do
     # pdk first: one process runs every thread count on the same families
     thr_args=""
     for p in $ranks; do thr_args="$thr_args --threads $p"; done
-    "$bench" --side "$L" --model "$style" $thr_args --steps "$steps" --triad-mib 64 > pdk.$style.$L.txt
+    "$bench" --side "$L" --model "$style" --layout "$layout" $thr_args --steps "$steps" --triad-mib 64 > pdk.$style.$L.txt
     for p in $ranks; do
       log=lmp.$style.$L.np$p.log
       mpirun -np "$p" lmp -in "$here/in.peri_bench" -var style "$style" -var L "$L" -var steps "$steps" \
