@@ -143,13 +143,13 @@ int pdk_kernel_corr_shape_point_ref(const pdk_corr_consts *k, const pdk_corr_arr
   double tr = 0.0;
   for (int c = 0; c < d; ++c)
     tr += K[c][c];
-  const double det = pdk_corr_det_d(d, K);
+  const double det = pdk_det_d(d, K);
   const double mean = tr / d;
   const double scale = d == 2 ? mean * mean : mean * mean * mean;
   const int spans = tr > 0.0 && isfinite(tr) && isfinite(det) && det >= k->span_rtol * scale;
   if (spans) {
     double Kinv[3][3];
-    pdk_corr_inv_d(d, K, det, Kinv);
+    pdk_inv_d(d, K, det, Kinv);
     store_d(d, a->Kinv, i, Kinv);
   } else {
     store_zero_d(d, a->Kinv, i);

@@ -11,36 +11,8 @@
 
 #include "kernels.h"
 #include "pdk/model.h" /* pdk_law */
+#include "ref/tensor_d.h"
 
-static inline double pdk_corr_det_d(const int d, const double T[3][3]) {
-  if (d == 2) return T[0][0] * T[1][1] - T[0][1] * T[1][0];
-  return T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1]) -
-         T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0]) +
-         T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]);
-}
-
-/* Inverse by the adjugate; the caller checks det != 0. */
-static inline void pdk_corr_inv_d(const int d, const double T[3][3], double det, double R[3][3]) {
-  const double s = 1.0 / det;
-  if (d == 2) {
-    R[0][0] = T[1][1] * s;
-    R[0][1] = -T[0][1] * s;
-    R[1][0] = -T[1][0] * s;
-    R[1][1] = T[0][0] * s;
-    return;
-  }
-  R[0][0] = (T[1][1] * T[2][2] - T[1][2] * T[2][1]) * s;
-  R[0][1] = (T[0][2] * T[2][1] - T[0][1] * T[2][2]) * s;
-  R[0][2] = (T[0][1] * T[1][2] - T[0][2] * T[1][1]) * s;
-  R[1][0] = (T[1][2] * T[2][0] - T[1][0] * T[2][2]) * s;
-  R[1][1] = (T[0][0] * T[2][2] - T[0][2] * T[2][0]) * s;
-  R[1][2] = (T[0][2] * T[1][0] - T[0][0] * T[1][2]) * s;
-  R[2][0] = (T[1][0] * T[2][1] - T[1][1] * T[2][0]) * s;
-  R[2][1] = (T[0][1] * T[2][0] - T[0][0] * T[2][1]) * s;
-  R[2][2] = (T[0][0] * T[1][1] - T[0][1] * T[1][0]) * s;
-}
-
-/* R = S T */
 static inline void pdk_corr_mul_d(const int d, const double S[3][3], const double T[3][3],
                                   double R[3][3]) {
   for (int a = 0; a < d; ++a)
@@ -93,10 +65,10 @@ static inline int pdk_corr_law_eval_d(const int d, const pdk_corr_consts *k, con
     return 1;
   }
   case PDK_LAW_NEO_HOOKE: {
-    const double J = pdk_corr_det_d(d, F);
+    const double J = pdk_det_d(d, F);
     if (!(J > 0.0) || !isfinite(J)) return 0;
     double Finv[3][3], ff = 0.0;
-    pdk_corr_inv_d(d, F, J, Finv);
+    pdk_inv_d(d, F, J, Finv);
     const double lnJ = log(J);
     for (int a = 0; a < d; ++a)
       for (int c = 0; c < d; ++c) {

@@ -71,10 +71,10 @@
 
 #include "kernels.h"
 #include "pdk/model.h" /* pdk_law, pdk_stabilization, pdk_jc_update */
-#include "ref/corr_law.h" /* pdk_corr_det_d, pdk_corr_inv_d */
+#include "ref/tensor_d.h" /* pdk_det_d, pdk_inv_d */
 
 /* ---- small dense tensors (row-major, d x d in the top-left of 3 x 3; det and inverse:
- * ref/corr_law.h) ---------------------------------------------------------------------------- */
+ * ref/tensor_d.h) ---------------------------------------------------------------------------- */
 
 static void load_d(const int d, double *const *restrict src, pdk_index i, double T[3][3]) {
   for (int a = 0; a < d; ++a)
@@ -98,7 +98,7 @@ static int spans_d(const int d, const double T[3][3], double rtol) {
   double tr = 0.0;
   for (int c = 0; c < d; ++c)
     tr += T[c][c];
-  const double det = pdk_corr_det_d(d, T);
+  const double det = pdk_det_d(d, T);
   const double mean = tr / d;
   const double scale = d == 2 ? mean * mean : mean * mean * mean;
   return tr > 0.0 && isfinite(tr) && isfinite(det) && det >= rtol * scale;
@@ -244,14 +244,14 @@ static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_a
       }
     }
   }
-  const double detN = pdk_corr_det_d(d, N), detM = pdk_corr_det_d(d, M);
+  const double detN = pdk_det_d(d, N), detM = pdk_det_d(d, M);
   if (!spans_d(d, M, k->span_rtol) || !(detN > 0.0) || !isfinite(detN)) {
     mark_inverted(d, k, a, i);
     return;
   }
   double Ninv[3][3], Minv[3][3], Finc[3][3], Fref[3][3], F[3][3], P[3][3], W = 0.0;
-  pdk_corr_inv_d(d, N, detN, Ninv);
-  pdk_corr_inv_d(d, M, detM, Minv);
+  pdk_inv_d(d, N, detN, Ninv);
+  pdk_inv_d(d, M, detM, Minv);
   for (int r = 0; r < d; ++r) /* F^ = M N^-T: (N^-T)[e][c] = N^-1[c][e] */
     for (int c = 0; c < d; ++c) {
       double s = 0.0;

@@ -88,27 +88,9 @@
 #include <string.h>
 
 #include "pdk/plasticity.h"
+#include "ref/tensor_d.h" /* pdk_det_d, pdk_inv_d */
 
-/* ---- small dense helpers (3 x 3, row-major) -------------------------------------------------- */
-
-static double det3(const double T[3][3]) {
-  return T[0][0] * (T[1][1] * T[2][2] - T[1][2] * T[2][1]) -
-         T[0][1] * (T[1][0] * T[2][2] - T[1][2] * T[2][0]) +
-         T[0][2] * (T[1][0] * T[2][1] - T[1][1] * T[2][0]);
-}
-
-static void inv3(const double T[3][3], double det, double R[3][3]) {
-  const double s = 1.0 / det;
-  R[0][0] = (T[1][1] * T[2][2] - T[1][2] * T[2][1]) * s;
-  R[0][1] = (T[0][2] * T[2][1] - T[0][1] * T[2][2]) * s;
-  R[0][2] = (T[0][1] * T[1][2] - T[0][2] * T[1][1]) * s;
-  R[1][0] = (T[1][2] * T[2][0] - T[1][0] * T[2][2]) * s;
-  R[1][1] = (T[0][0] * T[2][2] - T[0][2] * T[2][0]) * s;
-  R[1][2] = (T[0][2] * T[1][0] - T[0][0] * T[1][2]) * s;
-  R[2][0] = (T[1][0] * T[2][1] - T[1][1] * T[2][0]) * s;
-  R[2][1] = (T[0][1] * T[2][0] - T[0][0] * T[2][1]) * s;
-  R[2][2] = (T[0][0] * T[1][1] - T[0][1] * T[1][0]) * s;
-}
+/* ---- small dense helpers (3 x 3, row-major; determinant and inverse: ref/tensor_d.h) ---------- */
 
 /* R = A S A^T for symmetric S; R symmetric by construction (upper triangle mirrored). */
 static void congruence3(const double A[3][3], const double S[3][3], double R[3][3]) {
@@ -323,13 +305,13 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       if (!isfinite(F[i][j])) return PDK_ERR_NUMERIC;
-  const double J = det3(F);
+  const double J = pdk_det_d(3, F);
   if (!(J > 0.0) || !isfinite(J)) return PDK_ERR_NUMERIC;
 
   const double E = p->young_modulus, nu = p->poisson_ratio;
   const double mu = E / (2.0 * (1.0 + nu)), K = E / (3.0 * (1.0 - 2.0 * nu));
   double Finv[3][3];
-  inv3(F, J, Finv);
+  pdk_inv_d(3, F, J, Finv);
 
   pdk_jc_state st = *in; /* the new history, written to *out at the end (in and out may alias) */
   pdk_jc_result r;
@@ -416,7 +398,7 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
       congruence3(Finv, be, Cp_new);
       /* det C_p^-1 = 1 holds in exact arithmetic (isochoric flow); rescale so that its round-off
        * does not accumulate into the pressure, tau_m = K (ln J + ln det C_p^-1 / 2) */
-      const double scale = 1.0 / cbrt(det3(Cp_new));
+      const double scale = 1.0 / cbrt(pdk_det_d(3, Cp_new));
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           Cp_new[i][j] *= scale;
