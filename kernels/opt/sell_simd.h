@@ -26,6 +26,30 @@ BS_INLINE bs_vd sell_ref_length(const int dim, const bs_vd *t, const bs_vd Xi, c
   return BS_SQRT(rr0);
 }
 
+/* One column of C bonds, current side: the neighbours' cur4 rows (x, y, z, V) at j give the bond
+ * vector (dx, dy, dz) from the lane particles at (xi, yi, zi), V_j, and returns r = |dx|. */
+BS_INLINE bs_vd sell_cur_bond(const int dim, const double *cur4, const pdk_index *j, const bs_vd xi,
+                              const bs_vd yi, const bs_vd zi, bs_vd *dx, bs_vd *dy, bs_vd *dz,
+                              bs_vd *vj) {
+  bs_vd t[4];
+  BS_LOAD4(cur4, j, t);
+  *dx = t[0] - xi, *dy = t[1] - yi, *dz = t[2] - zi, *vj = t[3];
+  bs_vd rr = *dx * *dx + *dy * *dy;
+  if (dim == 3) rr = rr + *dz * *dz;
+  return BS_SQRT(rr);
+}
+
+/* The reference length of column e: the stored float length (stored) or from the neighbours'
+ * reference rows at j. */
+BS_INLINE bs_vd sell_r0(const int dim, const int stored, const pdk_bond_arrays *a,
+                        const pdk_sell_arrays *s, const int64_t e, const pdk_index *j,
+                        const bs_vd Xi, const bs_vd Yi, const bs_vd Zi) {
+  if (stored) return BS_CVT_F(s->r0 + e);
+  bs_vd t[4];
+  BS_LOAD4(a->ref4, j, t);
+  return sell_ref_length(dim, t, Xi, Yi, Zi);
+}
+
 BS_INLINE bs_vd sell_alive(const int has_state, const pdk_sell_arrays *s, const int64_t e,
                            const bs_vd one) {
   bs_vd on = one;
@@ -61,18 +85,9 @@ BS_INLINE pdk_bond_index sell_pmb_slices(const int dim, const int has_state, con
     const int64_t e0 = s->slice_start[sl], e1 = s->slice_start[sl + 1];
     for (int64_t e = e0; e < e1; e += BS_W) {
       const pdk_index *j = s->sj + e;
-      BS_LOAD4(a->cur4, j, t);
-      const bs_vd dx = t[0] - xi, dy = t[1] - yi, dz = t[2] - zi, vj = t[3];
-      bs_vd rr = dx * dx + dy * dy;
-      if (dim == 3) rr = rr + dz * dz;
-      const bs_vd r = BS_SQRT(rr);
-      bs_vd r0;
-      if (stored) {
-        r0 = BS_CVT_F(s->r0 + e);
-      } else {
-        BS_LOAD4(a->ref4, j, t);
-        r0 = sell_ref_length(dim, t, Xi, Yi, Zi);
-      }
+      bs_vd dx, dy, dz, vj;
+      const bs_vd r = sell_cur_bond(dim, a->cur4, j, xi, yi, zi, &dx, &dy, &dz, &vj);
+      const bs_vd r0 = sell_r0(dim, stored, a, s, e, j, Xi, Yi, Zi);
       const bs_vd on = sell_alive(has_state, s, e, one);
       const bs_vd d = r - r0;
       const bs_vd q = bs_sel(r > zero, one / (r0 * r), zero);
@@ -151,18 +166,9 @@ BS_INLINE void sell_lps_theta_slices(const int dim, const int has_state, const i
     const int64_t e0 = s->slice_start[sl], e1 = s->slice_start[sl + 1];
     for (int64_t e = e0; e < e1; e += BS_W) {
       const pdk_index *j = s->sj + e;
-      BS_LOAD4(a->cur4, j, t);
-      const bs_vd dx = t[0] - xi, dy = t[1] - yi, dz = t[2] - zi, vj = t[3];
-      bs_vd rr = dx * dx + dy * dy;
-      if (dim == 3) rr = rr + dz * dz;
-      const bs_vd r = BS_SQRT(rr);
-      bs_vd r0;
-      if (stored) {
-        r0 = BS_CVT_F(s->r0 + e);
-      } else {
-        BS_LOAD4(a->ref4, j, t);
-        r0 = sell_ref_length(dim, t, Xi, Yi, Zi);
-      }
+      bs_vd dx, dy, dz, vj;
+      const bs_vd r = sell_cur_bond(dim, a->cur4, j, xi, yi, zi, &dx, &dy, &dz, &vj);
+      const bs_vd r0 = sell_r0(dim, stored, a, s, e, j, Xi, Yi, Zi);
       const bs_vd on = sell_alive(has_state, s, e, one);
       sum += on * (r - r0) * (vj * bs_min1((vs_a - r0) * vs_b));
     }
@@ -196,11 +202,8 @@ BS_INLINE pdk_bond_index sell_lps_force_slices(const int dim, const int has_stat
     const int64_t e0 = s->slice_start[sl], e1 = s->slice_start[sl + 1];
     for (int64_t e = e0; e < e1; e += BS_W) {
       const pdk_index *j = s->sj + e;
-      BS_LOAD4(a->cur4, j, t);
-      const bs_vd dx = t[0] - xi, dy = t[1] - yi, dz = t[2] - zi, vj = t[3];
-      bs_vd rr = dx * dx + dy * dy;
-      if (dim == 3) rr = rr + dz * dz;
-      const bs_vd r = BS_SQRT(rr);
+      bs_vd dx, dy, dz, vj;
+      const bs_vd r = sell_cur_bond(dim, a->cur4, j, xi, yi, zi, &dx, &dy, &dz, &vj);
       BS_LOAD4(a->ref4, j, t);
       const bs_vd inv_m_j = t[3];
       const bs_vd r0 = stored ? BS_CVT_F(s->r0 + e) : sell_ref_length(dim, t, Xi, Yi, Zi);
