@@ -97,3 +97,25 @@ void pdk_bond_pack_cur(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_in
     }
   }
 }
+
+void pdk_bond_pack_cur_blocks(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_index n,
+                              int64_t block) {
+  if (!bd->cur4) return;
+  const int64_t num_blocks = ((int64_t)n + block - 1) / block;
+#pragma omp for schedule(static)
+  for (int64_t blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = (pdk_index)(blk * block);
+    pdk_bond_pack_cur(bd, a, i0, (pdk_index)(i0 + block < (int64_t)n ? i0 + block : n));
+  }
+}
+
+void pdk_bond_block_energies(const double *volume, const double *w, pdk_index n, int64_t block,
+                             double *block_energy) {
+  const int64_t num_blocks = ((int64_t)n + block - 1) / block;
+#pragma omp for schedule(static)
+  for (int64_t blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = (pdk_index)(blk * block);
+    block_energy[blk] =
+        pdk_bond_block_energy(volume, w, i0, (pdk_index)(i0 + block < (int64_t)n ? i0 + block : n));
+  }
+}

@@ -33,6 +33,15 @@ int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *
 /* cur4 rows [i0, i1) from x and the volumes (no-op without rows). */
 void pdk_bond_pack_cur(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_index i0,
                        pdk_index i1);
+/* Worksharing loops over the blocks of `block` particles of [0, n), static schedule (the blocks
+ * a thread gets depend only on the thread count), ending in the loop's implicit barrier. Called by
+ * every thread of an enclosing parallel region (or outside one: one thread does all). */
+/* cur4 rows of every particle (no-op without rows): every row is packed when it returns. */
+void pdk_bond_pack_cur_blocks(const pdk_bond_data *bd, const pdk_bond_arrays *a, pdk_index n,
+                              int64_t block);
+/* block_energy[b] = pdk_bond_block_energy over block b, for every block. */
+void pdk_bond_block_energies(const double *volume, const double *w, pdk_index n, int64_t block,
+                             double *block_energy);
 
 /* The bond j -> i stored in j's family (families are sorted by neighbour, so a binary search),
  * or -1 if there is none. The analytic tangents read the state of the bond from the other end. */

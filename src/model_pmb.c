@@ -138,12 +138,8 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
     if (w) {
       const double *volume = pdk_particles_volume(p);
       double *block_energy = im->block_energy;
-#pragma omp parallel for default(none) shared(num_blocks, n, volume, w, block_energy)                  schedule(static) num_threads(ctx->num_threads)
-      for (int64_t blk = 0; blk < num_blocks; ++blk) {
-        const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-        const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-        block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
-      }
+#pragma omp parallel default(none) shared(n, volume, w, block_energy) num_threads(ctx->num_threads)
+      pdk_bond_block_energies(volume, w, n, PDK_PMB_BLOCK, block_energy);
     }
     pdk_bond_pass_finish(m, &im->s0_next, s0_next != NULL, broken, im->block_energy, num_blocks,
                          energy);
@@ -177,30 +173,14 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
     shared(num_blocks, n, k, a, bd, pack, volume, w, block_energy, skernel, sa, num_slices,        \
                per_block, num_sblocks)
     {
-      if (pack) {
-#pragma omp for schedule(static)
-        for (int64_t blk = 0; blk < num_blocks; ++blk) {
-          const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-          const pdk_index i1 =
-              (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-          pdk_bond_pack_cur(bd, a, i0, i1);
-        } /* implicit barrier: every row is packed before a neighbour reads it */
-      }
+      if (pack) pdk_bond_pack_cur_blocks(bd, a, n, PDK_PMB_BLOCK); /* barrier: rows packed */
 #pragma omp for schedule(static)
       for (int64_t blk = 0; blk < num_sblocks; ++blk) {
         const int64_t s0 = blk * per_block;
         const int64_t s1 = s0 + per_block < num_slices ? s0 + per_block : num_slices;
         broken += skernel(k, a, sa, s0, s1);
       } /* implicit barrier: the energy blocks below hold rows of any slice */
-      if (w) {
-#pragma omp for schedule(static)
-        for (int64_t blk = 0; blk < num_blocks; ++blk) {
-          const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-          const pdk_index i1 =
-              (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-          block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
-        }
-      }
+      if (w) pdk_bond_block_energies(volume, w, n, PDK_PMB_BLOCK, block_energy);
     }
     pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy,
                          num_blocks, energy);
@@ -210,14 +190,7 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
     shared(num_blocks, n, k, a, bd, kernel, pack, volume, w, block_energy)
   {
-    if (pack) {
-#pragma omp for schedule(static)
-      for (int64_t blk = 0; blk < num_blocks; ++blk) {
-        const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-        const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-        pdk_bond_pack_cur(bd, a, i0, i1);
-      } /* implicit barrier: every row is packed before a neighbour reads it */
-    }
+    if (pack) pdk_bond_pack_cur_blocks(bd, a, n, PDK_PMB_BLOCK); /* barrier: rows packed */
 #pragma omp for schedule(static)
     for (int64_t blk = 0; blk < num_blocks; ++blk) {
       const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
