@@ -489,6 +489,19 @@ cleanup:
 }
 
 /* The kernels' arrays for one pass; xp: the particles' "x". */
+/* The lattice part of the kernels' arrays (dimension, offsets, sites, rows), the rest zeroed. */
+static void stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *arr) {
+  memset(arr, 0, sizeof *arr);
+  arr->dim = st->dim;
+  arr->num_offsets = st->num_offsets;
+  arr->offset = st->offset;
+  arr->num_sites = st->num_sites;
+  arr->num_rows = st->num_rows;
+  arr->row_lo = st->row_lo;
+  arr->row_hi = st->row_hi;
+  arr->site_particle = st->site_particle;
+}
+
 static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_b,
                           double *s0_next, double *w, pdk_stencil_arrays *out,
                           const double *xp[3]) {
@@ -505,15 +518,7 @@ static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_
       st->beta_off[o] = t < 1.0 ? t : 1.0;
     }
   pdk_stencil_arrays arr;
-  memset(&arr, 0, sizeof arr);
-  arr.dim = dim;
-  arr.num_offsets = st->num_offsets;
-  arr.offset = st->offset;
-  arr.num_sites = st->num_sites;
-  arr.num_rows = st->num_rows;
-  arr.row_lo = st->row_lo;
-  arr.row_hi = st->row_hi;
-  arr.site_particle = st->site_particle;
+  stencil_arrays_lattice(st, &arr);
   for (int a = 0; a < 3; ++a) xp[a] = NULL;
   for (int a = 0; a < dim; ++a) {
     arr.X[a] = st->X[a];
@@ -823,15 +828,7 @@ int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts
             "stencil: the correspondence arrays were not set up");
   if (st->mask && st->version != m->bond_state_version) stencil_load_mask(m, st);
   pdk_stencil_arrays arr;
-  memset(&arr, 0, sizeof arr);
-  arr.dim = dim;
-  arr.num_offsets = st->num_offsets;
-  arr.offset = st->offset;
-  arr.num_sites = st->num_sites;
-  arr.num_rows = st->num_rows;
-  arr.row_lo = st->row_lo;
-  arr.row_hi = st->row_hi;
-  arr.site_particle = st->site_particle;
+  stencil_arrays_lattice(st, &arr);
   arr.volume = st->volume;
   arr.mask = st->mask;
   for (int a = 0; a < dim; ++a) {
