@@ -488,7 +488,6 @@ cleanup:
   return err;
 }
 
-/* The kernels' arrays for one pass; xp: the particles' "x". */
 /* The lattice part of the kernels' arrays (dimension, offsets, sites, rows), the rest zeroed. */
 static void stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *arr) {
   memset(arr, 0, sizeof *arr);
@@ -502,6 +501,7 @@ static void stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *ar
   arr->site_particle = st->site_particle;
 }
 
+/* The kernels' arrays for one pass; xp: the particles' "x". */
 static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_b,
                           double *s0_next, double *w, pdk_stencil_arrays *out,
                           const double *xp[3]) {
