@@ -385,6 +385,10 @@ typedef struct pdk_corr_consts {
   double dt;                      /* step length passed to the update [time] (> 0) */
   int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
   int break_failed;               /* 1: bonds of failed particles break (both ends) */
+  /* Softened stabilization (Johnson-Cook; arrays stab_factor, stab_prev, w_law, w_stab): a commit
+   * pass 1 sets particle i's factor to min(1, max(stab_floor, sigma_vm / (E eps_p))) once it has
+   * flowed (Bode 2021 eq. 6.20, E~ = min[E, max(1e-3 E, sigma_vm / eps_p)]); 0: off. */
+  double stab_floor;
   /* Multi-material: per-particle lambda, mu and stab_modulus [n_pad]; NULL: the scalars above. */
   const double *lambda_p, *mu_p, *stab_p;
 } pdk_corr_consts;
@@ -461,6 +465,23 @@ typedef struct pdk_corr_arrays {
   double *eps_p_rate; /* plastic strain rate of the last committed step [1/time] */
   double *w_plastic;  /* accumulated plastic work [energy/length^3] */
   double *w_damage;   /* accumulated damage energy [energy/length^3] */
+  /* Softened stabilization (k->stab_floor > 0; all NULL otherwise): particle i's stabilization
+   * coefficient is k_i = factor_i stab_modulus_i / m_i. A commit pass 1 keeps the factor it found
+   * in stab_prev, writes the new one and the law's energy density W_law (W before the Silling
+   * term); after pass 2 the driver books the Silling energy the factor's change took away,
+   * (f_old - f_new)/2 (S_old / f_old + S / f_new) with S = W - W_law this pass's Silling energy
+   * density and S_old = w_silling the last commit's (the change of f at the mean of the step's
+   * two ends: second order in dt, as the integrator), into w_stab, and sets w_silling = S. */
+  double *stab_factor; /* [n_pad] 1 at start */
+  double *stab_prev;   /* [n_pad] scratch of the commit pass: the factor before it */
+  double *w_law;       /* [n_pad] scratch of the commit pass */
+  double *w_silling;   /* [n_pad] Silling energy density at the last commit [energy/length^3] */
+  double *w_stab;      /* [n_pad] accumulated Silling energy given up [energy/length^3] */
+  /* Family-averaged damage triaxiality (NULL: each particle's own pressure): a commit pass 1
+   * writes sigma_m (the effective Cauchy mean stress of pdk_jc_result.sigma_m_eff), every pass 1
+   * reads sigma_m_avg (the average the driver formed from the previous commit's sigma_m). */
+  double *sigma_m;
+  const double *sigma_m_avg;
   /* Bond breaking bookkeeping (NULL when bonds never break) */
   double *w_broken; /* accumulated energy released by breaking [energy/length^3] */
   uint8_t *changed; /* [n] bit 0: row lost bonds in this round, bit 1: in this commit pass */
@@ -472,7 +493,16 @@ typedef struct pdk_corr_arrays {
 static inline double pdk_corr_kst(const struct pdk_corr_consts *k, const pdk_corr_arrays *a,
                                   pdk_index i) {
   if (k->stab == 0 || a->flag[i] || !(a->m[i] > 0.0)) return 0.0; /* 0: PDK_STAB_NONE */
-  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) / a->m[i];
+  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) *
+         (a->stab_factor ? a->stab_factor[i] : 1.0) / a->m[i];
+}
+
+/* The same coefficient ignoring the flags (m_i > 0 assumed): what the Silling term of a particle
+ * failing in this commit pass held, booked as damage by pass 2. */
+static inline double pdk_corr_kst_unflagged(const struct pdk_corr_consts *k,
+                                            const pdk_corr_arrays *a, pdk_index i) {
+  return (k->stab_p ? k->stab_p[i] : k->stab_modulus) *
+         (a->stab_factor ? a->stab_factor[i] : 1.0) / a->m[i];
 }
 
 /* Silling energy sum of particle i, zz = sum w |v - H xi|^2 = vv - H : D with H = D K^-1,

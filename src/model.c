@@ -22,6 +22,7 @@ pdk_model_opts pdk_model_opts_default(void) {
   o.compact_fraction = 0.02;
   o.ul_skin = 0.25;
   o.thickness = 1.0;
+  o.stab_softening_floor = 1e-3;
   return o;
 }
 
@@ -109,6 +110,37 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
               "the Johnson-Cook law needs the correspondence model (model kind is %s)", name);
     PDK_CALL(pdk_jc_params_check(ctx, &o->jc));
   }
+  PDK_CHECK(o->stab_softening == 0 || o->stab_softening == 1, ctx, PDK_ERR_ARG,
+            "stab_softening must be 0 (off) or 1 (plastic), got %d", o->stab_softening);
+  if (o->stab_softening) {
+    PDK_CHECK(isfinite(o->stab_softening_floor) && o->stab_softening_floor > 0 &&
+                  o->stab_softening_floor <= 1,
+              ctx, PDK_ERR_ARG,
+              "stab_softening_floor must lie in (0, 1] (the smallest factor on the stabilization "
+              "modulus; the thesis uses 1e-3), got %g",
+              o->stab_softening_floor);
+    PDK_CHECK(o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC &&
+                  o->stabilization == PDK_STAB_SILLING,
+              ctx, PDK_ERR_UNSUPPORTED,
+              "softened stabilization follows the plastic flow: it needs the correspondence "
+              "model with law jc and silling stabilization (model kind %s, law %d, "
+              "stabilization %d)",
+              name, (int)o->law, (int)o->stabilization);
+  }
+  PDK_CHECK((unsigned)o->damage_triaxiality <= PDK_TRIAX_FAMILY, ctx, PDK_ERR_ARG,
+            "damage_triaxiality %d unknown; use local (0) or family (1)",
+            (int)o->damage_triaxiality);
+  PDK_CHECK(o->damage_triaxiality == PDK_TRIAX_LOCAL ||
+                (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC && o->jc.damage),
+            ctx, PDK_ERR_UNSUPPORTED,
+            "damage_triaxiality family averages the pressure of the Johnson-Cook damage law: it "
+            "needs the correspondence model with law jc and damage on");
+  PDK_CHECK((!o->stab_softening && o->damage_triaxiality == PDK_TRIAX_LOCAL) ||
+                o->connectivity != PDK_CONNECTIVITY_UL,
+            ctx, PDK_ERR_UNSUPPORTED,
+            "%s is implemented for tl and semi_tl connectivity, not ul; use connectivity tl or "
+            "semi_tl",
+            o->stab_softening ? "softened stabilization" : "damage_triaxiality family");
   PDK_CHECK(isfinite(o->thickness) && o->thickness > 0, ctx, PDK_ERR_ARG,
             "thickness must be a finite length > 0 (2-D: the out-of-plane thickness the volumes "
             "include; default 1), got %g",
@@ -488,7 +520,14 @@ static int volume_sum(pdk_model *m, const char *name, double *out) {
 }
 
 int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking) {
-  if (plastic) PDK_CALL(volume_sum(m, "w_plastic", plastic));
+  if (plastic) {
+    PDK_CALL(volume_sum(m, "w_plastic", plastic));
+    if (pdk_particles_field_exists(m->p, "w_stab")) {
+      double stab;
+      PDK_CALL(volume_sum(m, "w_stab", &stab));
+      *plastic += stab;
+    }
+  }
   if (damage) PDK_CALL(volume_sum(m, "w_damage", damage));
   if (breaking) PDK_CALL(volume_sum(m, "w_broken", breaking));
   return PDK_SUCCESS;

@@ -122,6 +122,8 @@ typedef struct corr_impl {
   double *ref4, *cur4, *own;
   pdk_corr_row *row;
   pdk_corr_rowf *rowf;
+  /* Softened stabilization: the commit pass's scratch (kernels.h); NULL when off */
+  double *stab_prev, *w_law;
 } corr_impl;
 
 /* Points the kernel arrays at the current fields. */
@@ -180,6 +182,17 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
     a->eps_p_rate = pdk_particles_field_data(p, "eps_p_rate", 0);
     a->w_plastic = pdk_particles_field_data(p, "w_plastic", 0);
     a->w_damage = pdk_particles_field_data(p, "w_damage", 0);
+    if (m->opts.stab_softening) {
+      a->stab_factor = pdk_particles_field_data(p, "stab_factor", 0);
+      a->w_stab = pdk_particles_field_data(p, "w_stab", 0);
+      a->w_silling = pdk_particles_field_data(p, "w_silling", 0);
+      a->stab_prev = c->stab_prev;
+      a->w_law = c->w_law;
+    }
+    if (m->opts.damage_triaxiality == PDK_TRIAX_FAMILY) {
+      a->sigma_m = pdk_particles_field_data(p, "sigma_m", 0);
+      a->sigma_m_avg = pdk_particles_field_data(p, "sigma_m_avg", 0);
+    }
   }
   a->w_broken = pdk_particles_field_data(p, "w_broken", 0);
   a->changed = c->changed;
@@ -215,9 +228,44 @@ static void corr_destroy(pdk_model *m) {
   pdk_free_aligned(c->own);
   pdk_free_aligned(c->row);
   pdk_free_aligned(c->rowf);
+  pdk_free_aligned(c->stab_prev);
+  pdk_free_aligned(c->w_law);
   free_compacted(c);
   free(c);
   m->impl = NULL;
+}
+
+/* damage_triaxiality family: sigma_m_avg_i = (V_i sigma_m_i + sum_b omega_b V_j sigma_m_j) /
+ * (V_i + sum_b omega_b V_j) over i's intact bonds to particles that have not failed (a failed
+ * particle carries no stress; it is a hole, not a zero pressure). Each i reads its own row only,
+ * in bond order: the same bits for any thread count. Run after each commit pass (and at setup),
+ * so every pass 1 until the next commit reads the same averages. */
+static void corr_pressure_average(pdk_model *m) {
+  corr_impl *c = m->impl;
+  pdk_corr_arrays a;
+  corr_arrays(m, &a);
+  const pdk_index n = pdk_particles_count(m->p);
+  const pdk_index num_blocks = c->num_blocks;
+  const int nt = m->ctx->num_threads;
+  const double *sm = a.sigma_m;
+  double *avg = pdk_particles_field_data(m->p, "sigma_m_avg", 0);
+#pragma omp parallel for default(none) shared(a, sm, avg, n, num_blocks) schedule(static)       \
+    num_threads(nt)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = blk * PDK_CORR_BLOCK;
+    const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
+    for (pdk_index i = i0; i < i1; ++i) {
+      double sw = a.volume[i], sp = a.volume[i] * sm[i];
+      for (pdk_bond_index b = a.bond_start[i]; b < a.bond_start[i + 1]; ++b) {
+        const pdk_index j = a.bond_j[b];
+        if ((a.bond_alive && !a.bond_alive[b]) || a.failed[j]) continue;
+        const double w = a.bond_omega[b] * a.volume[j];
+        sw += w;
+        sp += w * sm[j];
+      }
+      avg[i] = sp / sw;
+    }
+  }
 }
 
 static int corr_setup(pdk_model *m) {
@@ -258,6 +306,11 @@ static int corr_setup(pdk_model *m) {
   if (m->s0) {
     c->s0_next = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
     ok = ok && c->s0_next;
+  }
+  if (o->stab_softening) {
+    c->stab_prev = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+    c->w_law = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
+    ok = ok && c->stab_prev && c->w_law;
   }
   /* Pass-2 data: each of B, G, Bf, Gf is dim*dim arrays of n_pad; kst one. */
   const unsigned layout = pdk_corr_pair_layout((int)o->stabilization,
@@ -331,6 +384,20 @@ static int corr_setup(pdk_model *m) {
     PDK_CALL(pdk_particles_field_add(p, "eps_p_rate", PDK_F64, 1));
     PDK_CALL(pdk_particles_field_add(p, "w_plastic", PDK_F64, 1));
     PDK_CALL(pdk_particles_field_add(p, "w_damage", PDK_F64, 1));
+    if (o->stab_softening) {
+      const int fresh_factor = !pdk_particles_field_exists(p, "stab_factor");
+      PDK_CALL(pdk_particles_field_add(p, "stab_factor", PDK_F64, 1));
+      PDK_CALL(pdk_particles_field_add(p, "w_stab", PDK_F64, 1));
+      PDK_CALL(pdk_particles_field_add(p, "w_silling", PDK_F64, 1));
+      double *f = pdk_particles_field_data(p, "stab_factor", 0);
+      if (fresh_factor)
+        for (pdk_index i = 0; i < n_pad; ++i)
+          f[i] = 1.0;
+    }
+    if (o->damage_triaxiality == PDK_TRIAX_FAMILY) {
+      PDK_CALL(pdk_particles_field_add(p, "sigma_m", PDK_F64, 1));
+      PDK_CALL(pdk_particles_field_add(p, "sigma_m_avg", PDK_F64, 1));
+    }
     if (fresh)
       for (int t = 0; t < 3; ++t) {
         double *cp = pdk_particles_field_data(p, "cp_inv", t);
@@ -360,6 +427,7 @@ static int corr_setup(pdk_model *m) {
   k->dt = 0.0;
   k->commit = 0;
   k->break_failed = o->law == PDK_LAW_JC && o->jc.damage && !o->failed_keeps_bonds;
+  k->stab_floor = o->stab_softening ? o->stab_softening_floor : 0.0;
 
   /* Influence weight per bond (first touch in the pass order). A bond of zero length would give
    * omega = infinity (1/r) and a singular family; it is an input error. */
@@ -424,6 +492,7 @@ static int corr_setup(pdk_model *m) {
     flagged += c->shape(k, &a, i0, i1);
   }
   m->num_flagged = flagged;
+  if (o->damage_triaxiality == PDK_TRIAX_FAMILY) corr_pressure_average(m); /* of a restored state */
 
   /* model.stencil: the lattice layout (src/model_stencil.c) for TL with no or Silling
    * stabilization; K^-1 and m above stay the general path's. When it is taken the packed rows
@@ -669,12 +738,15 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   const int dim = k->dim;
   double *cur4 = c->cur4;
 
+  /* softened stabilization: what the commit pass's new factors took from the Silling energy */
+  const int book = commit && a.stab_factor != NULL;
+
   pdk_stencil *st = m->stencil;
   if (st) PDK_CALL(pdk_stencil_corr_passes(m, st, k, &a));
 
 #pragma omp parallel default(none)                                                              \
     shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2, dim, cur4,  \
-               st) reduction(+ : flagged, num_failed) num_threads(nt)
+               st, book) reduction(+ : flagged, num_failed) num_threads(nt)
   {
     if (cur4) {
       /* the displacement rows pass 1 and pass 2 read from neighbours (implicit barrier) */
@@ -696,6 +768,12 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);
       if (!st) pass2(k, &a, i0, i1);
+      if (book)
+        for (pdk_index i = i0; i < i1; ++i) {
+          const double S = W[i] - a.w_law[i], f0 = a.stab_prev[i], f1 = a.stab_factor[i];
+          if (f0 != f1) a.w_stab[i] += 0.5 * (f0 - f1) * (a.w_silling[i] / f0 + S / f1);
+          a.w_silling[i] = S;
+        }
       double e = 0.0;
       for (pdk_index i = i0; i < i1; ++i) {
         e += volume[i] * W[i];
@@ -743,6 +821,7 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       if (m->stencil) pdk_stencil_mask_rows(m, m->stencil, c->changed);
     }
   }
+  if (commit && a.sigma_m_avg) corr_pressure_average(m);
   return PDK_SUCCESS;
 }
 

@@ -92,8 +92,9 @@ typedef struct sc_material {
 } sc_material;
 typedef struct sc_model {
   int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
+  int stabilization_softening, damage_triaxiality;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
-      ul_skin;
+      ul_skin, stabilization_softening_floor;
   bool partial_volume, failed_keeps_bonds;
 } sc_model;
 typedef struct sc_bc {
@@ -170,6 +171,9 @@ static const cyaml_strval_t coupling_names[] = {{"none", PDK_JC_COUPLING_NONE},
                                                 {"effective", PDK_JC_COUPLING_EFFECTIVE}};
 static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
                                                    {"compression", PDK_JC_FAILED_COMPRESSION}};
+static const cyaml_strval_t softening_names[] = {{"none", 0}, {"plastic", 1}};
+static const cyaml_strval_t triaxiality_names[] = {{"local", PDK_TRIAX_LOCAL},
+                                                   {"family", PDK_TRIAX_FAMILY}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
@@ -341,6 +345,12 @@ static void schema_build(scene_schema *sc, int dim) {
                               N_OF(stab_names)));
   ADD(model,
       CYAML_FIELD_FLOAT("stabilization_coefficient", OPT, sc_model, stabilization_coefficient));
+  ADD(model, CYAML_FIELD_ENUM("stabilization_softening", ENUM_FLAGS, sc_model,
+                              stabilization_softening, softening_names, N_OF(softening_names)));
+  ADD(model, CYAML_FIELD_FLOAT("stabilization_softening_floor", OPT, sc_model,
+                               stabilization_softening_floor));
+  ADD(model, CYAML_FIELD_ENUM("damage_triaxiality", ENUM_FLAGS, sc_model, damage_triaxiality,
+                              triaxiality_names, N_OF(triaxiality_names)));
   ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, law_names, N_OF(law_names)));
   ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names,
                               N_OF(precision_names)));
@@ -1207,6 +1217,49 @@ static int resolve_connectivity(loader *ld, const sc_model *mo) {
   return PDK_SUCCESS;
 }
 
+/* model.stabilization_softening, stabilization_softening_floor, damage_triaxiality: Johnson-Cook
+ * refinements of the correspondence model (tl, semi_tl). After the law and connectivity. */
+static int resolve_softening(loader *ld, const sc_model *mo) {
+  pdk_model_opts *m = &ld->s->model;
+  const int corr_jc = m->kind == PDK_MODEL_CORRESPONDENCE && m->law == PDK_LAW_JC;
+  if (has(ld, "model.stabilization_softening")) {
+    m->stab_softening = mo->stabilization_softening;
+    REQUIRE(ld, !m->stab_softening || (corr_jc && m->stabilization == PDK_STAB_SILLING),
+            "model.stabilization_softening",
+            "plastic softens the Silling stabilization where the Johnson-Cook material flowed: it "
+            "needs model.kind correspondence, model.law jc and model.stabilization silling; use "
+            "none or remove it");
+    REQUIRE(ld, !m->stab_softening || m->connectivity != PDK_CONNECTIVITY_UL,
+            "model.stabilization_softening",
+            "plastic is implemented for tl and semi_tl connectivity, not ul; set "
+            "model.connectivity: tl or semi_tl, or use none");
+  }
+  if (has(ld, "model.stabilization_softening_floor")) {
+    REQUIRE(ld, m->stab_softening, "model.stabilization_softening_floor",
+            "only used with model.stabilization_softening: plastic; set it or remove the floor");
+    const double f = mo->stabilization_softening_floor;
+    REQUIRE(ld, isfinite(f) && f > 0 && f <= 1, "model.stabilization_softening_floor",
+            "must lie in (0, 1], got %g (the smallest factor on the stabilization modulus; the "
+            "thesis uses 1e-3, the default)",
+            f);
+    m->stab_softening_floor = f;
+  }
+  if (has(ld, "model.damage_triaxiality")) {
+    m->damage_triaxiality = (pdk_damage_triaxiality)mo->damage_triaxiality;
+    REQUIRE(ld, m->damage_triaxiality == PDK_TRIAX_LOCAL || (corr_jc && m->jc.damage),
+            "model.damage_triaxiality",
+            "family averages the pressure of the Johnson-Cook damage law: it needs model.kind "
+            "correspondence, model.law jc and material.johnson_cook.damage on; use local or "
+            "remove it");
+    REQUIRE(ld,
+            m->damage_triaxiality == PDK_TRIAX_LOCAL || m->connectivity != PDK_CONNECTIVITY_UL,
+            "model.damage_triaxiality",
+            "family is implemented for tl and semi_tl connectivity, not ul; set "
+            "model.connectivity: tl or semi_tl, or use local");
+  }
+  return PDK_SUCCESS;
+}
+
 static int resolve_material_model(loader *ld, const sc_material *mat, const sc_model *mo) {
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
@@ -1310,6 +1363,7 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   m->thickness = s->lattice.thickness; /* 2-D volumes include it (lattice default 1) */
   PDK_CALL(resolve_johnson_cook(ld, mat, mo));
   PDK_CALL(resolve_connectivity(ld, mo));
+  PDK_CALL(resolve_softening(ld, mo));
   return PDK_SUCCESS;
 }
 

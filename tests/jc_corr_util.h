@@ -9,9 +9,9 @@
 #include "test_util.h"
 
 /* Every per-particle history field a JC correspondence model may declare. */
-static const char *const jcu_history_fields[] = {"cp_inv",    "eps_p",    "damage",
-                                                 "temp_rise", "failed",   "eps_p_rate",
-                                                 "w_plastic", "w_damage", "w_broken"};
+static const char *const jcu_history_fields[] = {
+    "cp_inv",   "eps_p",    "damage",      "temp_rise", "failed", "eps_p_rate",  "w_plastic",
+    "w_damage", "w_broken", "stab_factor", "w_stab",    "w_silling", "sigma_m", "sigma_m_avg"};
 #define JCU_NUM_HISTORY ((int)(sizeof jcu_history_fields / sizeof jcu_history_fields[0]))
 
 /* A copy of every history field that exists, plus the bond state. */

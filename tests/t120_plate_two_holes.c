@@ -22,9 +22,10 @@
  *   - energy: plastic work, damage and breaking work are positive and below the external work;
  *   - semi-TL compacted its bond list at least once.
  * Exploring (not for the suite): PDK_TEST_VERBOSE=1 prints the numbers; PDK_PLATE_SPACING=<m>
- * replaces the spacing; PDK_PLATE_SET=<key=value> adds one override; PDK_PLATE_MODE=tl|semi_tl
- * runs one mode; PDK_PLATE_MAXTIME=<s> changes the time limit; PDK_PLATE_DUMP, PDK_PLATE_TRACE,
- * PDK_PLATE_DUMP_AT, PDK_PLATE_PATH write particle and force files (plate_two_holes_util.h).
+ * replaces the spacing; PDK_PLATE_SET=<key=value>[;<key=value>...] adds overrides;
+ * PDK_PLATE_MODE=tl|semi_tl runs one mode; PDK_PLATE_MAXTIME=<s> changes the time limit;
+ * PDK_PLATE_DUMP, PDK_PLATE_TRACE, PDK_PLATE_DUMP_AT, PDK_PLATE_PATH write particle and force
+ * files (plate_two_holes_util.h).
  * Run time: about 20 s on 2 cores.
  * labels: physics */
 #include "plate_two_holes_util.h"
@@ -77,12 +78,19 @@ int main(void) {
   for (int k = 0; k < 2; ++k) {
     char conn[64];
     snprintf(conn, sizeof conn, "model.connectivity=%s", modes[k]);
-    const char *ov[] = {spacing, conn, "output.fields=[u]", getenv("PDK_PLATE_SET")};
+    const char *ov[8] = {spacing, conn, "output.fields=[u]"};
+    int num_ov = 3;
+    char set[1024] = "";
+    if (getenv("PDK_PLATE_SET")) { /* overrides separated by ';' */
+      snprintf(set, sizeof set, "%s", getenv("PDK_PLATE_SET"));
+      for (char *t = strtok(set, ";"); t && num_ov < 8; t = strtok(NULL, ";"))
+        ov[num_ov++] = t;
+    }
     ph_result r;
     if (getenv("PDK_PLATE_MODE") && strcmp(getenv("PDK_PLATE_MODE"), modes[k])) continue;
     const double max_time =
         getenv("PDK_PLATE_MAXTIME") ? atof(getenv("PDK_PLATE_MAXTIME")) : MAX_TIME;
-    ph_run(ctx, scene, ov, getenv("PDK_PLATE_SET") ? 4 : 3, modes[k], AFTER, max_time, 50, &r);
+    ph_run(ctx, scene, ov, num_ov, modes[k], AFTER, max_time, 50, &r);
     if (getenv("PDK_TEST_VERBOSE")) ph_print(modes[k], &r);
     check(modes[k], &r);
     T_ASSERT(k == 0 || r.compactions > 0, "semi_tl: the bond list was never compacted");

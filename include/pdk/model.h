@@ -21,6 +21,13 @@
  *   "eps_p_rate" f64 x 1  plastic strain rate of the last committed step [1/time]
  *   "w_plastic"  f64 x 1  plastic dissipation so far [energy/length^3 of reference volume]
  *   "w_damage"   f64 x 1  energy released by damage so far [energy/length^3]
+ * with stab_softening also
+ *   "stab_factor" f64 x 1 factor on the particle's stabilization modulus, 1 at start
+ *   "w_stab"     f64 x 1  Silling energy given up by the factor's changes so far [energy/length^3]
+ *   "w_silling"  f64 x 1  the Silling term's energy density at the last commit [energy/length^3]
+ * with damage_triaxiality family also
+ *   "sigma_m"    f64 x 1  effective Cauchy mean stress of the last commit pass [pressure]
+ *   "sigma_m_avg" f64 x 1 its family average, the pressure of the damage triaxiality [pressure]
  * and, whenever correspondence bonds can break,
  *   "w_broken"   f64 x 1  energy released by bond breaking so far [energy/length^3]: the drop
  *                         of the particle's stored energy (plus the plastic and damage work the
@@ -162,6 +169,17 @@ typedef enum pdk_stencil_mode {
 } pdk_stencil_mode;
 
 /* One material of a multi-material body (pdk_model_opts.materials). */
+/* The mean stress in the Johnson-Cook damage triaxiality eta = sigma_m / sigma_vm (law jc). */
+typedef enum pdk_damage_triaxiality {
+  PDK_TRIAX_LOCAL = 0, /* the particle's own (default) */
+  PDK_TRIAX_FAMILY = 1 /* the average of the previous commit pass's effective mean stresses over
+                          the particle and its intact family, weights omega V (the particle's own
+                          with weight V_i): removes a particle-to-particle alternation of the
+                          pressure from the damage (it appears with softened stabilization) while
+                          a smooth pressure field passes unchanged. Field "sigma_m" holds each
+                          particle's own, "sigma_m_avg" the average. tl and semi_tl only. */
+} pdk_damage_triaxiality;
+
 typedef struct pdk_material {
   double bulk_modulus;  /* K [pressure] */
   double shear_modulus; /* G [pressure] (PMB: ignored) */
@@ -190,6 +208,18 @@ typedef struct pdk_model_opts {
   double gaussian_width;   /* for PDK_INFLUENCE_GAUSSIAN, fraction of delta (default 0.5) */
   pdk_stabilization stabilization;
   double stab_coefficient; /* C_s (Silling) or the hourglass coefficient; default 0.1 */
+  /* Softened Silling stabilization (law jc, stabilization silling, connectivity tl or semi_tl):
+   * 0 (default) off; 1: particle i's stabilization modulus is scaled by
+   *   f_i = min(1, max(stab_softening_floor, sigma_vm,i / (E eps_p,i)))
+   * once it has flowed (eps_p > 0), updated by every commit pass (Bode 2021 eq. 6.20: the
+   * stabilization follows the plastic secant modulus E~ = sigma_vm / eps_p, so it does not hold
+   * back localization with the elastic stiffness). The Silling energy a change of f takes away
+   * at the current x is booked per particle in the field "w_stab" and counted with the plastic
+   * work (pdk_model_plastic_work), so the energy balance holds. */
+  int stab_softening;
+  double stab_softening_floor; /* the factor's floor, in (0, 1]; default 1e-3 (the thesis') */
+  pdk_damage_triaxiality damage_triaxiality; /* law jc with damage: the pressure of the damage
+                                                triaxiality (default local) */
   pdk_law law;
   pdk_precision precision;
   /* Johnson-Cook material (law PDK_LAW_JC; default pdk_jc_params_default(), the V-JC steel). Its
@@ -313,7 +343,8 @@ int pdk_model_set_dt(pdk_model *m, double dt);
  * solvers set it for each load step (include/pdk/static.h). */
 double pdk_model_get_dt(const pdk_model *m);
 /* Energy dissipated so far [energy], each summed over particles in a fixed order (thread-count
- * independent): plastic work, damage, and what bond breaking released (see "w_broken"). A
+ * independent): plastic work (with what softened stabilization gave up, "w_stab"), damage, and
+ * what bond breaking released (see "w_broken"). A
  * quantity the model does not track is 0. Any pointer may be NULL. Together with the strain
  * energy of pdk_model_force: external work = kinetic + strain + plastic + damage + breaking. */
 int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking);

@@ -127,6 +127,8 @@ typedef struct pdk_jc_result {
   double d_eps_p;      /* plastic strain increment of the step */
   double eps_p_rate;   /* d_eps_p / dt [1/time] (0 if dt <= 0) */
   double triaxiality;  /* eta = sigma_m / sigma_vm used for the damage increment (0 if no flow) */
+  double sigma_m_eff;  /* effective Cauchy mean stress tau_m / J (before (1 - D) with coupling),
+                          the point's own pressure input to eta; 0 for a failed point */
   double failure_strain; /* eps_f used for the damage increment (0 if no flow) */
   int plastic;           /* 1 if the step yielded */
   int failed_now;        /* 1 if the point failed in this step */
@@ -143,6 +145,17 @@ typedef struct pdk_jc_result {
  * P = 0 (or the compressive pressure) and copies the history unchanged. */
 int pdk_jc_update(const pdk_jc_params *params, int dim, const double F[3][3], double dt,
                   const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res);
+
+/* The same step with the damage triaxiality taken from a given mean stress instead of the
+ * point's own: eta = sigma_m_avg J / q (q the von Mises Kirchhoff stress of the returned effective
+ * stress), i.e. sigma_m_avg over the point's own von Mises Cauchy stress. sigma_m_avg is an
+ * effective Cauchy mean stress, as pdk_jc_result.sigma_m_eff; the correspondence model passes the
+ * family average of its neighbours' sigma_m_eff from the previous step (pdk_model_opts
+ * damage_triaxiality). Everything else is pdk_jc_update's; with sigma_m_avg equal to the point's
+ * own sigma_m_eff the two agree to round-off. */
+int pdk_jc_update_avg(const pdk_jc_params *params, int dim, const double F[3][3], double dt,
+                      double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                      double P[3][3], pdk_jc_result *res);
 
 /* The law's pieces, for outputs and tests: the flow stress at plastic strain eps_p, rate
  * factor argument rate_star (ignored unless C != 0) and homologous temperature T_star (ignored

@@ -328,7 +328,7 @@ CORR_INLINE void rp2_row(const int d, const int has_alive, const int fl, const i
     const double zz = own[3];
     a->W[i] += 0.5 * pdk_corr_kst(k, a, i) * zz;
     if ((a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
-      a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+      a->w_damage[i] += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
   }
 }
 
@@ -569,7 +569,7 @@ void CORR_FN(pdk_kernel_corr_pass1_)(const pdk_corr_consts *k, const pdk_corr_ar
     if (stab == 1) {                                                                               \
       a->W[i] += 0.5 * ki * zz;                                                                    \
       if ((a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)                                \
-        a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;                                  \
+        a->w_damage[i] += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;                                  \
     }                                                                                              \
   }
 

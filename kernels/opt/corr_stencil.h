@@ -145,7 +145,7 @@ SC_INLINE void sc_corr1_block(const int nu, const int d, const int has_mask, con
       const double zz = pdk_corr_silling_zz(d, Dp, c, p, Q[u][l]);
       c->W[p] += 0.5 * ki * zz;
       if ((c->flag[p] & PDK_CORR_FLAG_FAILED_NOW) && c->m[p] > 0.0)
-        c->w_damage[p] += 0.5 * (k->stab_modulus / c->m[p]) * zz;
+        c->w_damage[p] += 0.5 * pdk_corr_kst_unflagged(k, c, p) * zz;
     }
   }
 }

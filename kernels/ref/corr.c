@@ -216,6 +216,29 @@ static void jc_store(const pdk_corr_arrays *a, pdk_index i, const pdk_jc_state *
   a->failed[i] = (uint8_t)(s->failed != 0);
 }
 
+/* The material point update of particle i: with the family-averaged pressure when the arrays
+ * have it. */
+static int jc_step(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i, const int d,
+                   const double F[3][3], const pdk_jc_state *in, pdk_jc_state *out,
+                   double P[3][3], pdk_jc_result *res) {
+  if (a->sigma_m_avg)
+    return pdk_jc_update_avg(k->jc, d, F, k->dt, a->sigma_m_avg[i], in, out, P, res);
+  return pdk_jc_update(k->jc, d, F, k->dt, in, out, P, res);
+}
+
+/* Softened stabilization, commit pass: particle i's new factor from the step's von Mises stress
+ * and plastic strain (unchanged while eps_p = 0 and on the pass i fails, whose Silling energy at
+ * the old factor pass 2 books as damage) and W_law for the driver's account (point_end has saved
+ * the old factor in stab_prev). */
+static void soften(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
+                   const pdk_jc_state *out, const pdk_jc_result *res) {
+  if (!out->failed && out->eps_p > 0.0) {
+    const double f = res->sigma_vm / (k->jc->young_modulus * out->eps_p);
+    a->stab_factor[i] = f > 1.0 ? 1.0 : (f < k->stab_floor ? k->stab_floor : f);
+  }
+  a->w_law[i] = res->W;
+}
+
 /* Johnson-Cook stress of particle i at F: A = P K^-1 and W stored, the history advanced when
  * k->commit. */
 static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
@@ -224,7 +247,7 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
   pdk_jc_result res;
   double P[3][3], A[3][3];
   jc_load(a, i, &in);
-  if (pdk_jc_update(k->jc, d, F, k->dt, &in, &out, P, &res)) {
+  if (jc_step(k, a, i, d, F, &in, &out, P, &res)) {
     store_zero_d(d, a->A, i);
     a->W[i] = 0.0;
     a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
@@ -244,6 +267,8 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
     a->w_plastic[i] += res.dW_plastic;
     a->w_damage[i] += res.dW_damage;
     a->eps_p_rate[i] = res.eps_p_rate;
+    if (a->sigma_m) a->sigma_m[i] = res.sigma_m_eff;
+    if (a->stab_factor) soften(k, a, i, &out, &res);
   }
 }
 
@@ -252,8 +277,7 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
 
 /* Stabilization coefficient k of particle p (0 when flagged or without a weighted volume). */
 static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
-  if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
-  return (k->stab_p ? k->stab_p[p] : k->stab_modulus) / a->m[p];
+  return pdk_corr_kst(k, a, p);
 }
 
 /* The pass-2 data of particle i (kst, B, G and their float copies, whichever the arrays have),
@@ -283,6 +307,10 @@ static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_in
   pdk_corr_consts k_i; /* multi-material: particle i's lambda, mu, stabilization modulus */
   k = pdk_corr_consts_at(k, i, &k_i);
   const int d = k->dim;
+  if (a->stab_factor && k->commit) { /* no change unless pass1_jc makes one */
+    a->stab_prev[i] = a->stab_factor[i];
+    a->w_law[i] = 0.0;
+  }
   if (a->flag[i] & PDK_CORR_FLAG_SPAN) {
     store_zero_d(d, a->F, i);
     store_zero_d(d, a->A, i);
@@ -441,7 +469,7 @@ static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
   /* A particle failing in this commit pass drops its Silling term with its stress: the energy the
    * term would hold at this x goes to the damage account, as the law's stored energy does. */
   if (silling && (a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
-    a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+    a->w_damage[i] += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
 }
 
 /* Pass 2 with float storage: the neighbour's part of the pair term from the float tensors pass 1
@@ -508,7 +536,7 @@ static void pass2_one_float(const int d, const pdk_corr_consts *k, const pdk_cor
     a->f[r][i] = f[r];
   if (silling) a->W[i] += 0.5 * ki * zz;
   if (silling && (a->flag[i] & PDK_CORR_FLAG_FAILED_NOW) && a->m[i] > 0.0)
-    a->w_damage[i] += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+    a->w_damage[i] += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
 }
 
 void pdk_kernel_corr_pass2_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
@@ -636,7 +664,7 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
     pdk_jc_state in, out;
     pdk_jc_result res;
     jc_load(a, i, &in);
-    if (pdk_jc_update(k->jc, d, F, k->dt, &in, &out, P, &res)) return 0.0;
+    if (jc_step(k, a, i, d, F, &in, &out, P, &res)) return 0.0;
     e = res.W + res.dW_plastic + res.dW_damage;
     stress_free = out.failed != 0;
   } else if (!law_eval(k, F, P, &e)) {
@@ -656,7 +684,7 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
         zz += wv * z * z;
       }
     }
-    e += 0.5 * (k->stab_modulus / a->m[i]) * zz;
+    e += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
   }
   return e;
 }

@@ -54,7 +54,9 @@
  *   (backward Euler) and T* at its start. eta = sigma_m / sigma_vm (= tau_m / q, J cancels). When
  *   q = 0 (a purely hydrostatic state; plastic flow then only happens at T* = 1, where
  *   sigma_y = 0) eta is taken as 0. eps_f <= 0 (only with D1 <= 0 or negative rate/temperature
- *   brackets) fails the point at once.
+ *   brackets) fails the point at once. pdk_jc_update_avg takes sigma_m from the caller instead
+ *   (eta = sigma_m_avg J / q): the correspondence model's family-averaged pressure, which keeps a
+ *   particle-to-particle alternation of the pressure (softened stabilization) out of the damage.
  *   D_c: the point fails when D >= D_c. The thesis (Bode 2021, section 8.1, text line 2099 of the
  *   seed) lists D_c = 0.3 with D1..D3 as "fracture constants ... as in Broumand & Khoei (2015)",
  *   "without going into further detail": it never says what D_c does, and that paper is not
@@ -291,9 +293,10 @@ static void failed_stress(const pdk_jc_params *p, double K, double J, double *ta
   }
 }
 
-int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], double dt,
-                  const pdk_jc_state *in, pdk_jc_state *out, double P_out[3][3],
-                  pdk_jc_result *res) {
+/* The update; sigma_m_avg: the mean stress of the damage triaxiality, NULL for the point's own. */
+static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], double dt,
+                     const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                     double P_out[3][3], pdk_jc_result *res) {
   if (dim != 2 && dim != 3) return PDK_ERR_ARG;
   const int rate_needed = p->C != 0.0 || (p->damage && p->D4 != 0.0);
   if (rate_needed && !(dt > 0.0)) return PDK_ERR_ARG;
@@ -368,7 +371,8 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
     const double D_n = in->damage;
     double D = D_n;
     if (p->damage && dg > 0.0) {
-      const double eta = q > 0.0 ? tau_m / q : 0.0;
+      const double tm = sigma_m_avg ? *sigma_m_avg * J : tau_m;
+      const double eta = q > 0.0 ? tm / q : 0.0;
       const double rate_star = p->D4 != 0.0 ? dg / (dt * p->ref_rate) : 1.0;
       const double ef = pdk_jc_failure_strain(p, eta, rate_star, T_star);
       r.triaxiality = eta;
@@ -387,6 +391,7 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
     r.dW_plastic =
         (1.0 - 0.5 * (Dk_n + Dk)) * plastic_work_step(p, in->eps_p, dg, dt, theta_factor);
     r.W = keep * W_eff;
+    r.sigma_m_eff = tau_m / J;
     r.dW_damage = W_eff * (Dk - Dk_n);
 
     /* new history */
@@ -419,6 +424,7 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
         tau[i][i] = tau_p;
       r.dW_damage += r.W - W;
       r.W = W;
+      r.sigma_m_eff = 0.0;
     } else {
       double ta[3];
       for (int a = 0; a < 3; ++a)
@@ -444,4 +450,16 @@ int pdk_jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], doub
   *out = st;
   if (res) *res = r;
   return 0;
+}
+
+int pdk_jc_update(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                  const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res) {
+  return jc_update(p, dim, F, dt, NULL, in, out, P, res);
+}
+
+int pdk_jc_update_avg(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                      double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                      double P[3][3], pdk_jc_result *res) {
+  if (!isfinite(sigma_m_avg)) return PDK_ERR_ARG;
+  return jc_update(p, dim, F, dt, &sigma_m_avg, in, out, P, res);
 }
