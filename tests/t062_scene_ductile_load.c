@@ -47,6 +47,9 @@ static const char *full_scene = "dimension: 2\n"
                                 "  connectivity: semi_tl\n"
                                 "  compact_fraction: 0.05\n"
                                 "  failed_keeps_bonds: true\n"
+                                "  stabilization_softening: plastic\n"
+                                "  stabilization_softening_floor: 0.01\n"
+                                "  damage_triaxiality: family\n"
                                 "solver:\n"
                                 "  steps: 3\n"
                                 "output:\n"
@@ -109,6 +112,10 @@ static void check_full(pdk_ctx *ctx) {
                m->failed_keeps_bonds == 1,
            "connectivity %d, compact_fraction %g, failed_keeps_bonds %d", (int)m->connectivity,
            m->compact_fraction, m->failed_keeps_bonds);
+  T_ASSERT(m->stab_softening == 1 && m->stab_softening_floor == 0.01 &&
+               m->damage_triaxiality == PDK_TRIAX_FAMILY,
+           "softening %d, floor %g, damage triaxiality %d", m->stab_softening,
+           m->stab_softening_floor, (int)m->damage_triaxiality);
   /* It builds: the model accepts the constants (K, G, rho agree with jc) and declares the
    * history fields the output asks for. */
   pdk_sim *sim = NULL;
@@ -141,6 +148,9 @@ static void check_defaults(pdk_ctx *ctx) {
   T_ASSERT(m->connectivity == PDK_CONNECTIVITY_TL && m->compact_fraction == 0.02 &&
                m->failed_keeps_bonds == 0,
            "connectivity defaults");
+  T_ASSERT(m->stab_softening == 0 && m->stab_softening_floor == 1e-3 &&
+               m->damage_triaxiality == PDK_TRIAX_LOCAL,
+           "softening off (floor 1e-3 when on) and the local triaxiality by default");
   pdk_sim *sim = NULL;
   T_OK(ctx, pdk_sim_create(ctx, s, &sim));
   T_NEAR(pdk_model_opts_get(pdk_sim_model(sim))->bulk_modulus, K, 1e-12, 0, "K round trip");

@@ -1,5 +1,6 @@
 /* Scene errors of the ductile keys (material.johnson_cook, model.law: jc, model.connectivity,
- * model.compact_fraction, model.failed_keeps_bonds, output field von_mises), one case per kind of
+ * model.compact_fraction, model.failed_keeps_bonds, model.stabilization_softening(_floor),
+ * model.damage_triaxiality, output field von_mises), one case per kind of
  * mistake, in the form of t061: each case edits a small valid Johnson-Cook scene, and the message
  * must read
  *   <file>:<line>: <key.path>: ...      (or <file>: --set <override>: <key.path>: ...)
@@ -121,6 +122,28 @@ static const error_case cases[] = {
      NULL, AT_LOAD, PDK_ERR_ARG, "model.connectivity", "failed_keeps_bonds: true"},
     {"ul_skin in TL", "  law: jc\n", "  law: jc\n  ul_skin: 0.5 #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
      "model.ul_skin", "only ul connectivity"},
+    {"softening without silling stabilization", "  law: jc\n",
+     "  law: jc\n  stabilization: none\n  stabilization_softening: plastic #<\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "model.stabilization_softening", "stabilization silling"},
+    {"softening in ul", "  law: jc\n",
+     "  law: jc\n  connectivity: ul\n  failed_keeps_bonds: true\n"
+     "  stabilization_softening: plastic #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.stabilization_softening", "not ul"},
+    {"unknown softening", "  law: jc\n", "  law: jc\n  stabilization_softening: elastic #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.stabilization_softening", "allowed: none, plastic"},
+    {"softening floor without softening", "  law: jc\n",
+     "  law: jc\n  stabilization_softening_floor: 0.01 #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
+     "model.stabilization_softening_floor", "only used with model.stabilization_softening"},
+    {"softening floor 0", "  law: jc\n",
+     "  law: jc\n  stabilization_softening: plastic\n  stabilization_softening_floor: 0 #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.stabilization_softening_floor", "(0, 1]"},
+    {"damage_triaxiality without damage", NULL, NULL, NULL, AT_LOAD, PDK_ERR_ARG,
+     "model.damage_triaxiality", "damage on"},
+    {"unknown damage_triaxiality", "  law: jc\n", "  law: jc\n  damage_triaxiality: nonlocal #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.damage_triaxiality", "allowed: local, family"},
+    {"damage_triaxiality in ul", "  law: jc\n",
+     "  law: jc\n  connectivity: ul\n  failed_keeps_bonds: true\n  damage_triaxiality: family #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.damage_triaxiality", "not ul"},
     /* output fields */
     {"von_mises with pmb", NULL, NULL, NULL, AT_BUILD, PDK_ERR_ARG, "output.fields[0]",
      "correspondence"},
@@ -149,6 +172,22 @@ static const char *special_text(const char *what) {
            "  kind: correspondence\n"
            "  law: jc\n"
            "  failed_keeps_bonds: false #<\n"
+           "solver:\n"
+           "  steps: 10\n";
+  if (!strcmp(what, "damage_triaxiality without damage"))
+    return "dimension: 2\n"
+           "geometry:\n"
+           "  spacing: 1.0e-3\n"
+           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
+           "material:\n"
+           "  density: 7830\n"
+           "  youngs_modulus: 200e9\n"
+           "  poisson_ratio: 0.29\n"
+           "  johnson_cook: {A: 792e6, B: 510e6, n: 0.26, damage: false}\n"
+           "model:\n"
+           "  kind: correspondence\n"
+           "  law: jc\n"
+           "  damage_triaxiality: family #<\n"
            "solver:\n"
            "  steps: 10\n";
   if (!strcmp(what, "failed_keeps_bonds with an elastic law"))
