@@ -273,6 +273,15 @@ static double time_steps(pdk_ctx *ctx, setup *s, const pdk_model_opts *mo, int r
       for (int z = 0; z < 5; ++z)
         memset(pdk_particles_field_data(s->p, zero[z], 0), 0, (size_t)s->n * sizeof(double));
       memset(pdk_particles_field_data(s->p, "failed", 0), 0, (size_t)s->n);
+      const char *opt[] = {"w_stab", "w_silling", "sigma_m", "sigma_m_avg"};
+      for (int z = 0; z < 4; ++z)
+        if (pdk_particles_field_exists(s->p, opt[z]))
+          memset(pdk_particles_field_data(s->p, opt[z], 0), 0, (size_t)s->n * sizeof(double));
+      if (pdk_particles_field_exists(s->p, "stab_factor")) {
+        double *f = pdk_particles_field_data(s->p, "stab_factor", 0);
+        for (pdk_index i = 0; i < s->n; ++i)
+          f[i] = 1.0;
+      }
     }
     pdk_bc bcs[2];
     memset(bcs, 0, sizeof bcs);
@@ -410,6 +419,13 @@ int main(int argc, char **argv) {
   const double st_jc = time_steps(ctx, &s, &mo_jc, repeat, steps, &br_jc);
   pdk_model_opts mo_keep = model_opts(1, 1);
   const double st_keep = time_steps(ctx, &s, &mo_keep, repeat, steps, &br_keep);
+  pdk_model_opts mo_soft = mo_jc, mo_fam = mo_jc, mo_both = mo_jc;
+  mo_soft.stab_softening = mo_both.stab_softening = 1;
+  mo_fam.damage_triaxiality = mo_both.damage_triaxiality = PDK_TRIAX_FAMILY;
+  pdk_bond_index br_x;
+  const double st_soft = time_steps(ctx, &s, &mo_soft, repeat, steps, &br_x);
+  const double st_fam = time_steps(ctx, &s, &mo_fam, repeat, steps, &br_x);
+  const double st_both = time_steps(ctx, &s, &mo_both, repeat, steps, &br_x);
   printf("\nPart 2: explicit steps, %d thread(s), %ld steps per run, medians of %d runs\n",
          pdk_ctx_num_threads(ctx), steps, repeat);
   printf("%-44s %10s %9s %9s\n", "step", "ms/step", "ns/bond", "vs elastic");
@@ -418,6 +434,12 @@ int main(int argc, char **argv) {
          1e9 * st_jc / nbd, st_jc / st_el);
   printf("%-44s %10.3f %9.2f %9.2f\n", "JC, failed_keeps_bonds (no bond state)", 1e3 * st_keep,
          1e9 * st_keep / nbd, st_keep / st_el);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC)\n", "JC, softened stabilization", 1e3 * st_soft,
+         1e9 * st_soft / nbd, st_soft / st_el, st_soft / st_jc);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC)\n", "JC, family triaxiality", 1e3 * st_fam,
+         1e9 * st_fam / nbd, st_fam / st_el, st_fam / st_jc);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC)\n", "JC, softened + family", 1e3 * st_both,
+         1e9 * st_both / nbd, st_both / st_el, st_both / st_jc);
   printf("bonds broken in these runs: %lld (connectivity never had anything to do); breaking on / "
          "off = %.3f\n",
          (long long)(br_el + br_jc + br_keep), st_jc / st_keep);

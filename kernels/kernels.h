@@ -386,8 +386,9 @@ typedef struct pdk_corr_consts {
   int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
   int break_failed;               /* 1: bonds of failed particles break (both ends) */
   /* Softened stabilization (Johnson-Cook; arrays stab_factor, stab_prev, w_law, w_stab): a commit
-   * pass 1 sets particle i's factor to min(1, max(stab_floor, sigma_vm / (E eps_p))) once it has
-   * flowed (Bode 2021 eq. 6.20, E~ = min[E, max(1e-3 E, sigma_vm / eps_p)]); 0: off. */
+   * pass 1 lowers particle i's factor to min(1, max(stab_floor, sigma_vm / (E eps_p))) once it has
+   * flowed (Bode 2021 eq. 6.20, E~ = min[E, max(1e-3 E, sigma_vm / eps_p)]), never raising it;
+   * 0: off. */
   double stab_floor;
   /* Multi-material: per-particle lambda, mu and stab_modulus [n_pad]; NULL: the scalars above. */
   const double *lambda_p, *mu_p, *stab_p;

@@ -12,6 +12,7 @@
  * graph (jc_corr_util.h). Pieces: components holding more than 1% of the particles (a failed
  * particle loses all its bonds and is a component of its own).
  *
+ * PDK_PLATE_EBAL=1 prints the energy account every 400 steps (and the softened stabilization's).
  * PDK_PLATE_DUMP=<prefix>: writes <prefix>_<mode>_first.csv (at the first failure) and
  * <prefix>_<mode>_end.csv (at the end) with X, Y, x, y, eps_p, damage, failed, component, for
  * plotting. PDK_TEST_VERBOSE=1 prints the numbers. */
@@ -33,6 +34,9 @@ typedef struct ph_result {
   double t_peak, u_peak;  /* time and top displacement at the peak */
   double force_at_ref;    /* bottom force when the top has moved PH_U_REF, interpolated between
                              the chunks either side (-1: not reached) */
+  double band_eps_p_at_ref; /* mean eps_p of the particles within one spacing of the midpoint of
+                               the two hole centres, at the first chunk past PH_U_REF (-1: not
+                               reached) */
   double t_first_inner;   /* first failure in the inner ligament (-1: none) */
   double t_first_outer;   /* first failure elsewhere outside the clamps (-1: none) */
   int first_all_inner;    /* every particle failed in the first failing chunk is in the inner
@@ -129,6 +133,7 @@ static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *cons
                           long check_every, ph_result *r) {
   memset(r, 0, sizeof *r);
   r->t_first_inner = r->t_first_outer = r->t_sep = r->u_sep = r->force_at_ref = -1.0;
+  r->band_eps_p_at_ref = -1.0;
   double u_prev = 0.0, force_prev = 0.0;
   const double wall0 = pdk_wtime();
   pdk_scene *s = NULL;
@@ -174,13 +179,44 @@ static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *cons
     r->steps += chunk;
     since_check += chunk;
     const double force = -h.reaction[1][1];
+    if (getenv("PDK_PLATE_EBAL") && r->steps % 400 == 0) /* exploring: the energy account */
+      printf("EBAL t %.4e ext %.4f K %.4f S %.4f P %.4f D %.4f B %.4f imb %.4f failed %d\n", h.time,
+             h.external_work, h.kinetic, h.strain, h.plastic_work, h.damage_work, h.breaking_work,
+             h.external_work - h.kinetic - h.strain - h.plastic_work - h.damage_work -
+                 h.breaking_work,
+             (int)pdk_model_num_failed(m));
+    if (getenv("PDK_PLATE_EBAL") && r->steps % 400 == 0 &&
+        pdk_particles_field_exists(p, "w_stab")) {
+      const double *ws = pdk_particles_field_data(p, "w_stab", 0), *V = pdk_particles_volume(p);
+      const double *fac = pdk_particles_field_data(p, "stab_factor", 0);
+      double sum = 0.0, fmin = 1.0;
+      for (pdk_index i = 0; i < n; ++i) {
+        sum += V[i] * ws[i];
+        fmin = fac[i] < fmin ? fac[i] : fmin;
+      }
+      printf("   w_stab %.4f J, smallest factor %.3g\n", sum, fmin);
+    }
     const double u_top = x_y[i_top] - X_y[i_top];
     if (num_trace < PH_MAX_TRACE) {
       trace_t[num_trace] = h.time;
       trace_f[num_trace++] = force;
     }
-    if (r->force_at_ref < 0.0 && u_top >= PH_U_REF && u_top > u_prev)
+    if (r->force_at_ref < 0.0 && u_top >= PH_U_REF && u_top > u_prev) {
       r->force_at_ref = force_prev + (force - force_prev) * (PH_U_REF - u_prev) / (u_top - u_prev);
+      const double *ep = pdk_particles_field_data(p, "eps_p", 0);
+      const double *X_x = pdk_particles_X(p, 0);
+      const double mid[2] = {0.5 * (g.c1[0] + g.c2[0]), 0.5 * (g.c1[1] + g.c2[1])};
+      const double reach = 1.0001 * s->lattice.spacing;
+      double sum = 0.0;
+      int count = 0;
+      for (pdk_index i = 0; i < n; ++i)
+        if (hypot(X_x[i] - mid[0], X_y[i] - mid[1]) <= reach) {
+          sum += ep[i];
+          ++count;
+        }
+      T_ASSERT(count > 0, "%s: no particle within %g m of the band's middle", mode, reach);
+      r->band_eps_p_at_ref = sum / count;
+    }
     u_prev = u_top;
     force_prev = force;
     if (force > r->peak) {
@@ -327,7 +363,7 @@ static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *cons
 static inline void ph_print(const char *what, const ph_result *r) {
   printf("%s: %d particles, dt %.3g s, %ld steps, %.1f s wall\n"
          "  peak force %.5g N at t %.4g s, top displacement %.4g m; force at top displacement "
-         "%.3g m: %.5g N\n"
+         "%.3g m: %.5g N, eps_p in the middle of the band %.4f\n"
          "  first failure: inner ligament t %.4g s, outer t %.4g s (%d particles in the first "
          "chunk, all inner: %d, at most %.3g m from a hole's edge)\n"
          "  separated at t %.4g s, top displacement %.4g m; final |mean force| %.4g N (%.2f%% of "
@@ -337,7 +373,7 @@ static inline void ph_print(const char *what, const ph_result *r) {
          "  work: external %.4g J, plastic %.4g J, damage %.4g J, breaking %.4g J; %lld bonds "
          "broken, %d failed, %ld compactions\n",
          what, (int)r->num_particles, r->dt, r->steps, r->wall, r->peak, r->t_peak, r->u_peak,
-         PH_U_REF, r->force_at_ref, r->t_first_inner, r->t_first_outer, r->num_first,
+         PH_U_REF, r->force_at_ref, r->band_eps_p_at_ref, r->t_first_inner, r->t_first_outer, r->num_first,
          r->first_all_inner, r->first_edge_dist, r->t_sep, r->u_sep, r->final_force,
          100.0 * r->final_force / r->peak, r->final_window, r->final_abs_force, r->num_pieces,
          (int)r->num_components, r->pieces_ok, r->crack_force, r->external_work, r->plastic_work,

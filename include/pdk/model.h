@@ -209,13 +209,14 @@ typedef struct pdk_model_opts {
   pdk_stabilization stabilization;
   double stab_coefficient; /* C_s (Silling) or the hourglass coefficient; default 0.1 */
   /* Softened Silling stabilization (law jc, stabilization silling, connectivity tl or semi_tl):
-   * 0 (default) off; 1: particle i's stabilization modulus is scaled by
-   *   f_i = min(1, max(stab_softening_floor, sigma_vm,i / (E eps_p,i)))
-   * once it has flowed (eps_p > 0), updated by every commit pass (Bode 2021 eq. 6.20: the
+   * 0 (default) off; 1: particle i's stabilization modulus is scaled by a factor f_i, 1 at start,
+   * that every commit pass lowers to min(1, max(stab_softening_floor, sigma_vm,i / (E eps_p,i)))
+   * once the particle has flowed (eps_p > 0) and never raises (Bode 2021 eq. 6.20: the
    * stabilization follows the plastic secant modulus E~ = sigma_vm / eps_p, so it does not hold
-   * back localization with the elastic stiffness). The Silling energy a change of f takes away
-   * at the current x is booked per particle in the field "w_stab" and counted with the plastic
-   * work (pdk_model_plastic_work), so the energy balance holds. */
+   * back localization with the elastic stiffness; the thesis' rule also lets f rise again on
+   * reloading, which pumps energy into the modes the term controls, kernels/ref/corr.c). The
+   * Silling energy a drop of f takes away is booked per particle in the field "w_stab" and
+   * counted with the plastic work (pdk_model_plastic_work), so the energy balance holds. */
   int stab_softening;
   double stab_softening_floor; /* the factor's floor, in (0, 1]; default 1e-3 (the thesis') */
   pdk_damage_triaxiality damage_triaxiality; /* law jc with damage: the pressure of the damage

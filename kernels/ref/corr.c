@@ -39,6 +39,14 @@
  *                     pass 2 adds the Silling energy it would have held at this x to w_damage, so
  *                     the term's energy is accounted like the law's. A flagged (SPAN) particle's
  *                     history is frozen (eps_p_rate = 0).
+ *                     Options (arrays non-NULL): damage triaxiality from sigma_m_avg[i]
+ *                     (pdk_jc_update_avg), the commit writing sigma_m[i] = the step's effective
+ *                     Cauchy mean stress; softened stabilization: the commit sets stab_factor[i]
+ *                     = min(1, max(stab_floor, sigma_vm / (E eps_p))) when eps_p > 0 and i did
+ *                     not fail and that is lower (it never rises), keeping the old value in
+ *                     stab_prev[i] and the law's W in w_law[i] for the driver's energy account
+ *                     (kernels.h); k_i below is then factor_i stab_modulus_i / m_i in every pass
+ *                     and variant (pdk_corr_kst).
  *   A particle flagged by the shape gets F = 0, A = 0, W = 0. With Neo-Hooke or Johnson-Cook,
  *   J <= 0 (or a non-finite J) sets flag bit PDK_CORR_FLAG_INVERTED and A = 0, W = 0 for this
  *   pass (the bit is recomputed every pass; the JC history does not advance). So no NaN or
@@ -227,14 +235,20 @@ static int jc_step(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index
 }
 
 /* Softened stabilization, commit pass: particle i's new factor from the step's von Mises stress
- * and plastic strain (unchanged while eps_p = 0 and on the pass i fails, whose Silling energy at
- * the old factor pass 2 books as damage) and W_law for the driver's account (point_end has saved
- * the old factor in stab_prev). */
+ * and plastic strain, min(f_old, max(floor, min(1, sigma_vm / (E eps_p)))) (unchanged while
+ * eps_p = 0 and on the pass i fails, whose Silling energy at the old factor pass 2 books as
+ * damage), and W_law for the driver's account (point_end has saved the old factor in stab_prev).
+ * The factor never rises: the thesis' rule (eq. 6.20) is instantaneous, so a particle that unloads
+ * and reloads gets its stiffness back while its non-affine motion is large, and that pumps energy
+ * into the modes the term controls (measured on the two-hole plate at 1 mm after the first
+ * failures: the Silling account went to -265 J against 95 J of external work by 2.5 ms). Under
+ * monotonic loading the two rules agree (sigma_vm / eps_p falls as eps_p grows). */
 static void soften(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i,
                    const pdk_jc_state *out, const pdk_jc_result *res) {
   if (!out->failed && out->eps_p > 0.0) {
     const double f = res->sigma_vm / (k->jc->young_modulus * out->eps_p);
-    a->stab_factor[i] = f > 1.0 ? 1.0 : (f < k->stab_floor ? k->stab_floor : f);
+    const double fc = f > 1.0 ? 1.0 : (f < k->stab_floor ? k->stab_floor : f);
+    if (fc < a->stab_factor[i]) a->stab_factor[i] = fc; /* never rises again */
   }
   a->w_law[i] = res->W;
 }
@@ -637,9 +651,10 @@ pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_
 
 /* Energy density of particle i at the current x with its current (intact) family and the
  * committed history: the law's W (for Johnson-Cook a trial update, plus the plastic and damage
- * work it would do) plus the Silling term. */
+ * work it would do) plus the Silling term (also in *silling). */
 static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                         pdk_index i) {
+                         pdk_index i, double *silling) {
+  *silling = 0.0;
   pdk_corr_consts k_i;
   k = pdk_corr_consts_at(k, i, &k_i);
   const pdk_bond_index *restrict bond_start = a->bond_start;
@@ -684,7 +699,8 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
         zz += wv * z * z;
       }
     }
-    e += 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
+    *silling = 0.5 * pdk_corr_kst_unflagged(k, a, i) * zz;
+    e += *silling;
   }
   return e;
 }
@@ -694,7 +710,11 @@ double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arra
   double sum = 0.0;
   for (pdk_index i = i0; i < i1; ++i)
     if (a->changed[i] & 2u) {
-      const double released = a->W[i] - energy_one(k->dim, k, a, i);
+      double silling;
+      const double released = a->W[i] - energy_one(k->dim, k, a, i, &silling);
+      /* softened stabilization: the next commit books the change of the factor from the
+       * Silling energy of the new family */
+      if (a->w_silling) a->w_silling[i] = silling;
       a->w_broken[i] += released;
       sum += a->volume[i] * released;
     }
