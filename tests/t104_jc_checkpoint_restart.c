@@ -9,7 +9,10 @@
  * compaction) and recomputes K of every particle with broken bonds, and must still give the same
  * bits. Compared: x, v, f, every history field (cp_inv, eps_p, damage, failed, eps_p_rate,
  * w_plastic, w_damage, w_broken), the bond state and the last history record (energies included).
- * On 1 and 2 threads.
+ * On 1 and 2 threads. A third run in TL with softened stabilization and the family-averaged
+ * triaxiality also compares their fields (stab_factor, w_stab, w_silling, sigma_m, sigma_m_avg;
+ * the checkpoint stores every field, and the factors' scratch is rewritten by every commit).
+ * (D2 = 0 here, so the damage does not depend on the triaxiality; t105 tests that it is used.)
  * labels: unit threads */
 #include "jc_corr_util.h"
 #include "pdk/output.h"
@@ -27,7 +30,7 @@ typedef struct sim {
 
 static pdk_bc bcs[2];
 
-static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
+static void build(pdk_ctx *ctx, pdk_connectivity mode, int options, sim *s) {
   pdk_lattice_opts lo = pdk_lattice_opts_default();
   lo.type = PDK_LATTICE_SQUARE;
   lo.spacing = DX;
@@ -54,6 +57,8 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
   mo.stabilization = PDK_STAB_SILLING;
   mo.connectivity = mode;
   mo.compact_fraction = 0.0;
+  mo.stab_softening = options;
+  mo.damage_triaxiality = options ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
   memset(bcs, 0, sizeof bcs);
   bcs[0].kind = PDK_BC_DISPLACEMENT;
@@ -97,26 +102,27 @@ static unsigned char *state_bytes(sim *s, size_t *bytes) {
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
   const char *path = "t104_jc.ckpt.h5";
-  for (int mode = 0; mode < 2; ++mode) {
-    const pdk_connectivity conn = mode ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL;
+  for (int mode = 0; mode < 3; ++mode) {
+    const pdk_connectivity conn = mode == 1 ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL;
+    const int opt = mode == 2; /* softened stabilization and family triaxiality */
     for (int threads = 1; threads <= 2; ++threads) {
       T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
-      const char *what = mode ? "semi-TL" : "TL";
+      const char *what = mode == 2 ? "TL, softened + family" : mode ? "semi-TL" : "TL";
       sim s;
       pdk_history h1, h2;
-      build(ctx, conn, &s);
+      build(ctx, conn, opt, &s);
       T_OK(ctx, pdk_explicit_run(s.e, N_STEPS, &h1));
       T_ASSERT(h1.broken > 0 && pdk_model_num_failed(s.m) > 0, "%s: nothing broke", what);
       size_t b1, b2;
       unsigned char *one = state_bytes(&s, &b1);
       destroy(&s);
 
-      build(ctx, conn, &s);
+      build(ctx, conn, opt, &s);
       T_OK(ctx, pdk_explicit_run(s.e, N_FIRST, NULL));
       T_ASSERT(pdk_model_num_broken(s.m) > 0, "%s: no bond broken before the checkpoint", what);
       T_OK(ctx, pdk_checkpoint_write(ctx, path, s.e, NULL));
       destroy(&s);
-      build(ctx, conn, &s);
+      build(ctx, conn, opt, &s);
       T_OK(ctx, pdk_checkpoint_read(ctx, path, s.e));
       T_OK(ctx, pdk_explicit_run(s.e, N_STEPS - N_FIRST, &h2));
       unsigned char *two = state_bytes(&s, &b2);
