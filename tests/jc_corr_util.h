@@ -14,6 +14,33 @@ static const char *const jcu_history_fields[] = {
     "w_damage", "w_broken", "stab_factor", "w_stab",    "w_silling", "sigma_m", "sigma_m_avg"};
 #define JCU_NUM_HISTORY ((int)(sizeof jcu_history_fields / sizeof jcu_history_fields[0]))
 
+/* The bar of t101-t105: [0, 40] x [0, 10] mm, spacing 1 mm, square lattice in Morton order, sets
+ * "left" (x <= 3 mm, held) and "right" (x >= 37 mm, pulled), families with horizon 3.015 mm
+ * and, when notch, a pre-crack along x = 20 mm from below the bar to y = 4 mm. */
+static inline void jcu_bar(pdk_ctx *ctx, int notch, pdk_particles **p, pdk_families **fam) {
+  const double dx = 1e-3;
+  pdk_lattice_opts lo = pdk_lattice_opts_default();
+  lo.type = PDK_LATTICE_SQUARE;
+  lo.spacing = dx;
+  lo.hi[0] = 40 * dx;
+  lo.hi[1] = 10 * dx;
+  T_OK(ctx, pdk_lattice_create(ctx, &lo, p));
+  T_OK(ctx, pdk_particles_reorder_morton(*p, 3.015 * dx, NULL));
+  double a[3] = {-1, -1, -1}, b[3] = {3 * dx, 1, 1}, c[3] = {37 * dx, -1, -1}, d[3] = {1, 1, 1};
+  pdk_region left = pdk_region_box(a, b), right = pdk_region_box(c, d);
+  T_OK(ctx, pdk_particles_set_define(*p, "left", &left, NULL));
+  T_OK(ctx, pdk_particles_set_define(*p, "right", &right, NULL));
+  static const double cut[4] = {20e-3, -1e-3, 20e-3, 4e-3};
+  pdk_precrack crack = {2, cut};
+  pdk_families_opts fo = pdk_families_opts_default();
+  fo.horizon = 3.015 * dx;
+  if (notch) {
+    fo.precracks = &crack;
+    fo.num_precracks = 1;
+  }
+  T_OK(ctx, pdk_families_build(*p, &fo, fam));
+}
+
 /* A copy of every history field that exists, plus the bond state. */
 typedef struct jcu_snapshot {
   unsigned char *data;

@@ -35,7 +35,6 @@
 #include "jc_corr_util.h"
 #include "pdk/explicit.h"
 
-#define DX 1e-3
 
 typedef struct sim {
   pdk_particles *p;
@@ -48,25 +47,7 @@ typedef struct sim {
 /* The bar of t102: damage (with a notch and a short failure strain) or not, pulled at v. */
 static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mode stencil,
                   double v, double dt, sim *s) {
-  pdk_lattice_opts lo = pdk_lattice_opts_default();
-  lo.type = PDK_LATTICE_SQUARE;
-  lo.spacing = DX;
-  lo.hi[0] = 40 * DX;
-  lo.hi[1] = 10 * DX;
-  T_OK(ctx, pdk_lattice_create(ctx, &lo, &s->p));
-  double a[3] = {-1, -1, -1}, b[3] = {3 * DX, 1, 1}, c[3] = {37 * DX, -1, -1}, d[3] = {1, 1, 1};
-  pdk_region left = pdk_region_box(a, b), right = pdk_region_box(c, d);
-  T_OK(ctx, pdk_particles_set_define(s->p, "left", &left, NULL));
-  T_OK(ctx, pdk_particles_set_define(s->p, "right", &right, NULL));
-  static const double notch[4] = {20 * DX, -DX, 20 * DX, 4 * DX};
-  pdk_precrack crack = {2, notch};
-  pdk_families_opts fo = pdk_families_opts_default();
-  fo.horizon = 3.015 * DX;
-  if (damage) {
-    fo.precracks = &crack;
-    fo.num_precracks = 1;
-  }
-  T_OK(ctx, pdk_families_build(s->p, &fo, &s->fam));
+  jcu_bar(ctx, damage, &s->p, &s->fam);
   pdk_model_opts mo = pdk_model_opts_default();
   mo.kind = PDK_MODEL_CORRESPONDENCE;
   mo.law = PDK_LAW_JC;
