@@ -440,9 +440,12 @@ int main(int argc, char **argv) {
          1e9 * st_fam / nbd, st_fam / st_el, st_fam / st_jc);
   printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC)\n", "JC, softened + family", 1e3 * st_both,
          1e9 * st_both / nbd, st_both / st_el, st_both / st_jc);
-  printf("bonds broken in these runs: %lld (connectivity never had anything to do); breaking on / "
-         "off = %.3f\n",
-         (long long)(br_el + br_jc + br_keep), st_jc / st_keep);
+  const long long broken_all = (long long)(br_el + br_jc + br_keep);
+  printf("bonds broken in these runs: %lld%s; breaking on / off = %.3f\n", broken_all,
+         broken_all ? " (some runs broke bonds: use fewer --steps to time the steps where nothing "
+                      "breaks)"
+                    : " (connectivity never had anything to do)",
+         st_jc / st_keep);
   pdk_families_destroy(&s.fam);
   pdk_particles_destroy(&s.p);
   pdk_ctx_destroy(&ctx);
