@@ -4,6 +4,7 @@
 #ifndef PDK_JC_CORR_UTIL_H
 #define PDK_JC_CORR_UTIL_H
 
+#include "pdk/explicit.h"
 #include "pdk/geometry.h"
 #include "pdk/model.h"
 #include "test_util.h"
@@ -39,6 +40,20 @@ static inline void jcu_bar(pdk_ctx *ctx, int notch, pdk_particles **p, pdk_famil
     fo.num_precracks = 1;
   }
   T_OK(ctx, pdk_families_build(*p, &fo, fam));
+}
+
+/* The bar's loads: "left" held (all components), "right" pulled along x at v, by a velocity
+ * condition (by_displacement = 0) or by the displacement u = v t (1: positions exact at every
+ * step). */
+static inline void jcu_bar_pull(pdk_bc bcs[2], int by_displacement, double v) {
+  memset(bcs, 0, 2 * sizeof *bcs);
+  bcs[0].kind = PDK_BC_DISPLACEMENT;
+  bcs[0].set = "set:left";
+  bcs[0].components = 3;
+  bcs[1].kind = by_displacement ? PDK_BC_DISPLACEMENT : PDK_BC_VELOCITY;
+  bcs[1].set = "set:right";
+  bcs[1].components = 1;
+  bcs[1].value[0] = by_displacement ? (pdk_tfun){PDK_TFUN_LINEAR, 0.0, v} : pdk_tfun_constant(v);
 }
 
 /* A copy of every history field that exists, plus the bond state. */

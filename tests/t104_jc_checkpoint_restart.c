@@ -42,14 +42,7 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, int options, sim *s) {
   mo.stab_softening = options;
   mo.damage_triaxiality = options ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
-  memset(bcs, 0, sizeof bcs);
-  bcs[0].kind = PDK_BC_DISPLACEMENT;
-  bcs[0].set = "set:left";
-  bcs[0].components = 3;
-  bcs[1].kind = PDK_BC_VELOCITY;
-  bcs[1].set = "set:right";
-  bcs[1].components = 1;
-  bcs[1].value[0] = pdk_tfun_constant(10.0);
+  jcu_bar_pull(bcs, 0, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 2;

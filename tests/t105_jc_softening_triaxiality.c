@@ -61,14 +61,7 @@ static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mo
   mo.damage_triaxiality = family ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
   mo.stencil = stencil;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
-  memset(s->bcs, 0, sizeof s->bcs);
-  s->bcs[0].kind = PDK_BC_DISPLACEMENT;
-  s->bcs[0].set = "set:left";
-  s->bcs[0].components = 3;
-  s->bcs[1].kind = PDK_BC_DISPLACEMENT; /* u = v t: positions exact at every step */
-  s->bcs[1].set = "set:right";
-  s->bcs[1].components = 1;
-  s->bcs[1].value[0] = (pdk_tfun){PDK_TFUN_LINEAR, 0.0, v};
+  jcu_bar_pull(s->bcs, 1, v); /* u = v t: positions exact at every step */
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = s->bcs;
   eo.num_bcs = 2;
