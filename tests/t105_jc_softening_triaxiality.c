@@ -24,7 +24,8 @@
  *    step of a plastic particle reproduces the model's damage exactly from pdk_jc_update_avg with
  *    the average before the step (and differs from the local update's, so the option acts); the
  *    state after the run is bitwise the same on 1 and 2 threads (histories, factors, averages,
- *    bond state).
+ *    bond state), and in semi-TL with a compaction in every breaking pass (no particle is
+ *    detached, so its sums over the compacted list are TL's, term for term).
  * 5. Kernel variants: the same run with the reference kernels, the optimized general path and the
  *    stencil path: positions agree to 1e-9 of the largest displacement and eps_p to 1e-9 absolute
  *    after 300 committed steps (the variants sum in different orders; round-off grows through
@@ -46,7 +47,7 @@ typedef struct sim {
 
 /* The bar of t102: damage (with a notch and a short failure strain) or not, pulled at v. */
 static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mode stencil,
-                  double v, double dt, sim *s) {
+                  pdk_connectivity conn, double v, double dt, sim *s) {
   jcu_bar(ctx, damage, &s->p, &s->fam);
   pdk_model_opts mo = pdk_model_opts_default();
   mo.kind = PDK_MODEL_CORRESPONDENCE;
@@ -60,6 +61,8 @@ static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mo
   mo.stab_softening = soft;
   mo.damage_triaxiality = family ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
   mo.stencil = stencil;
+  mo.connectivity = conn;
+  mo.compact_fraction = 0.0; /* semi-TL: compact in every pass that broke bonds */
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
   jcu_bar_pull(s->bcs, 1, v); /* u = v t: positions exact at every step */
   pdk_explicit_opts eo = pdk_explicit_opts_default();
@@ -133,7 +136,7 @@ static void point(void) {
 static void elastic(pdk_ctx *ctx) {
   sim s[2];
   for (int k = 0; k < 2; ++k) {
-    build(ctx, 0, k, 0, PDK_STENCIL_OFF, 0.5, 1e-7, &s[k]); /* 0.5 m/s x 20 us: strain 2.5e-4 */
+    build(ctx, 0, k, 0, PDK_STENCIL_OFF, PDK_CONNECTIVITY_TL, 0.5, 1e-7, &s[k]); /* 0.5 m/s x 20 us: strain 2.5e-4 */
     pdk_history h;
     T_OK(ctx, pdk_explicit_run(s[k].e, 200, &h));
   }
@@ -159,7 +162,7 @@ static void plastic(pdk_ctx *ctx, int verbose) {
   for (int k = 0; k < 2; ++k) {
     const double dt = k ? 5e-8 : 1e-7;
     sim s;
-    build(ctx, 0, 1, 0, PDK_STENCIL_OFF, 20.0, dt, &s);
+    build(ctx, 0, 1, 0, PDK_STENCIL_OFF, PDK_CONNECTIVITY_TL, 20.0, dt, &s);
     const pdk_index n = pdk_particles_count(s.p);
     const uint8_t *r = pdk_particles_field_data(s.p, "set:right", 0);
     const double rho = pdk_model_opts_get(s.m)->density;
@@ -229,21 +232,29 @@ static void plastic(pdk_ctx *ctx, int verbose) {
 
 /* The damage run to step `steps`, then one more step for particle check. */
 static void family(pdk_ctx *ctx1, pdk_ctx *ctx2, int verbose) {
-  sim s[2];
+  sim s[3]; /* TL on 1 thread, TL on 2, semi-TL on 2 */
   const long steps = 600; /* 60 us at 10 m/s: damage grows at the notch, particles fail */
-  for (int k = 0; k < 2; ++k) {
-    build(k ? ctx2 : ctx1, 1, 1, 1, PDK_STENCIL_OFF, 10.0, 1e-7, &s[k]);
+  for (int k = 0; k < 3; ++k) {
+    pdk_ctx *ctx = k ? ctx2 : ctx1;
+    build(ctx, 1, 1, 1, PDK_STENCIL_OFF, k == 2 ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL,
+          10.0, 1e-7, &s[k]);
     pdk_history h;
-    T_OK(k ? ctx2 : ctx1, pdk_explicit_run(s[k].e, steps, &h));
-    if (verbose && !k)
-      printf("family: after %ld steps %d failed, %lld bonds broken\n", steps,
-             (int)pdk_model_num_failed(s[k].m), (long long)pdk_model_num_broken(s[k].m));
+    T_OK(ctx, pdk_explicit_run(s[k].e, steps, &h));
+    if (verbose)
+      printf("family, run %d: after %ld steps %d failed, %lld bonds broken, %ld compactions\n", k,
+             steps, (int)pdk_model_num_failed(s[k].m), (long long)pdk_model_num_broken(s[k].m),
+             pdk_model_num_compactions(s[k].m));
     T_ASSERT(pdk_model_num_failed(s[k].m) > 0, "no particle failed in %ld steps", steps);
   }
+  T_ASSERT(pdk_model_num_compactions(s[2].m) > 0, "semi-TL never compacted its bond list");
   jcu_snapshot snap = jcu_snapshot_take(s[0].m);
   T_ASSERT(jcu_snapshot_equal(s[1].m, &snap), "1 and 2 threads differ (histories, factors, "
                                               "averages or bond state)");
+  /* no particle is detached here, so semi-TL walks the same sums in the same order (over its
+   * compacted list) and must give TL's bits, the averages included */
+  T_ASSERT(jcu_snapshot_equal(s[2].m, &snap), "semi-TL differs from TL");
   free(snap.data);
+  destroy(&s[2]);
 
   /* the average, evaluated here */
   sim *t = &s[0];
@@ -330,7 +341,7 @@ static void variants(int verbose) {
     co.num_threads = 2;
     char why[512];
     if (pdk_ctx_create(&co, &ctx[k], why, sizeof why)) T_FAIL("pdk_ctx_create: %s", why);
-    build(ctx[k], 1, 1, 1, k == 2 ? PDK_STENCIL_ON : PDK_STENCIL_OFF, 10.0, 1e-7, &s[k]);
+    build(ctx[k], 1, 1, 1, k == 2 ? PDK_STENCIL_ON : PDK_STENCIL_OFF, PDK_CONNECTIVITY_TL, 10.0, 1e-7, &s[k]);
     pdk_history h;
     T_OK(ctx[k], pdk_explicit_run(s[k].e, 300, &h));
   }
