@@ -65,6 +65,36 @@ pdk_index pdk_kernel_family_scan3_avx512(pdk_index n_cand, const double *restric
                                          pdk_index self, const pdk_index *restrict cand_id,
                                          pdk_index *restrict out);
 
+/* Calls RANGE(dim, state, commit, energy) with the four as literals (dim 2 or 3, the others 0 or
+ * 1), so the reference PMB and LPS ranges compile one loop per combination: bond state present,
+ * a committing pass (only with state), energy wanted. */
+#define PDK_BOND_RANGE_DISPATCH(RANGE, dim, has_state, commit, want_energy)                     \
+  do {                                                                                          \
+    if ((dim) == 3)                                                                             \
+      PDK_BOND_RANGE_DISPATCH_D(RANGE, 3, has_state, commit, want_energy);                      \
+    else                                                                                        \
+      PDK_BOND_RANGE_DISPATCH_D(RANGE, 2, has_state, commit, want_energy);                      \
+  } while (0)
+#define PDK_BOND_RANGE_DISPATCH_D(RANGE, D, has_state, commit, want_energy)                     \
+  do {                                                                                          \
+    if (!(has_state)) {                                                                         \
+      if (want_energy)                                                                          \
+        RANGE(D, 0, 0, 1);                                                                      \
+      else                                                                                      \
+        RANGE(D, 0, 0, 0);                                                                      \
+    } else if (!(commit)) {                                                                     \
+      if (want_energy)                                                                          \
+        RANGE(D, 1, 0, 1);                                                                      \
+      else                                                                                      \
+        RANGE(D, 1, 0, 0);                                                                      \
+    } else {                                                                                    \
+      if (want_energy)                                                                          \
+        RANGE(D, 1, 1, 1);                                                                      \
+      else                                                                                      \
+        RANGE(D, 1, 1, 0);                                                                      \
+    }                                                                                           \
+  } while (0)
+
 /* ---- Bond-based PMB and state-based LPS (kernels/ref/pmb.c, kernels/ref/lps.c) ----------------
  * Formulas and contracts at the top of each file. Common arguments: particles [i0, i1); CSR
  * families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current x, y[, z]

@@ -268,41 +268,7 @@ lps_force_range(const int dim, pdk_index i0, pdk_index i1,
   pdk_bond_index broken = 0;
   const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
   const int want_energy = w != NULL;
-  if (dim == 3) {
-    if (!has_state) {
-      if (want_energy)
-        LPS_RANGE(3, 0, 0, 1);
-      else
-        LPS_RANGE(3, 0, 0, 0);
-    } else if (!commit) {
-      if (want_energy)
-        LPS_RANGE(3, 1, 0, 1);
-      else
-        LPS_RANGE(3, 1, 0, 0);
-    } else {
-      if (want_energy)
-        LPS_RANGE(3, 1, 1, 1);
-      else
-        LPS_RANGE(3, 1, 1, 0);
-    }
-  } else {
-    if (!has_state) {
-      if (want_energy)
-        LPS_RANGE(2, 0, 0, 1);
-      else
-        LPS_RANGE(2, 0, 0, 0);
-    } else if (!commit) {
-      if (want_energy)
-        LPS_RANGE(2, 1, 0, 1);
-      else
-        LPS_RANGE(2, 1, 0, 0);
-    } else {
-      if (want_energy)
-        LPS_RANGE(2, 1, 1, 1);
-      else
-        LPS_RANGE(2, 1, 1, 0);
-    }
-  }
+  PDK_BOND_RANGE_DISPATCH(LPS_RANGE, dim, has_state, commit, want_energy);
   return broken;
 }
 

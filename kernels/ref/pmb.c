@@ -140,41 +140,7 @@ pmb_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restr
   const int has_state = bond_alive != NULL, commit = has_state && s0_next != NULL;
   const int want_energy = w != NULL;
   /* Dispatch once per call to the loop specialised for (state, commit, energy). */
-  if (dim == 3) {
-    if (!has_state) {
-      if (want_energy)
-        PMB_RANGE(3, 0, 0, 1);
-      else
-        PMB_RANGE(3, 0, 0, 0);
-    } else if (!commit) {
-      if (want_energy)
-        PMB_RANGE(3, 1, 0, 1);
-      else
-        PMB_RANGE(3, 1, 0, 0);
-    } else {
-      if (want_energy)
-        PMB_RANGE(3, 1, 1, 1);
-      else
-        PMB_RANGE(3, 1, 1, 0);
-    }
-  } else {
-    if (!has_state) {
-      if (want_energy)
-        PMB_RANGE(2, 0, 0, 1);
-      else
-        PMB_RANGE(2, 0, 0, 0);
-    } else if (!commit) {
-      if (want_energy)
-        PMB_RANGE(2, 1, 0, 1);
-      else
-        PMB_RANGE(2, 1, 0, 0);
-    } else {
-      if (want_energy)
-        PMB_RANGE(2, 1, 1, 1);
-      else
-        PMB_RANGE(2, 1, 1, 0);
-    }
-  }
+  PDK_BOND_RANGE_DISPATCH(PMB_RANGE, dim, has_state, commit, want_energy);
   return broken;
 }
 
