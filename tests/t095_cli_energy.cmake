@@ -1,0 +1,60 @@
+# `pdk run` ends an explicit run with its energy account (external work against the change of
+# kinetic, strain and dissipated energy since the run's first record) and warns when it is off by
+# more than 3% of the energy put in:
+#   - the bar of t092 without breaking: the line is printed, off by less than 1e-4 (velocity
+#     Verlet with a smooth ramp: measured 7e-6), no warning;
+#   - the same bar with PMB critical-stretch breaking: PMB does not book what a broken bond held,
+#     so the line says the account does not close, and no warning is given for it;
+#   - the two-hole plate at 2 mm with softened stabilization and the family triaxiality to 3 ms:
+#     failures and breaks in weakly stabilized families make F jump, which the scene's step does
+#     not resolve (docs/validation/plate_two_holes.md, item 8): off by 8.6% (measured), the
+#     warning names solver.dt; the run still succeeds (exit 0), the warning is advice;
+#   - the same run at half the time step (solver.safety 0.4 instead of 0.8), as the warning
+#     advises: no warning (below 3%, while the run at the scene's step must be above 6%, so at
+#     least 2 times closer; measured 0.58%, 15 times closer).
+# labels: physics
+cmake_minimum_required(VERSION 3.25)
+file(REMOVE_RECURSE ${PDK_TEST_DIR})
+file(MAKE_DIRECTORY ${PDK_TEST_DIR})
+
+function(run name)
+  execute_process(COMMAND ${PDK_CLI} run ${ARGN} -q -o ${name}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  WORKING_DIRECTORY ${PDK_TEST_DIR})
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${name}: exit ${rc}\n${out}${err}")
+  endif()
+  if(NOT err MATCHES "energy: external work [0-9.e+-]+ = change of kinetic .* off by ([0-9.e+-]+) \\(([0-9.e+-]+)% of the energy put in\\)")
+    message(FATAL_ERROR "${name}: no energy line\n${err}")
+  endif()
+  set(pct ${CMAKE_MATCH_2} PARENT_SCOPE)
+  set(run_err "${err}" PARENT_SCOPE)
+endfunction()
+
+set(bar ${PDK_SOURCE_DIR}/tests/scenes/t092_bar.yaml)
+run(bar_intact ${bar} --set model.critical_stretch=0)
+if(pct GREATER 0.01 OR run_err MATCHES "warning")
+  message(FATAL_ERROR "bar without breaking: off by ${pct}%, or warned\n${run_err}")
+endif()
+
+run(bar_breaking ${bar})
+if(NOT run_err MATCHES "this model does not book the energy they held" OR run_err MATCHES "warning")
+  message(FATAL_ERROR "bar with PMB breaking: no 'does not book' note, or warned\n${run_err}")
+endif()
+
+set(plate ${PDK_SOURCE_DIR}/scenes/plate_two_holes.yaml)
+run(plate_softened ${plate} --set geometry.spacing=2e-3 --set solver.end_time=3e-3
+    --set model.stabilization_softening=plastic --set model.damage_triaxiality=family)
+if(NOT run_err MATCHES "warning: the energy balance is off by [0-9.]+% of the energy put in"
+   OR NOT run_err MATCHES "solver.dt" OR pct LESS 3)
+  message(FATAL_ERROR "softened plate at 2 mm: expected a warning (off by ${pct}%)\n${run_err}")
+endif()
+set(pct_dt ${pct})
+
+run(plate_softened_half_dt ${plate} --set geometry.spacing=2e-3 --set solver.end_time=3e-3
+    --set model.stabilization_softening=plastic --set model.damage_triaxiality=family
+    --set solver.safety=0.4)
+if(run_err MATCHES "warning" OR NOT pct_dt GREATER 6)
+  message(FATAL_ERROR "half the step: off by ${pct}% (warned) against ${pct_dt}% at the scene's "
+                      "step (expected above 6%)\n${run_err}")
+endif()
