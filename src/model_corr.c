@@ -33,6 +33,13 @@
  * particle per pass (a 3 x 3 Jacobi eigen-decomposition, logs and exps), against a family loop of
  * tens of bonds: see the report of the issue for the measured ratio.
  *
+ * Johnson-Cook options (pdk_model_opts, include/pdk/model.h). stab_softening: fields
+ * "stab_factor", "w_stab", "w_silling" and two scratch arrays (stab_prev, w_law; 16 bytes per
+ * particle); pass 1 lowers the factors, and the block loop after pass 2 of a commit books what
+ * the drop took from the Silling energy (kernels.h). damage_triaxiality family: fields "sigma_m"
+ * (written by pass 1 of a commit) and "sigma_m_avg" (corr_pressure_average, one pass over the
+ * intact bonds after each commit, so trial passes and the next commit read the same values).
+ *
  * Bond breaking (bond state exists: critical stretch, or JC failure with failed_keeps_bonds = 0).
  * A commit pass runs the break kernel after pass 2 when there is something to decide: always with
  * a critical stretch (the s0 rule needs every bond's stretch), and with JC failure only when the
@@ -235,6 +242,11 @@ static void corr_destroy(pdk_model *m) {
   m->impl = NULL;
 }
 
+/* Block range of particles [i0, i1) for block blk. */
+#define CORR_BLOCK_RANGE(blk, n, i0, i1)                                                        \
+  const pdk_index i0 = (blk) * PDK_CORR_BLOCK;                                                  \
+  const pdk_index i1 = i0 + PDK_CORR_BLOCK < (n) ? i0 + PDK_CORR_BLOCK : (n)
+
 /* damage_triaxiality family: sigma_m_avg_i = (V_i sigma_m_i + sum_b omega_b V_j sigma_m_j) /
  * (V_i + sum_b omega_b V_j) over i's intact bonds to particles that have not failed (a failed
  * particle carries no stress; it is a hole, not a zero pressure). Each i reads its own row only,
@@ -252,8 +264,7 @@ static void corr_pressure_average(pdk_model *m) {
 #pragma omp parallel for default(none) shared(a, sm, avg, n, num_blocks) schedule(static)       \
     num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-    const pdk_index i0 = blk * PDK_CORR_BLOCK;
-    const pdk_index i1 = i0 + PDK_CORR_BLOCK < n ? i0 + PDK_CORR_BLOCK : n;
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
     for (pdk_index i = i0; i < i1; ++i) {
       double sw = a.volume[i], sp = a.volume[i] * sm[i];
       for (pdk_bond_index b = a.bond_start[i]; b < a.bond_start[i + 1]; ++b) {
@@ -533,11 +544,6 @@ static int corr_setup(pdk_model *m) {
   }
   return PDK_SUCCESS;
 }
-
-/* Block range of particles [i0, i1) for block blk. */
-#define CORR_BLOCK_RANGE(blk, n, i0, i1)                                                        \
-  const pdk_index i0 = (blk) * PDK_CORR_BLOCK;                                                  \
-  const pdk_index i1 = i0 + PDK_CORR_BLOCK < (n) ? i0 + PDK_CORR_BLOCK : (n)
 
 /* semi-TL: rebuilds the compacted list from the intact bonds of the list the passes walk now (the
  * families' CSR with the model's bond state before the first compaction). Row order and entry
