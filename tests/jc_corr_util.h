@@ -56,6 +56,22 @@ static inline void jcu_bar_pull(pdk_bc bcs[2], int by_displacement, double v) {
   bcs[1].value[0] = by_displacement ? (pdk_tfun){PDK_TFUN_LINEAR, 0.0, v} : pdk_tfun_constant(v);
 }
 
+/* One bar run: its store, families, model, solver and loads. */
+typedef struct jcu_sim {
+  pdk_particles *p;
+  pdk_families *fam;
+  pdk_model *m;
+  pdk_explicit *e;
+  pdk_bc bcs[2];
+} jcu_sim;
+
+static inline void jcu_sim_destroy(jcu_sim *s) {
+  pdk_explicit_destroy(&s->e);
+  pdk_model_destroy(&s->m);
+  pdk_families_destroy(&s->fam);
+  pdk_particles_destroy(&s->p);
+}
+
 /* A copy of every history field that exists, plus the bond state. */
 typedef struct jcu_snapshot {
   unsigned char *data;

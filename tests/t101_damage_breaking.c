@@ -23,14 +23,8 @@
 #define CHUNK 20
 #define EXTRA_STEPS 200 /* steps run after separation before the checks */
 
-typedef struct sim {
-  pdk_particles *p;
-  pdk_families *fam;
-  pdk_model *m;
-  pdk_explicit *e;
-} sim;
+typedef jcu_sim sim;
 
-static pdk_bc bcs[2];
 static const char *rsets[2] = {"set:left", "set:right"};
 
 static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
@@ -43,21 +37,14 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
   mo.stabilization = PDK_STAB_SILLING;
   mo.connectivity = mode;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
-  jcu_bar_pull(bcs, 0, 10.0);
+  jcu_bar_pull(s->bcs, 0, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
-  eo.bcs = bcs;
+  eo.bcs = s->bcs;
   eo.num_bcs = 2;
   eo.reaction_sets = rsets;
   eo.num_reaction_sets = 2;
   eo.dt = 1.5e-7; /* fixed so every run takes the same steps; stable step about 2e-7 s */
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
-}
-
-static void destroy(sim *s) {
-  pdk_explicit_destroy(&s->e);
-  pdk_model_destroy(&s->m);
-  pdk_families_destroy(&s->fam);
-  pdk_particles_destroy(&s->p);
 }
 
 /* First member of a set. */
@@ -178,8 +165,8 @@ int main(void) {
     T_ASSERT(step < MAX_STEPS && pdk_model_num_broken(b.m) == pdk_model_num_broken(a.m),
              "first break: TL %lld, semi-TL %lld bonds", (long long)pdk_model_num_broken(a.m),
              (long long)pdk_model_num_broken(b.m));
-    destroy(&a);
-    destroy(&b);
+    jcu_sim_destroy(&a);
+    jcu_sim_destroy(&b);
   }
 
   /* 2. Each mode tears the bar; 2 threads give the same bits. */
@@ -204,7 +191,7 @@ int main(void) {
                  "%s: state after %ld steps differs from 1 thread", what, ref_steps);
         free(now);
       }
-      destroy(&s);
+      jcu_sim_destroy(&s);
     }
     free(ref);
     T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));

@@ -34,14 +34,8 @@
 #include "jc_corr_util.h"
 
 
-typedef struct sim {
-  pdk_particles *p;
-  pdk_families *fam;
-  pdk_model *m;
-  pdk_explicit *e;
-} sim;
+typedef jcu_sim sim;
 
-static pdk_bc bcs[2];
 
 static void build(pdk_ctx *ctx, int damage, pdk_connectivity mode, double v, double dt, sim *s) {
   jcu_bar(ctx, damage, &s->p, &s->fam);
@@ -54,19 +48,12 @@ static void build(pdk_ctx *ctx, int damage, pdk_connectivity mode, double v, dou
   mo.stabilization = PDK_STAB_SILLING;
   mo.connectivity = mode;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
-  jcu_bar_pull(bcs, 1, v); /* u = v t: velocity v, positions exact at every step */
+  jcu_bar_pull(s->bcs, 1, v); /* u = v t: velocity v, positions exact at every step */
   pdk_explicit_opts eo = pdk_explicit_opts_default();
-  eo.bcs = bcs;
+  eo.bcs = s->bcs;
   eo.num_bcs = 2;
   eo.dt = dt; /* 1e-7 s: half the stable step (about 2e-7 s) */
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
-}
-
-static void destroy(sim *s) {
-  pdk_explicit_destroy(&s->e);
-  pdk_model_destroy(&s->m);
-  pdk_families_destroy(&s->fam);
-  pdk_particles_destroy(&s->p);
 }
 
 /* Kinetic energy of the prescribed components (x of the pulled end): constant (v from t = 0), and
@@ -115,7 +102,7 @@ int main(void) {
     T_ASSERT(h.damage_work == 0.0 && h.breaking_work == 0.0 && h.broken == 0,
              "damage off, yet damage %g, breaking %g", h.damage_work, h.breaking_work);
     T_NEAR(worst, 0.0, 0.0, 1e-4 * h.external_work, "energy balance, plasticity only, dt %g", dt);
-    destroy(&s);
+    jcu_sim_destroy(&s);
   }
   T_ASSERT(worst1[1] * 3.0 <= worst1[0], "plasticity only: not second order in dt (%.3e, %.3e)",
            worst1[0], worst1[1]);
@@ -162,7 +149,7 @@ int main(void) {
     T_NEAR(worst, 0.0, 0.0, 5e-3 * h.external_work,
            "energy balance with damage and breaking (case %d, dt %g)", k, dts[k]);
     free(comp);
-    destroy(&s);
+    jcu_sim_destroy(&s);
   }
   T_ASSERT(worst_rel[1] * 1.4 <= worst_rel[0],
            "halving dt did not shrink the imbalance: %.3e at dt, %.3e at dt/2", worst_rel[0],

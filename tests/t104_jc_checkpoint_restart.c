@@ -20,14 +20,8 @@
 #define N_STEPS 400
 #define N_FIRST 300
 
-typedef struct sim {
-  pdk_particles *p;
-  pdk_families *fam;
-  pdk_model *m;
-  pdk_explicit *e;
-} sim;
+typedef jcu_sim sim;
 
-static pdk_bc bcs[2];
 
 static void build(pdk_ctx *ctx, pdk_connectivity mode, int options, sim *s) {
   jcu_bar(ctx, 1, &s->p, &s->fam);
@@ -42,19 +36,12 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, int options, sim *s) {
   mo.stab_softening = options;
   mo.damage_triaxiality = options ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
-  jcu_bar_pull(bcs, 0, 10.0);
+  jcu_bar_pull(s->bcs, 0, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
-  eo.bcs = bcs;
+  eo.bcs = s->bcs;
   eo.num_bcs = 2;
   eo.dt = 1.5e-7;
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
-}
-
-static void destroy(sim *s) {
-  pdk_explicit_destroy(&s->e);
-  pdk_model_destroy(&s->m);
-  pdk_families_destroy(&s->fam);
-  pdk_particles_destroy(&s->p);
 }
 
 /* x, v, f, history fields and bond state as bytes. */
@@ -90,13 +77,13 @@ int main(void) {
       T_ASSERT(h1.broken > 0 && pdk_model_num_failed(s.m) > 0, "%s: nothing broke", what);
       size_t b1, b2;
       unsigned char *one = state_bytes(&s, &b1);
-      destroy(&s);
+      jcu_sim_destroy(&s);
 
       build(ctx, conn, opt, &s);
       T_OK(ctx, pdk_explicit_run(s.e, N_FIRST, NULL));
       T_ASSERT(pdk_model_num_broken(s.m) > 0, "%s: no bond broken before the checkpoint", what);
       T_OK(ctx, pdk_checkpoint_write(ctx, path, s.e, NULL));
-      destroy(&s);
+      jcu_sim_destroy(&s);
       build(ctx, conn, opt, &s);
       T_OK(ctx, pdk_checkpoint_read(ctx, path, s.e));
       T_OK(ctx, pdk_explicit_run(s.e, N_STEPS - N_FIRST, &h2));
@@ -110,7 +97,7 @@ int main(void) {
                h1.breaking_work, h2.breaking_work);
       free(one);
       free(two);
-      destroy(&s);
+      jcu_sim_destroy(&s);
       remove(path);
     }
   }

@@ -37,13 +37,7 @@
 #include "pdk/explicit.h"
 
 
-typedef struct sim {
-  pdk_particles *p;
-  pdk_families *fam;
-  pdk_model *m;
-  pdk_explicit *e;
-  pdk_bc bcs[2];
-} sim;
+typedef jcu_sim sim;
 
 /* The bar of t102: damage (with a notch and a short failure strain) or not, pulled at v. */
 static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mode stencil,
@@ -70,13 +64,6 @@ static void build(pdk_ctx *ctx, int damage, int soft, int family, pdk_stencil_mo
   eo.num_bcs = 2;
   eo.dt = dt;
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
-}
-
-static void destroy(sim *s) {
-  pdk_explicit_destroy(&s->e);
-  pdk_model_destroy(&s->m);
-  pdk_families_destroy(&s->fam);
-  pdk_particles_destroy(&s->p);
 }
 
 static double field(sim *s, const char *name, pdk_index i) {
@@ -150,8 +137,8 @@ static void elastic(pdk_ctx *ctx) {
                    ((const double *)pdk_particles_field_data(s[1].p, "x", d))[i],
                "elastic run: x[%d] of particle %d differs with softening on", d, (int)i);
   }
-  destroy(&s[0]);
-  destroy(&s[1]);
+  jcu_sim_destroy(&s[0]);
+  jcu_sim_destroy(&s[1]);
 }
 
 /* ---- 3. plastic bar: factors and energy -------------------------------------------------------
@@ -221,7 +208,7 @@ static void plastic(pdk_ctx *ctx, int verbose) {
              "w_stab %g is too small for the balance to notice it (external work %g)", w_stab,
              h.external_work);
     T_NEAR(worst, 0.0, 0.0, 1e-4 * h.external_work, "energy balance with softening, dt %g", dt);
-    destroy(&s);
+    jcu_sim_destroy(&s);
   }
   T_ASSERT(worst_rel[1] * 3.0 <= worst_rel[0], "softening: not second order in dt (%.3e, %.3e)",
            worst_rel[0], worst_rel[1]);
@@ -254,7 +241,7 @@ static void family(pdk_ctx *ctx1, pdk_ctx *ctx2, int verbose) {
    * compacted list) and must give TL's bits, the averages included */
   T_ASSERT(jcu_snapshot_equal(s[2].m, &snap), "semi-TL differs from TL");
   free(snap.data);
-  destroy(&s[2]);
+  jcu_sim_destroy(&s[2]);
 
   /* the average, evaluated here */
   sim *t = &s[0];
@@ -324,8 +311,8 @@ static void family(pdk_ctx *ctx1, pdk_ctx *ctx2, int verbose) {
            (int)q, D[q], out.damage);
   T_ASSERT(out_local.damage != out.damage, "particle %d: the local update gives the same damage",
            (int)q);
-  destroy(&s[0]);
-  destroy(&s[1]);
+  jcu_sim_destroy(&s[0]);
+  jcu_sim_destroy(&s[1]);
 }
 
 /* ---- 5. kernel variants -----------------------------------------------------------------------
@@ -369,7 +356,7 @@ static void variants(int verbose) {
     T_NEAR(dep, 0.0, 0.0, 1e-9, "%s against ref: eps_p", k == 1 ? "optimized" : "stencil");
   }
   for (int k = 0; k < 3; ++k) {
-    destroy(&s[k]);
+    jcu_sim_destroy(&s[k]);
     pdk_ctx_destroy(&ctx[k]);
   }
 }
