@@ -156,40 +156,28 @@ static const error_case cases[] = {
      "model.connectivity", "allowed: tl, semi_tl, ul"},
 };
 
+/* A Johnson-Cook scene without damage whose model block ends with `line`. */
+#define NO_DAMAGE_SCENE(line)                                                                      \
+  "dimension: 2\n"                                                                                 \
+  "geometry:\n"                                                                                    \
+  "  spacing: 1.0e-3\n"                                                                            \
+  "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"                                                        \
+  "material:\n"                                                                                    \
+  "  density: 7830\n"                                                                              \
+  "  youngs_modulus: 200e9\n"                                                                      \
+  "  poisson_ratio: 0.29\n"                                                                        \
+  "  johnson_cook: {A: 792e6, B: 510e6, n: 0.26, damage: false}\n"                                 \
+  "model:\n"                                                                                       \
+  "  kind: correspondence\n"                                                                       \
+  "  law: jc\n" line "solver:\n"                                                                   \
+  "  steps: 10\n"
+
 /* Scenes of the cases that need more than one edit. */
 static const char *special_text(const char *what) {
   if (!strcmp(what, "failed_keeps_bonds without damage"))
-    return "dimension: 2\n"
-           "geometry:\n"
-           "  spacing: 1.0e-3\n"
-           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
-           "material:\n"
-           "  density: 7830\n"
-           "  youngs_modulus: 200e9\n"
-           "  poisson_ratio: 0.29\n"
-           "  johnson_cook: {A: 792e6, B: 510e6, n: 0.26, damage: false}\n"
-           "model:\n"
-           "  kind: correspondence\n"
-           "  law: jc\n"
-           "  failed_keeps_bonds: false #<\n"
-           "solver:\n"
-           "  steps: 10\n";
+    return NO_DAMAGE_SCENE("  failed_keeps_bonds: false #<\n");
   if (!strcmp(what, "damage_triaxiality without damage"))
-    return "dimension: 2\n"
-           "geometry:\n"
-           "  spacing: 1.0e-3\n"
-           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
-           "material:\n"
-           "  density: 7830\n"
-           "  youngs_modulus: 200e9\n"
-           "  poisson_ratio: 0.29\n"
-           "  johnson_cook: {A: 792e6, B: 510e6, n: 0.26, damage: false}\n"
-           "model:\n"
-           "  kind: correspondence\n"
-           "  law: jc\n"
-           "  damage_triaxiality: family #<\n"
-           "solver:\n"
-           "  steps: 10\n";
+    return NO_DAMAGE_SCENE("  damage_triaxiality: family #<\n");
   if (!strcmp(what, "failed_keeps_bonds with an elastic law"))
     return "dimension: 2\n"
            "geometry:\n"
