@@ -668,6 +668,13 @@ pdk_index pdk_kernel_corr_reshape_ref(const pdk_corr_consts *k, const pdk_corr_a
  * bit 0 = row lost bonds now, bit 1 kept and set. Returns the directed bonds broken. */
 pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                        pdk_index i0, pdk_index i1);
+/* Johnson-Cook with pdk_model_opts.break_stress = PDK_BREAK_STRESS_CONTINUOUS, after reshape and
+ * before release: every row that lost bonds in this pass (changed & 2), not failed, not flagged,
+ * has its C_p^-1 remapped from a->F (this pass's F, the old family) to the F of the new family at
+ * the same x (pdk_jc_remap): the stress does not jump at the break. */
+void pdk_kernel_corr_remap_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1);
+
 /* Energy released by breaking, for rows with changed bit 1 (after their shape was recomputed):
  * w_broken[i] += W[i] - (stored energy at the current x with the new family, plus the plastic
  * and damage work of the jump of F, history frozen). Returns sum_i V_i (that increment) over the

@@ -141,6 +141,16 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "%s is implemented for tl and semi_tl connectivity, not ul; use connectivity tl or "
             "semi_tl",
             o->stab_softening ? "softened stabilization" : "damage_triaxiality family");
+  PDK_CHECK((unsigned)o->break_stress <= PDK_BREAK_STRESS_CONTINUOUS, ctx, PDK_ERR_ARG,
+            "break_stress %d unknown; use refit (0) or continuous (1)", (int)o->break_stress);
+  PDK_CHECK(o->break_stress == PDK_BREAK_STRESS_REFIT ||
+                (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC &&
+                 o->connectivity != PDK_CONNECTIVITY_UL),
+            ctx, PDK_ERR_UNSUPPORTED,
+            "break_stress continuous remaps the Johnson-Cook history of particles whose family "
+            "lost bonds: it needs the correspondence model with law jc and connectivity tl or "
+            "semi_tl (model kind %s, law %d)",
+            name, (int)o->law);
   PDK_CHECK(isfinite(o->thickness) && o->thickness > 0, ctx, PDK_ERR_ARG,
             "thickness must be a finite length > 0 (2-D: the out-of-plane thickness the volumes "
             "include; default 1), got %g",

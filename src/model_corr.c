@@ -683,6 +683,13 @@ static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_
   }
   m->num_broken += total;
   if (c->c_start) corr_sync_bond_state(m);
+  if (m->opts.break_stress == PDK_BREAK_STRESS_CONTINUOUS) {
+#pragma omp parallel for default(none) shared(a, k, n, num_blocks) schedule(static) num_threads(nt)
+    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+      CORR_BLOCK_RANGE(blk, n, i0, i1);
+      pdk_kernel_corr_remap_ref(k, &a, i0, i1);
+    }
+  }
   const uint8_t *flag = a.flag;
   double *block_released = c->block_energy; /* free again: the pass's energy is summed */
   pdk_index flagged = 0;

@@ -92,7 +92,7 @@ typedef struct sc_material {
 } sc_material;
 typedef struct sc_model {
   int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
-  int stabilization_softening, damage_triaxiality;
+  int stabilization_softening, damage_triaxiality, break_stress;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
       ul_skin, stabilization_softening_floor;
   bool partial_volume, failed_keeps_bonds;
@@ -174,6 +174,8 @@ static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
 static const cyaml_strval_t softening_names[] = {{"none", 0}, {"plastic", 1}};
 static const cyaml_strval_t triaxiality_names[] = {{"local", PDK_TRIAX_LOCAL},
                                                    {"family", PDK_TRIAX_FAMILY}};
+static const cyaml_strval_t break_stress_names[] = {{"refit", PDK_BREAK_STRESS_REFIT},
+                                                    {"continuous", PDK_BREAK_STRESS_CONTINUOUS}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
@@ -351,6 +353,8 @@ static void schema_build(scene_schema *sc, int dim) {
                                stabilization_softening_floor));
   ADD(model, CYAML_FIELD_ENUM("damage_triaxiality", ENUM_FLAGS, sc_model, damage_triaxiality,
                               triaxiality_names, N_OF(triaxiality_names)));
+  ADD(model, CYAML_FIELD_ENUM("break_stress", ENUM_FLAGS, sc_model, break_stress,
+                              break_stress_names, N_OF(break_stress_names)));
   ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, law_names, N_OF(law_names)));
   ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names,
                               N_OF(precision_names)));
@@ -1217,8 +1221,9 @@ static int resolve_connectivity(loader *ld, const sc_model *mo) {
   return PDK_SUCCESS;
 }
 
-/* model.stabilization_softening, stabilization_softening_floor, damage_triaxiality: Johnson-Cook
- * refinements of the correspondence model (tl, semi_tl). After the law and connectivity. */
+/* model.stabilization_softening, stabilization_softening_floor, damage_triaxiality,
+ * break_stress: Johnson-Cook refinements of the correspondence model (tl, semi_tl). After the law
+ * and connectivity. */
 static int resolve_softening(loader *ld, const sc_model *mo) {
   pdk_model_opts *m = &ld->s->model;
   const int corr_jc = m->kind == PDK_MODEL_CORRESPONDENCE && m->law == PDK_LAW_JC;
@@ -1256,6 +1261,24 @@ static int resolve_softening(loader *ld, const sc_model *mo) {
             "model.damage_triaxiality",
             "family is implemented for tl and semi_tl connectivity, not ul; set "
             "model.connectivity: tl or semi_tl, or use local");
+  }
+  if (has(ld, "model.break_stress")) {
+    m->break_stress = (pdk_break_stress)mo->break_stress;
+    REQUIRE(ld, m->break_stress == PDK_BREAK_STRESS_REFIT || corr_jc, "model.break_stress",
+            "continuous remaps the Johnson-Cook history when a particle's family loses bonds: it "
+            "needs model.kind correspondence and model.law jc; use refit or remove it");
+    REQUIRE(ld,
+            m->break_stress == PDK_BREAK_STRESS_REFIT || m->connectivity != PDK_CONNECTIVITY_UL,
+            "model.break_stress",
+            "continuous is implemented for tl and semi_tl connectivity, not ul (which breaks no "
+            "bonds); set "
+            "model.connectivity: tl or semi_tl, or use refit");
+    const int breaks = (m->jc.damage && !m->failed_keeps_bonds) || m->critical_stretch > 0;
+    REQUIRE(ld, m->break_stress == PDK_BREAK_STRESS_REFIT || breaks, "model.break_stress",
+            "continuous acts when bonds break, and none can here (%s); turn on "
+            "material.johnson_cook.damage with model.failed_keeps_bonds: false, or set "
+            "model.critical_stretch, or remove it",
+            m->jc.damage ? "failed particles keep their bonds" : "no damage, no critical stretch");
   }
   return PDK_SUCCESS;
 }

@@ -151,6 +151,14 @@ static void check_defaults(pdk_ctx *ctx) {
   T_ASSERT(m->stab_softening == 0 && m->stab_softening_floor == 1e-3 &&
                m->damage_triaxiality == PDK_TRIAX_LOCAL,
            "softening off (floor 1e-3 when on) and the local triaxiality by default");
+  T_ASSERT(m->break_stress == PDK_BREAK_STRESS_REFIT, "break_stress refit by default");
+  {
+    const char *ov[] = {"model.break_stress=continuous"};
+    pdk_scene *s2 = NULL;
+    T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ov, 1, &s2));
+    T_ASSERT(s2->model.break_stress == PDK_BREAK_STRESS_CONTINUOUS, "break_stress continuous");
+    pdk_scene_destroy(&s2);
+  }
   pdk_sim *sim = NULL;
   T_OK(ctx, pdk_sim_create(ctx, s, &sim));
   T_NEAR(pdk_model_opts_get(pdk_sim_model(sim))->bulk_modulus, K, 1e-12, 0, "K round trip");

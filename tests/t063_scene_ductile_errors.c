@@ -1,6 +1,6 @@
 /* Scene errors of the ductile keys (material.johnson_cook, model.law: jc, model.connectivity,
  * model.compact_fraction, model.failed_keeps_bonds, model.stabilization_softening(_floor),
- * model.damage_triaxiality, output field von_mises), one case per kind of
+ * model.damage_triaxiality, model.break_stress, output field von_mises), one case per kind of
  * mistake, in the form of t061: each case edits a small valid Johnson-Cook scene, and the message
  * must read
  *   <file>:<line>: <key.path>: ...      (or <file>: --set <override>: <key.path>: ...)
@@ -144,6 +144,16 @@ static const error_case cases[] = {
     {"damage_triaxiality in ul", "  law: jc\n",
      "  law: jc\n  connectivity: ul\n  failed_keeps_bonds: true\n  damage_triaxiality: family #<\n",
      NULL, AT_LOAD, PDK_ERR_ARG, "model.damage_triaxiality", "not ul"},
+    {"break_stress with an elastic law", NULL, NULL, NULL, AT_LOAD, PDK_ERR_ARG,
+     "model.break_stress", "model.law jc"},
+    {"unknown break_stress", "  law: jc\n", "  law: jc\n  break_stress: smooth #<\n", NULL,
+     AT_LOAD, PDK_ERR_ARG, "model.break_stress", "allowed: refit, continuous"},
+    {"break_stress in ul", "  law: jc\n",
+     "  law: jc\n  connectivity: ul\n  failed_keeps_bonds: true\n  break_stress: continuous #<\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "model.break_stress", "not ul"},
+    {"break_stress when nothing breaks", "  law: jc\n",
+     "  law: jc\n  failed_keeps_bonds: true\n  break_stress: continuous #<\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "model.break_stress", "none can here"},
     /* output fields */
     {"von_mises with pmb", NULL, NULL, NULL, AT_BUILD, PDK_ERR_ARG, "output.fields[0]",
      "correspondence"},
@@ -178,6 +188,19 @@ static const char *special_text(const char *what) {
     return NO_DAMAGE_SCENE("  failed_keeps_bonds: false #<\n");
   if (!strcmp(what, "damage_triaxiality without damage"))
     return NO_DAMAGE_SCENE("  damage_triaxiality: family #<\n");
+  if (!strcmp(what, "break_stress with an elastic law"))
+    return "dimension: 2\n"
+           "geometry:\n"
+           "  spacing: 1.0e-3\n"
+           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
+           "material: {density: 7830, youngs_modulus: 200e9, poisson_ratio: 0.25}\n"
+           "model:\n"
+           "  kind: correspondence\n"
+           "  law: neo_hooke\n"
+           "  critical_stretch: 0.1\n"
+           "  break_stress: continuous #<\n"
+           "solver:\n"
+           "  steps: 10\n";
   if (!strcmp(what, "failed_keeps_bonds with an elastic law"))
     return "dimension: 2\n"
            "geometry:\n"

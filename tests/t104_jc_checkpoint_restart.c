@@ -9,9 +9,11 @@
  * compaction) and recomputes K of every particle with broken bonds, and must still give the same
  * bits. Compared: x, v, f, every history field (cp_inv, eps_p, damage, failed, eps_p_rate,
  * w_plastic, w_damage, w_broken), the bond state and the last history record (energies included).
- * On 1 and 2 threads. A third run in TL with softened stabilization and the family-averaged
- * triaxiality also compares their fields (stab_factor, w_stab, w_silling, sigma_m, sigma_m_avg;
- * the checkpoint stores every field, and the factors' scratch is rewritten by every commit).
+ * On 1 and 2 threads. A third run in TL with softened stabilization, the family-averaged
+ * triaxiality and the continuous stress at breaks also compares their fields (stab_factor,
+ * w_stab, w_silling, sigma_m, sigma_m_avg; the checkpoint stores every field, and the factors'
+ * scratch is rewritten by every commit; the remapped C_p^-1, whose det is no longer 1, is
+ * restored as it was).
  * (D2 = 0 here, so the damage does not depend on the triaxiality; t105 tests that it is used.)
  * labels: unit threads */
 #include "jc_corr_util.h"
@@ -35,6 +37,7 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, int options, sim *s) {
   mo.compact_fraction = 0.0;
   mo.stab_softening = options;
   mo.damage_triaxiality = options ? PDK_TRIAX_FAMILY : PDK_TRIAX_LOCAL;
+  mo.break_stress = options ? PDK_BREAK_STRESS_CONTINUOUS : PDK_BREAK_STRESS_REFIT;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
   jcu_bar_pull(s->bcs, 0, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
@@ -66,10 +69,10 @@ int main(void) {
   const char *path = "t104_jc.ckpt.h5";
   for (int mode = 0; mode < 3; ++mode) {
     const pdk_connectivity conn = mode == 1 ? PDK_CONNECTIVITY_SEMI_TL : PDK_CONNECTIVITY_TL;
-    const int opt = mode == 2; /* softened stabilization and family triaxiality */
+    const int opt = mode == 2; /* softened, family triaxiality, continuous at breaks */
     for (int threads = 1; threads <= 2; ++threads) {
       T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
-      const char *what = mode == 2 ? "TL, softened + family" : mode ? "semi-TL" : "TL";
+      const char *what = mode == 2 ? "TL, softened + family + continuous" : mode ? "semi-TL" : "TL";
       sim s;
       pdk_history h1, h2;
       build(ctx, conn, opt, &s);

@@ -180,6 +180,21 @@ typedef enum pdk_damage_triaxiality {
                           particle's own, "sigma_m_avg" the average. tl and semi_tl only. */
 } pdk_damage_triaxiality;
 
+/* What a Johnson-Cook particle's stress does when its family loses bonds (law jc, bonds that
+ * break, tl or semi_tl). F_i = N_i K_i^-1 is a fit over the intact family; when bonds break the
+ * fit changes at the same positions, by much where the motion inside the family is far from
+ * affine (a weakly stabilized plastic zone). */
+typedef enum pdk_break_stress {
+  PDK_BREAK_STRESS_REFIT = 0,     /* (default) the stress follows the new fit: the jump of F is
+                                     a deformation increment of the law (elastic and plastic) */
+  PDK_BREAK_STRESS_CONTINUOUS = 1 /* the history is remapped (pdk_jc_remap) so the elastic state,
+                                     the stress and the stored energy do not jump: the new fit is
+                                     a new estimate of the same material state, not a
+                                     deformation. Measured on the two-hole plate with softened
+                                     stabilization: the breaks no longer make energy (docs/
+                                     validation/plate_two_holes.md item 9) */
+} pdk_break_stress;
+
 typedef struct pdk_material {
   double bulk_modulus;  /* K [pressure] */
   double shear_modulus; /* G [pressure] (PMB: ignored) */
@@ -221,6 +236,7 @@ typedef struct pdk_model_opts {
   double stab_softening_floor; /* the factor's floor, in (0, 1]; default 1e-3 (the thesis') */
   pdk_damage_triaxiality damage_triaxiality; /* law jc with damage: the pressure of the damage
                                                 triaxiality (default local) */
+  pdk_break_stress break_stress; /* law jc with bond breaking (default refit) */
   pdk_law law;
   pdk_precision precision;
   /* Johnson-Cook material (law PDK_LAW_JC; default pdk_jc_params_default(), the V-JC steel). Its

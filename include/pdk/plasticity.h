@@ -157,6 +157,16 @@ int pdk_jc_update_avg(const pdk_jc_params *params, int dim, const double F[3][3]
                       double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
                       double P[3][3], pdk_jc_result *res);
 
+/* Remap of the history when the deformation gradient of a point changes for a reason other than
+ * motion (a correspondence particle's family lost bonds, so its fitted F jumped from F_old to
+ * F_new at the same positions): C_p^-1 <- F_new^-1 (F_old C_p^-1 F_old^T) F_new^-T, so the
+ * elastic state b_e, the stress and the stored energy at F_new are those at F_old. det C_p^-1
+ * then differs from 1 (by (J_old / J_new)^2: the jump of the fitted volume is not an elastic
+ * volume change), and later plastic steps keep it. eps_p, D and the temperature are unchanged; a
+ * failed point is left alone. Returns PDK_ERR_NUMERIC (s unchanged) for a non-finite F or
+ * det F <= 0. */
+int pdk_jc_remap(int dim, const double F_old[3][3], const double F_new[3][3], pdk_jc_state *s);
+
 /* The law's pieces, for outputs and tests: the flow stress at plastic strain eps_p, rate
  * factor argument rate_star (ignored unless C != 0) and homologous temperature T_star (ignored
  * unless thermal); the failure strain at triaxiality eta. Both apply the clamps of the update. */

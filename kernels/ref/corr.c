@@ -97,6 +97,9 @@
  *            not none) is marked detach;
  *   cut      (semi-TL) every intact bond with a detached end breaks, from both ends; the rows
  *            that lost bonds are reshaped and the two steps repeat until nothing detaches;
+ *   remap    (Johnson-Cook, break_stress continuous) for every row that lost bonds in this pass
+ *            and still carries stress: C_p^-1 remapped from this pass's F to the new family's F
+ *            at the same x (pdk_jc_remap), so the stress and the law's energy do not jump;
  *   release  for every row that lost bonds in this pass: w_broken_i += W_i - W'_i, W_i the
  *            energy density of this pass (law + Silling term) and W'_i = the same at the same x
  *            with the new family, plus the plastic and damage work the jump of F would cause from
@@ -649,6 +652,49 @@ pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_
   return broken;
 }
 
+/* F_i = N_i K_i^-1 at the current x over i's intact bonds, with the K^-1 the arrays hold. */
+static void fit_F(const int d, const pdk_corr_arrays *a, pdk_index i, double F[3][3]) {
+  const pdk_bond_index *restrict bond_start = a->bond_start;
+  const pdk_index *restrict bond_j = a->bond_j;
+  const double *restrict omega = a->bond_omega;
+  const uint8_t *restrict alive = a->bond_alive;
+  const double *restrict volume = a->volume;
+  double N[3][3] = {{0}}, Kinv[3][3];
+  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
+    const pdk_index j = bond_j[b];
+    const double wv = alive[b] ? omega[b] * volume[j] : 0.0;
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c)
+        N[r][c] += wv * (a->x[r][j] - a->x[r][i]) * (a->X[c][j] - a->X[c][i]);
+  }
+  load_d(d, a->Kinv, i, Kinv);
+  pdk_corr_mul_d(d, N, Kinv, F);
+}
+
+/* Johnson-Cook, break_stress continuous: for every row that lost bonds in this pass and still
+ * carries stress, remap the committed history from the F of this pass (a->F, the old family) to
+ * the F of the new family at the same x (pdk_jc_remap), so the break does not make the stress
+ * jump. Runs after reshape (new K^-1), before release, which then prices the new family with the
+ * remapped history: the law's energy is unchanged and what is released is the change of the
+ * Silling term. */
+void pdk_kernel_corr_remap_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
+                               pdk_index i1) {
+  const int d = k->dim;
+  for (pdk_index i = i0; i < i1; ++i) {
+    if (!(a->changed[i] & 2u) || a->failed[i] ||
+        (a->flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)))
+      continue;
+    double Fo[3][3] = {{0}}, Fn[3][3] = {{0}};
+    load_d(d, a->F, i, Fo);
+    fit_F(d, a, i, Fn);
+    pdk_jc_state s;
+    jc_load(a, i, &s);
+    if (pdk_jc_remap(d, Fo, Fn, &s) == PDK_SUCCESS)
+      for (int c = 0; c < 6; ++c)
+        a->cp_inv[c][i] = s.cp_inv[c];
+  }
+}
+
 /* Energy density of particle i at the current x with its current (intact) family and the
  * committed history: the law's W (for Johnson-Cook a trial update, plus the plastic and damage
  * work it would do) plus the Silling term (also in *silling). */
@@ -663,18 +709,9 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   const uint8_t *restrict alive = a->bond_alive;
   const double *restrict volume = a->volume;
   if (a->flag[i] & PDK_CORR_FLAG_SPAN) return 0.0;
-  double N[3][3] = {{0}};
-  for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
-    const pdk_index j = bond_j[b];
-    const double wv = alive[b] ? omega[b] * volume[j] : 0.0;
-    for (int r = 0; r < d; ++r)
-      for (int c = 0; c < d; ++c)
-        N[r][c] += wv * (a->x[r][j] - a->x[r][i]) * (a->X[c][j] - a->X[c][i]);
-  }
-  double Kinv[3][3], F[3][3], P[3][3], e = 0.0;
+  double F[3][3], P[3][3], e = 0.0;
   int stress_free = 0;
-  load_d(d, a->Kinv, i, Kinv);
-  pdk_corr_mul_d(d, N, Kinv, F);
+  fit_F(d, a, i, F);
   if (k->law == PDK_LAW_JC) {
     pdk_jc_state in, out;
     pdk_jc_result res;

@@ -401,9 +401,13 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
         ee[a] = exp(2.0 * (ed[a] + theta / 3.0));
       spectral3(V, ee, be);
       congruence3(Finv, be, Cp_new);
-      /* det C_p^-1 = 1 holds in exact arithmetic (isochoric flow); rescale so that its round-off
-       * does not accumulate into the pressure, tau_m = K (ln J + ln det C_p^-1 / 2) */
-      const double scale = 1.0 / cbrt(pdk_det_d(3, Cp_new));
+      /* det C_p^-1 is unchanged by the flow in exact arithmetic (isochoric); rescale so that its
+       * round-off does not accumulate into the pressure, tau_m = K (ln J + ln det C_p^-1 / 2).
+       * It is 1 unless pdk_jc_remap moved it; a value within 1e-12 of 1 is taken as 1, so the
+       * round-off of earlier steps is not carried along. */
+      const double det_in = pdk_det_d(3, Cp);
+      const double scale = (fabs(det_in - 1.0) <= 1e-12 ? 1.0 : cbrt(det_in)) /
+                           cbrt(pdk_det_d(3, Cp_new));
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           Cp_new[i][j] *= scale;
@@ -462,4 +466,33 @@ int pdk_jc_update_avg(const pdk_jc_params *p, int dim, const double F[3][3], dou
                       double P[3][3], pdk_jc_result *res) {
   if (!isfinite(sigma_m_avg)) return PDK_ERR_ARG;
   return jc_update(p, dim, F, dt, &sigma_m_avg, in, out, P, res);
+}
+
+/* Remap at a change of the family: b_e = F_old C_p^-1 F_old^T is the elastic state the point
+ * had; C_p^-1 <- F_new^-1 b_e F_new^-T makes the trial at F_new start from the same b_e, so the
+ * stress, q and the stored energy do not jump. det C_p^-1 becomes (J_old / J_new)^2 det C_p^-1:
+ * the jump of the fitted volume is not an elastic volume change. eps_p, D and the temperature are
+ * not touched. */
+int pdk_jc_remap(int dim, const double F_old_in[3][3], const double F_new_in[3][3],
+                 pdk_jc_state *s) {
+  if (dim != 2 && dim != 3) return PDK_ERR_ARG;
+  if (s->failed) return PDK_SUCCESS;
+  double Fo[3][3], Fn[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double id = i == j ? 1.0 : 0.0;
+      Fo[i][j] = (i < dim && j < dim) ? F_old_in[i][j] : id;
+      Fn[i][j] = (i < dim && j < dim) ? F_new_in[i][j] : id;
+      if (!isfinite(Fo[i][j]) || !isfinite(Fn[i][j])) return PDK_ERR_NUMERIC;
+    }
+  const double Jo = pdk_det_d(3, Fo), Jn = pdk_det_d(3, Fn);
+  if (!(Jo > 0.0) || !(Jn > 0.0)) return PDK_ERR_NUMERIC;
+  double Cp[3][3], b[3][3], Fninv[3][3], Cn[3][3];
+  voigt_to_mat(s->cp_inv, Cp);
+  congruence3(Fo, Cp, b);
+  pdk_inv_d(3, Fn, Jn, Fninv);
+  congruence3(Fninv, b, Cn);
+  mat_to_voigt(Cn, s->cp_inv);
+  if (dim == 2) s->cp_inv[3] = s->cp_inv[4] = 0.0;
+  return PDK_SUCCESS;
 }
