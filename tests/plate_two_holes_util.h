@@ -54,6 +54,9 @@ typedef struct ph_result {
   double crack_force; /* |sum V f| over the bottom piece at the end [N] */
   int pieces_ok;      /* the two pieces hold the bottom and the top sets */
   double plastic_work, damage_work, breaking_work, external_work;
+  double worst_imbalance; /* largest |external - (kinetic + strain + plastic + damage + breaking)|
+                             over the chunks [J] */
+  double min_breaking;    /* smallest breaking work over the chunks [J] */
   pdk_bond_index broken;
   pdk_index failed;
   long compactions;
@@ -179,6 +182,10 @@ static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *cons
     r->steps += chunk;
     since_check += chunk;
     const double force = -h.reaction[1][1];
+    r->worst_imbalance =
+        fmax(r->worst_imbalance, fabs(h.external_work - h.kinetic - h.strain - h.plastic_work -
+                                      h.damage_work - h.breaking_work));
+    r->min_breaking = fmin(r->min_breaking, h.breaking_work);
     if (getenv("PDK_PLATE_EBAL") && r->steps % 400 == 0) /* exploring: the energy account */
       printf("EBAL t %.4e ext %.4f K %.4f S %.4f P %.4f D %.4f B %.4f imb %.4f failed %d\n", h.time,
              h.external_work, h.kinetic, h.strain, h.plastic_work, h.damage_work, h.breaking_work,
@@ -370,14 +377,15 @@ static inline void ph_print(const char *what, const ph_result *r) {
          "peak, over %.3g s; mean |force| %.4g N)\n"
          "  %d pieces (%d components), pieces hold top and bottom: %d, |force across the crack| "
          "%.3g N\n"
-         "  work: external %.4g J, plastic %.4g J, damage %.4g J, breaking %.4g J; %lld bonds "
-         "broken, %d failed, %ld compactions\n",
+         "  work: external %.4g J, plastic %.4g J, damage %.4g J, breaking %.4g J (least %.3g J); "
+         "worst energy imbalance %.3g J; %lld bonds broken, %d failed, %ld compactions\n",
          what, (int)r->num_particles, r->dt, r->steps, r->wall, r->peak, r->t_peak, r->u_peak,
          PH_U_REF, r->force_at_ref, r->band_eps_p_at_ref, r->t_first_inner, r->t_first_outer, r->num_first,
          r->first_all_inner, r->first_edge_dist, r->t_sep, r->u_sep, r->final_force,
          100.0 * r->final_force / r->peak, r->final_window, r->final_abs_force, r->num_pieces,
          (int)r->num_components, r->pieces_ok, r->crack_force, r->external_work, r->plastic_work,
-         r->damage_work, r->breaking_work, (long long)r->broken, (int)r->failed, r->compactions);
+         r->damage_work, r->breaking_work, r->min_breaking, r->worst_imbalance, (long long)r->broken,
+         (int)r->failed, r->compactions);
 }
 
 #endif

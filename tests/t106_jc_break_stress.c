@@ -7,8 +7,10 @@
  *    round-off of F^-1 b F^-T and of the eigen-decomposition), the trial does not flow, eps_p and
  *    D are untouched; without the remap the same jump changes the stress by more than 10% (so
  *    the check can fail). det C_p^-1 becomes (J_old / J_new)^2 and a later plastic step keeps it
- *    (isochoric flow, to 1e-13). F_new = F_old leaves C_p^-1 unchanged to 1e-14; a failed point
- *    is left alone; a non-finite F or det F <= 0 is refused with the state unchanged.
+ *    (isochoric flow, to 1e-13). The remap is frame-indifferent: a rigid rotation of the body at
+ *    the break (Q F_old, Q F_new) gives the same C_p^-1 (to 1e-13). F_new = F_old leaves C_p^-1
+ *    unchanged to 1e-14; a failed point is left alone; a non-finite F or det F <= 0 is refused
+ *    with the state unchanged.
  * 2. Notched bar with damage and breaking (t105's, softening and family triaxiality on, where the
  *    fitted F of a weakly stabilized family jumps at a break): with break_stress continuous the
  *    run is bitwise the refit run's until the first break (the remap acts only there), differs
@@ -68,7 +70,8 @@ static void point(int dim) {
   pdk_jc_result r;
   double P[3][3];
   T_ASSERT(pdk_jc_update(&p, dim, Fo, 1e-7, &s0, &s1, P, &r) == 0, "update");
-  T_ASSERT(r.plastic && s1.eps_p > 0.01 && !s1.failed, "the state must be plastic (eps_p %g, D %g, failed %d)", s1.eps_p, s1.damage, s1.failed);
+  T_ASSERT(r.plastic && s1.eps_p > 0.01 && !s1.failed,
+           "the state must be plastic (eps_p %g, D %g, failed %d)", s1.eps_p, s1.damage, s1.failed);
   /* the jump: shear and a volume change of several percent (what a refit of a non-affine family
    * does on the two-hole plate: 3 to 13%) */
   double G[3][3] = {{0.95, 0.03, 0}, {-0.02, 0.99, 0}, {0, 0, 1}};
@@ -115,6 +118,25 @@ static void point(int dim) {
   T_ASSERT(pdk_jc_update(&p, dim, F3, 1e-7, &s2, &s3, P, &r) == 0 && r.plastic,
            "%d-D: a plastic step after the remap", dim);
   T_NEAR(det_voigt(s3.cp_inv), det2, 0.0, 1e-13, "%d-D: det C_p^-1 after a plastic step", dim);
+
+  /* frame indifference: a rigid rotation Q applied to the body at the break (F_old -> Q F_old,
+   * F_new -> Q F_new) gives the same C_p^-1 */
+  {
+    const double c = cos(1.1), sn = sin(1.1);
+    double Q[3][3] = {{c, -sn, 0}, {sn, c, 0}, {0, 0, 1}}, QFo[3][3], QFn[3][3];
+    if (dim == 3) { /* a rotation about another axis as well */
+      const double R2[3][3] = {{1, 0, 0}, {0, cos(0.7), -sin(0.7)}, {0, sin(0.7), cos(0.7)}};
+      double T[3][3];
+      mat_mul(R2, Q, T);
+      memcpy(Q, T, sizeof Q);
+    }
+    mat_mul(Q, Fo, QFo);
+    mat_mul(Q, Fn, QFn);
+    pdk_jc_state s7 = s1;
+    T_ASSERT(pdk_jc_remap(dim, QFo, QFn, &s7) == 0, "rotated remap");
+    for (int c6 = 0; c6 < 6; ++c6)
+      T_NEAR(s7.cp_inv[c6], s2.cp_inv[c6], 0.0, 1e-13, "%d-D: rotated remap, C_p^-1[%d]", dim, c6);
+  }
 
   /* no jump: nothing changes */
   pdk_jc_state s4 = s1;
@@ -169,9 +191,7 @@ static void build(pdk_ctx *ctx, pdk_break_stress bs, pdk_stencil_mode stencil,
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
 }
 
-static const double *xf(const sim *s, int d) {
-  return pdk_particles_field_data(s->p, "x", d);
-}
+static const double *xf(const sim *s, int d) { return pdk_particles_field_data(s->p, "x", d); }
 
 /* external - (kinetic + strain + plastic + damage + breaking), the pulled end's initial kinetic
  * energy taken out (it moves at v from t = 0; t102) */
@@ -221,21 +241,24 @@ static void bar(pdk_ctx *ctx1, pdk_ctx *ctx2, int verbose) {
     printf("bar: first break by step %ld; refit: %d failed, %lld broken, breaking work %.4g J, "
            "worst imbalance %.3e of W_ext %.4g J; continuous: %d failed, %lld broken, breaking "
            "work %.4g J (least %.3g), worst imbalance %.3e of W_ext %.4g J\n",
-           first_break, (int)pdk_model_num_failed(s[0].m),
-           (long long)pdk_model_num_broken(s[0].m), h[0].breaking_work,
-           worst[0] / h[0].external_work, h[0].external_work, (int)pdk_model_num_failed(s[1].m),
-           (long long)pdk_model_num_broken(s[1].m), h[1].breaking_work, bmin, worst[1] / W, W);
+           first_break, (int)pdk_model_num_failed(s[0].m), (long long)pdk_model_num_broken(s[0].m),
+           h[0].breaking_work, worst[0] / h[0].external_work, h[0].external_work,
+           (int)pdk_model_num_failed(s[1].m), (long long)pdk_model_num_broken(s[1].m),
+           h[1].breaking_work, bmin, worst[1] / W, W);
   T_ASSERT(first_break > 0 && pdk_model_num_failed(s[1].m) > 5,
            "the bar must tear (first break by step %ld, %d failed)", first_break,
            (int)pdk_model_num_failed(s[1].m));
   T_ASSERT(differ, "continuous gives the refit run's bits after the breaks: the remap did nothing");
   T_NEAR(worst[1], 0.0, 0.0, 2e-3 * W, "continuous: energy account over the run");
-  T_ASSERT(2.0 * worst[1] <= worst[0], "continuous (%.3e J) is not 2 times better than refit "
-           "(%.3e J)", worst[1], worst[0]);
+  T_ASSERT(2.0 * worst[1] <= worst[0],
+           "continuous (%.3e J) is not 2 times better than refit "
+           "(%.3e J)",
+           worst[1], worst[0]);
   T_ASSERT(bmin >= 0.0, "continuous: breaking work %g J < 0", bmin);
   T_ASSERT(h[0].breaking_work < -0.05 * h[0].external_work,
            "refit: breaking work %g J; the jumps of F should make energy here (the case the "
-           "option is for)", h[0].breaking_work);
+           "option is for)",
+           h[0].breaking_work);
   jcu_snapshot snap = jcu_snapshot_take(s[1].m);
   jcu_sim_destroy(&s[0]);
   jcu_sim_destroy(&s[1]);

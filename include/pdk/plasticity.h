@@ -100,7 +100,8 @@ int pdk_jc_params_check(pdk_ctx *ctx, const pdk_jc_params *params);
 
 /* History of one material point. */
 typedef struct pdk_jc_state {
-  double cp_inv[6]; /* C_p^-1 = Fp^-1 Fp^-T (Voigt xx yy zz yz xz xy), det = 1; identity at start */
+  double cp_inv[6]; /* C_p^-1 = Fp^-1 Fp^-T (Voigt xx yy zz yz xz xy); identity at start, det 1
+                       unless pdk_jc_remap changed it (plastic steps keep the det) */
   double eps_p;     /* equivalent plastic strain [-] (logarithmic) */
   double damage;    /* D [-] */
   double temp_rise; /* adiabatic temperature rise [K] */

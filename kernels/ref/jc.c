@@ -20,7 +20,8 @@
  *   elastic radial return in the principal log strains, so (i) it is exact for proportional
  *   loading whatever the step size (the solution depends only on the final strain: the
  *   consistency condition is solved once, at the end point), (ii) plastic incompressibility is
- *   exact (det C_p^-1 stays 1), and (iii) objectivity is automatic: F -> R F maps b_tr to
+ *   exact (plastic steps keep det C_p^-1: 1, unless pdk_jc_remap, at a change of a
+ *   correspondence family, moved it), and (iii) objectivity is automatic: F -> R F maps b_tr to
  *   R b_tr R^T with the same eigenvalues and rotated eigenvectors, so C_p^-1, eps_p, D, W and q are
  *   unchanged and sigma -> R sigma R^T, for any R, without an objective rate, no incremental
  *   rotation and no stored F_n. A hypoelastic rate form would need an objective rate (Jaumann
