@@ -187,4 +187,58 @@ static inline void jcu_check_finite(pdk_particles *p, const char *name, const ch
   }
 }
 
+/* The same bar run with the reference kernels, the CPU's best general path and its stencil path
+ * (2 threads each), `steps` steps: build(ctx, stencil, s) makes it. Positions agree with the
+ * reference's to 1e-9 of its largest displacement and eps_p to 1e-9 absolute (the variants sum in
+ * different orders; round-off grows through the return map and the steps). Returns the
+ * reference run's largest eps_p and broken-bond count, for the caller's own preconditions. */
+static inline void jcu_kernel_variants(void (*build)(pdk_ctx *, pdk_stencil_mode, jcu_sim *),
+                                       long steps, int verbose, double *ep_max,
+                                       pdk_bond_index *broken) {
+  const char *names[3] = {"ref", NULL, NULL}; /* reference; the CPU's best; its stencil */
+  jcu_sim s[3];
+  pdk_ctx *ctx[3] = {NULL, NULL, NULL};
+  for (int k = 0; k < 3; ++k) {
+    pdk_ctx_opts co = pdk_ctx_opts_default();
+    co.kernels = names[k];
+    co.num_threads = 2;
+    char why[512];
+    if (pdk_ctx_create(&co, &ctx[k], why, sizeof why)) T_FAIL("pdk_ctx_create: %s", why);
+    build(ctx[k], k == 2 ? PDK_STENCIL_ON : PDK_STENCIL_OFF, &s[k]);
+    pdk_history h;
+    T_OK(ctx[k], pdk_explicit_run(s[k].e, steps, &h));
+  }
+  const pdk_index n = pdk_particles_count(s[0].p);
+  const double *x0[2] = {pdk_particles_field_data(s[0].p, "x", 0),
+                         pdk_particles_field_data(s[0].p, "x", 1)};
+  const double *e0 = pdk_particles_field_data(s[0].p, "eps_p", 0);
+  double umax = 0.0;
+  *ep_max = 0.0;
+  for (pdk_index i = 0; i < n; ++i) {
+    umax = fmax(umax, fabs(x0[0][i] - pdk_particles_X(s[0].p, 0)[i]));
+    *ep_max = fmax(*ep_max, e0[i]);
+  }
+  *broken = pdk_model_num_broken(s[0].m);
+  for (int k = 1; k < 3; ++k) {
+    const char *what = k == 1 ? "optimized" : "stencil";
+    const double *ek = pdk_particles_field_data(s[k].p, "eps_p", 0);
+    double dx = 0.0, dep = 0.0;
+    for (pdk_index i = 0; i < n; ++i) {
+      for (int d = 0; d < 2; ++d)
+        dx = fmax(dx, fabs(((const double *)pdk_particles_field_data(s[k].p, "x", d))[i] -
+                           x0[d][i]));
+      dep = fmax(dep, fabs(ek[i] - e0[i]));
+    }
+    if (verbose)
+      printf("%s: |dx| %.3g of u_max %.3g, |d eps_p| %.3g (eps_p up to %.3g)\n", what, dx, umax,
+             dep, *ep_max);
+    T_NEAR(dx, 0.0, 0.0, 1e-9 * umax, "%s against ref: positions", what);
+    T_NEAR(dep, 0.0, 0.0, 1e-9, "%s against ref: eps_p", what);
+  }
+  for (int k = 0; k < 3; ++k) {
+    jcu_sim_destroy(&s[k]);
+    pdk_ctx_destroy(&ctx[k]);
+  }
+}
+
 #endif

@@ -131,6 +131,13 @@ static inline pdk_index ph_first_of(pdk_particles *p, const char *set) {
 
 /* Loads the scene with the overrides, runs until the plate separates and then `after` seconds
  * more (or until max_time), checking components every `check_every` steps. */
+/* out = $PDK_SOURCE_DIR/scenes/<name> (ctest sets PDK_SOURCE_DIR). */
+static inline void ph_scene_path(const char *name, char *out, size_t n) {
+  const char *src = getenv("PDK_SOURCE_DIR");
+  T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
+  snprintf(out, n, "%s/scenes/%s", src, name);
+}
+
 static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *const *overrides,
                           int num_overrides, const char *mode, double after, double max_time,
                           long check_every, ph_result *r) {

@@ -182,6 +182,18 @@ static const error_case cases[] = {
   "  law: jc\n" line "solver:\n"                                                                   \
   "  steps: 10\n"
 
+/* A Neo-Hooke correspondence scene whose model block ends with `line`. */
+#define ELASTIC_CORR_SCENE(line)                                                                   \
+  "dimension: 2\n"                                                                                 \
+  "geometry:\n"                                                                                    \
+  "  spacing: 1.0e-3\n"                                                                            \
+  "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"                                                        \
+  "material: {density: 7830, youngs_modulus: 200e9, poisson_ratio: 0.25}\n"                        \
+  "model:\n"                                                                                       \
+  "  kind: correspondence\n"                                                                       \
+  "  law: neo_hooke\n" line "solver:\n"                                                            \
+  "  steps: 10\n"
+
 /* Scenes of the cases that need more than one edit. */
 static const char *special_text(const char *what) {
   if (!strcmp(what, "failed_keeps_bonds without damage"))
@@ -189,30 +201,9 @@ static const char *special_text(const char *what) {
   if (!strcmp(what, "damage_triaxiality without damage"))
     return NO_DAMAGE_SCENE("  damage_triaxiality: family #<\n");
   if (!strcmp(what, "break_stress with an elastic law"))
-    return "dimension: 2\n"
-           "geometry:\n"
-           "  spacing: 1.0e-3\n"
-           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
-           "material: {density: 7830, youngs_modulus: 200e9, poisson_ratio: 0.25}\n"
-           "model:\n"
-           "  kind: correspondence\n"
-           "  law: neo_hooke\n"
-           "  critical_stretch: 0.1\n"
-           "  break_stress: continuous #<\n"
-           "solver:\n"
-           "  steps: 10\n";
+    return ELASTIC_CORR_SCENE("  critical_stretch: 0.1\n  break_stress: continuous #<\n");
   if (!strcmp(what, "failed_keeps_bonds with an elastic law"))
-    return "dimension: 2\n"
-           "geometry:\n"
-           "  spacing: 1.0e-3\n"
-           "  box: {lo: [0, 0], hi: [0.01, 0.02]}\n"
-           "material: {density: 7830, youngs_modulus: 200e9, poisson_ratio: 0.25}\n"
-           "model:\n"
-           "  kind: correspondence\n"
-           "  law: neo_hooke\n"
-           "  failed_keeps_bonds: true #<\n"
-           "solver:\n"
-           "  steps: 10\n";
+    return ELASTIC_CORR_SCENE("  failed_keeps_bonds: true #<\n");
   if (!strcmp(what, "von_mises with pmb"))
     return "dimension: 2\n"
            "geometry:\n"

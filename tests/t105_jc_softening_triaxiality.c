@@ -318,47 +318,15 @@ static void family(pdk_ctx *ctx1, pdk_ctx *ctx2, int verbose) {
 /* ---- 5. kernel variants -----------------------------------------------------------------------
  */
 
+static void build_variant(pdk_ctx *ctx, pdk_stencil_mode stencil, sim *s) {
+  build(ctx, 1, 1, 1, stencil, PDK_CONNECTIVITY_TL, 10.0, 1e-7, s);
+}
+
 static void variants(int verbose) {
-  const char *names[3] = {"ref", NULL, NULL}; /* reference; the CPU's best; its stencil */
-  sim s[3];
-  pdk_ctx *ctx[3] = {NULL, NULL, NULL};
-  for (int k = 0; k < 3; ++k) {
-    pdk_ctx_opts co = pdk_ctx_opts_default();
-    co.kernels = names[k];
-    co.num_threads = 2;
-    char why[512];
-    if (pdk_ctx_create(&co, &ctx[k], why, sizeof why)) T_FAIL("pdk_ctx_create: %s", why);
-    build(ctx[k], 1, 1, 1, k == 2 ? PDK_STENCIL_ON : PDK_STENCIL_OFF, PDK_CONNECTIVITY_TL, 10.0, 1e-7, &s[k]);
-    pdk_history h;
-    T_OK(ctx[k], pdk_explicit_run(s[k].e, 300, &h));
-  }
-  const pdk_index n = pdk_particles_count(s[0].p);
-  double umax = 0.0, ep_max = 0.0;
-  for (pdk_index i = 0; i < n; ++i) {
-    umax = fmax(umax, fabs(((const double *)pdk_particles_field_data(s[0].p, "x", 0))[i] -
-                           pdk_particles_X(s[0].p, 0)[i]));
-    ep_max = fmax(ep_max, field(&s[0], "eps_p", i));
-  }
+  double ep_max;
+  pdk_bond_index broken;
+  jcu_kernel_variants(build_variant, 300, verbose, &ep_max, &broken);
   T_ASSERT(ep_max > 0.01, "the run hardly flowed (eps_p up to %g)", ep_max);
-  for (int k = 1; k < 3; ++k) {
-    double dx = 0.0, dep = 0.0;
-    for (pdk_index i = 0; i < n; ++i) {
-      for (int d = 0; d < 2; ++d)
-        dx = fmax(dx, fabs(((const double *)pdk_particles_field_data(s[k].p, "x", d))[i] -
-                           ((const double *)pdk_particles_field_data(s[0].p, "x", d))[i]));
-      dep = fmax(dep, fabs(field(&s[k], "eps_p", i) - field(&s[0], "eps_p", i)));
-    }
-    if (verbose)
-      printf("%s: |dx| %.3g of u_max %.3g, |d eps_p| %.3g (eps_p up to %.3g)\n",
-             k == 1 ? "general optimized" : "stencil", dx, umax, dep, ep_max);
-    T_NEAR(dx, 0.0, 0.0, 1e-9 * umax, "%s against ref: positions",
-           k == 1 ? "optimized" : "stencil");
-    T_NEAR(dep, 0.0, 0.0, 1e-9, "%s against ref: eps_p", k == 1 ? "optimized" : "stencil");
-  }
-  for (int k = 0; k < 3; ++k) {
-    jcu_sim_destroy(&s[k]);
-    pdk_ctx_destroy(&ctx[k]);
-  }
 }
 
 int main(void) {

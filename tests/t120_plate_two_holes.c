@@ -67,10 +67,8 @@ static void check(const char *what, const ph_result *r) {
 }
 
 int main(void) {
-  const char *src = getenv("PDK_SOURCE_DIR");
-  T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
   char scene[2048], spacing[128];
-  snprintf(scene, sizeof scene, "%s/scenes/plate_two_holes.yaml", src);
+  ph_scene_path("plate_two_holes.yaml", scene, sizeof scene);
   const char *sp = getenv("PDK_PLATE_SPACING");
   snprintf(spacing, sizeof spacing, "geometry.spacing=%s", sp ? sp : SPACING);
   pdk_ctx *ctx = t_ctx(0);

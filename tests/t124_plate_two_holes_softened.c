@@ -49,10 +49,8 @@ static void run(pdk_ctx *ctx, const char *scene, const char *spacing, int option
 }
 
 int main(void) {
-  const char *src = getenv("PDK_SOURCE_DIR");
-  T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
   char scene[2048];
-  snprintf(scene, sizeof scene, "%s/scenes/plate_two_holes.yaml", src);
+  ph_scene_path("plate_two_holes.yaml", scene, sizeof scene);
   pdk_ctx *ctx = t_ctx(0);
   const double f_ref = 40.4e3, ep_ref = 0.163;
   ph_result r05, r025, r025_shipped;

@@ -25,10 +25,8 @@
 #define MAX_TIME 4e-3
 
 int main(void) {
-  const char *src = getenv("PDK_SOURCE_DIR");
-  T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
   char scene[2048];
-  snprintf(scene, sizeof scene, "%s/scenes/plate_two_holes.yaml", src);
+  ph_scene_path("plate_two_holes.yaml", scene, sizeof scene);
   pdk_ctx *ctx = t_ctx(0);
   const int verbose = getenv("PDK_TEST_VERBOSE") != NULL;
   for (int k = 0; k < 2; ++k) {
