@@ -1271,8 +1271,7 @@ static int resolve_softening(loader *ld, const sc_model *mo) {
             m->break_stress == PDK_BREAK_STRESS_REFIT || m->connectivity != PDK_CONNECTIVITY_UL,
             "model.break_stress",
             "continuous is implemented for tl and semi_tl connectivity, not ul (which breaks no "
-            "bonds); set "
-            "model.connectivity: tl or semi_tl, or use refit");
+            "bonds); set model.connectivity: tl or semi_tl, or use refit");
     const int breaks = (m->jc.damage && !m->failed_keeps_bonds) || m->critical_stretch > 0;
     REQUIRE(ld, m->break_stress == PDK_BREAK_STRESS_REFIT || breaks, "model.break_stress",
             "continuous acts when bonds break, and none can here (%s); turn on "
