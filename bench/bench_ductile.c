@@ -245,7 +245,7 @@ static double time_phase(karrays *ka, setup *s, phase ph, int repeat) {
       for (pdk_index i = 0; i < s->n; ++i)
         a->changed[i] = i % 100 == 0 ? 3u : 0u;
       pdk_kernel_corr_reshape_ref(k, a, 0, s->n);
-      pdk_kernel_corr_release_ref(k, a, 0, s->n);
+      pdk_kernel_corr_release_ref(k, a, 0, s->n, 0);
       break;
     }
     if (r >= 0) t[r] = cpu_time() - t0;

@@ -668,19 +668,15 @@ pdk_index pdk_kernel_corr_reshape_ref(const pdk_corr_consts *k, const pdk_corr_a
  * bit 0 = row lost bonds now, bit 1 kept and set. Returns the directed bonds broken. */
 pdk_bond_index pdk_kernel_corr_cut_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                        pdk_index i0, pdk_index i1);
-/* Johnson-Cook with pdk_model_opts.break_stress = PDK_BREAK_STRESS_CONTINUOUS, after reshape and
- * before release: every row that lost bonds in this pass (changed & 2), not failed, not flagged,
- * has its C_p^-1 remapped from a->F (this pass's F, the old family) to the F of the new family at
- * the same x (pdk_jc_remap): the stress does not jump at the break. */
-void pdk_kernel_corr_remap_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
-                               pdk_index i1);
-
 /* Energy released by breaking, for rows with changed bit 1 (after their shape was recomputed):
  * w_broken[i] += W[i] - (stored energy at the current x with the new family, plus the plastic
- * and damage work of the jump of F, history frozen). Returns sum_i V_i (that increment) over the
- * range, in index order. */
+ * and damage work of the jump of F, history frozen). With remap (Johnson-Cook,
+ * pdk_model_opts.break_stress = PDK_BREAK_STRESS_CONTINUOUS) a row that still carries stress
+ * first has its C_p^-1 remapped from a->F (this pass's F, the old family) to the new family's F
+ * at the same x (pdk_jc_remap), so the stress does not jump at the break. Returns sum_i V_i
+ * (that increment) over the range, in index order. */
 double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                                   pdk_index i0, pdk_index i1);
+                                   pdk_index i0, pdk_index i1, int remap);
 /* The elastic laws of pass 1 at one F (d x d block of 3 x 3, row-major): P and W; returns 0 where
  * the law is undefined (Neo-Hooke with J <= 0). Not for law JC. */
 int pdk_kernel_corr_law_ref(const pdk_corr_consts *k, const double F[3][3], double P[3][3],

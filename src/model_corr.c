@@ -651,7 +651,8 @@ static void corr_sync_bond_state(pdk_model *m) {
 }
 
 /* After the break kernel broke bonds in a commit pass: reshape the changed rows, detach
- * degenerate families (semi-TL), book the released energy (its total, sum_i V_i dw_broken_i
+ * degenerate families (semi-TL), remap their Johnson-Cook histories (break_stress continuous) and
+ * book the released energy (its total, sum_i V_i dw_broken_i
  * summed in block order, into *released), keep the bond state current, compact in batches
  * (semi-TL). `broken` is what the break kernel broke. */
 static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_index broken,
@@ -683,22 +684,16 @@ static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_
   }
   m->num_broken += total;
   if (c->c_start) corr_sync_bond_state(m);
-  if (m->opts.break_stress == PDK_BREAK_STRESS_CONTINUOUS) {
-#pragma omp parallel for default(none) shared(a, k, n, num_blocks) schedule(static) num_threads(nt)
-    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      CORR_BLOCK_RANGE(blk, n, i0, i1);
-      pdk_kernel_corr_remap_ref(k, &a, i0, i1);
-    }
-  }
   const uint8_t *flag = a.flag;
   double *block_released = c->block_energy; /* free again: the pass's energy is summed */
+  const int remap = m->opts.break_stress == PDK_BREAK_STRESS_CONTINUOUS;
   pdk_index flagged = 0;
 #pragma omp parallel for default(none)                                                          \
-    shared(a, k, n, num_blocks, flag, block_released) reduction(+ : flagged) schedule(static)    \
-    num_threads(nt)
+    shared(a, k, n, num_blocks, flag, block_released, remap) reduction(+ : flagged)              \
+    schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     CORR_BLOCK_RANGE(blk, n, i0, i1);
-    block_released[blk] = pdk_kernel_corr_release_ref(k, &a, i0, i1);
+    block_released[blk] = pdk_kernel_corr_release_ref(k, &a, i0, i1, remap);
     for (pdk_index i = i0; i < i1; ++i)
       flagged += (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) != 0;
   }

@@ -1,5 +1,5 @@
 /* The Johnson-Cook history at a break (pdk_model_opts break_stress; pdk_jc_remap,
- * kernels/ref/corr.c pdk_kernel_corr_remap_ref).
+ * kernels/ref/corr.c pdk_kernel_corr_release_ref).
  *
  * 1. Material point, pdk_jc_remap (plane strain and 3-D, a plastic state, a jump of F with shear
  *    and a volume change of several percent): at F_new the remapped history gives the Kirchhoff

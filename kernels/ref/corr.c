@@ -97,10 +97,10 @@
  *            not none) is marked detach;
  *   cut      (semi-TL) every intact bond with a detached end breaks, from both ends; the rows
  *            that lost bonds are reshaped and the two steps repeat until nothing detaches;
- *   remap    (Johnson-Cook, break_stress continuous) for every row that lost bonds in this pass
- *            and still carries stress: C_p^-1 remapped from this pass's F to the new family's F
- *            at the same x (pdk_jc_remap), so the stress and the law's energy do not jump;
- *   release  for every row that lost bonds in this pass: w_broken_i += W_i - W'_i, W_i the
+ *   release  for every row that lost bonds in this pass (Johnson-Cook with break_stress
+ *            continuous: first, if the row still carries stress, its C_p^-1 is remapped from this
+ *            pass's F to the new family's F at the same x, pdk_jc_remap, so the stress and the
+ *            law's energy do not jump): w_broken_i += W_i - W'_i, W_i the
  *            energy density of this pass (law + Silling term) and W'_i = the same at the same x
  *            with the new family, plus the plastic and damage work the jump of F would cause from
  *            the committed history (a trial update; nothing is written but w_broken). Only i's
@@ -671,35 +671,26 @@ static void fit_F(const int d, const pdk_corr_arrays *a, pdk_index i, double F[3
   pdk_corr_mul_d(d, N, Kinv, F);
 }
 
-/* Johnson-Cook, break_stress continuous: for every row that lost bonds in this pass and still
- * carries stress, remap the committed history from the F of this pass (a->F, the old family) to
- * the F of the new family at the same x (pdk_jc_remap), so the break does not make the stress
- * jump. Runs after reshape (new K^-1), before release, which then prices the new family with the
- * remapped history: the law's energy is unchanged and what is released is the change of the
- * Silling term. */
-void pdk_kernel_corr_remap_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
-                               pdk_index i1) {
-  const int d = k->dim;
-  for (pdk_index i = i0; i < i1; ++i) {
-    if (!(a->changed[i] & 2u) || a->failed[i] ||
-        (a->flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)))
-      continue;
-    double Fo[3][3] = {{0}}, Fn[3][3] = {{0}};
-    load_d(d, a->F, i, Fo);
-    fit_F(d, a, i, Fn);
-    pdk_jc_state s;
-    jc_load(a, i, &s);
-    if (pdk_jc_remap(d, Fo, Fn, &s) == PDK_SUCCESS)
-      for (int c = 0; c < 6; ++c)
-        a->cp_inv[c][i] = s.cp_inv[c];
-  }
+/* Johnson-Cook, break_stress continuous: remap particle i's committed history from the F of this
+ * pass (a->F, the old family) to Fn, the F of the new family at the same x (pdk_jc_remap), so the
+ * break does not make the stress jump. Rows that carry no stress (failed, family not spanning,
+ * inverted) are left alone. */
+static void remap_one(const int d, const pdk_corr_arrays *a, pdk_index i, const double Fn[3][3]) {
+  if (a->failed[i] || (a->flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED))) return;
+  double Fo[3][3] = {{0}};
+  load_d(d, a->F, i, Fo);
+  pdk_jc_state s;
+  jc_load(a, i, &s);
+  if (pdk_jc_remap(d, Fo, Fn, &s) == PDK_SUCCESS)
+    for (int c = 0; c < 6; ++c)
+      a->cp_inv[c][i] = s.cp_inv[c];
 }
 
-/* Energy density of particle i at the current x with its current (intact) family and the
- * committed history: the law's W (for Johnson-Cook a trial update, plus the plastic and damage
- * work it would do) plus the Silling term (also in *silling). */
+/* Energy density of particle i at the current x and its F there (fit_F) with its current
+ * (intact) family and the committed history: the law's W (for Johnson-Cook a trial update, plus
+ * the plastic and damage work it would do) plus the Silling term (also in *silling). */
 static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
-                         pdk_index i, double *silling) {
+                         pdk_index i, const double F[3][3], double *silling) {
   *silling = 0.0;
   pdk_corr_consts k_i;
   k = pdk_corr_consts_at(k, i, &k_i);
@@ -709,9 +700,8 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   const uint8_t *restrict alive = a->bond_alive;
   const double *restrict volume = a->volume;
   if (a->flag[i] & PDK_CORR_FLAG_SPAN) return 0.0;
-  double F[3][3], P[3][3], e = 0.0;
+  double P[3][3], e = 0.0;
   int stress_free = 0;
-  fit_F(d, a, i, F);
   if (k->law == PDK_LAW_JC) {
     pdk_jc_state in, out;
     pdk_jc_result res;
@@ -743,12 +733,15 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
 }
 
 double pdk_kernel_corr_release_ref(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
-                                   pdk_index i1) {
+                                   pdk_index i1, int remap) {
+  const int d = k->dim;
   double sum = 0.0;
   for (pdk_index i = i0; i < i1; ++i)
     if (a->changed[i] & 2u) {
-      double silling;
-      const double released = a->W[i] - energy_one(k->dim, k, a, i, &silling);
+      double F[3][3] = {{0}}, silling;
+      if (!(a->flag[i] & PDK_CORR_FLAG_SPAN)) fit_F(d, a, i, F);
+      if (remap) remap_one(d, a, i, F); /* first, so the new family is priced with it */
+      const double released = a->W[i] - energy_one(d, k, a, i, F, &silling);
       /* softened stabilization: the next commit books the change of the factor from the
        * Silling energy of the new family */
       if (a->w_silling) a->w_silling[i] = silling;
