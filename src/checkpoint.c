@@ -8,7 +8,9 @@
  *     counters num_broken, num_flagged; for the ul connectivity the families of the last rebuild
  *     (ul_bond_start [n+1], ul_bond_j) and the rebuild count (their weights and shape are
  *     recomputed from the restored "ul_X" and "ul_volume", the data they were computed from);
- *   - the solver's time, step, dt, strain energy of the last pass and accumulated external work.
+ *   - the solver's time, step, dt, strain energy of the last pass and accumulated external work,
+ *     and its dt_update state (latest stable estimate, where dt last changed, the last estimate's
+ *     step and broken-bond count, the counters).
  * Everything else is rebuilt identically from the scene (families, constraint maps, reaction
  * masks) or is scratch that the next force pass overwrites (PMB/LPS s0_next, correspondence W).
  * The correspondence model's private num_alive (intact bonds when K^-1 was last computed) is not
@@ -111,6 +113,13 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt", e->dt));
   PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "strain", e->strain));
   PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "external_work", e->external_work));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt_stable", e->dt_stable));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "dt_step0", e->dt_step0));
+  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt_time0", e->dt_time0));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "est_step", e->est_step));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "est_broken", e->est_broken));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_estimates", e->num_estimates));
+  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_dt_changes", e->num_dt_changes));
   H5Gclose(g);
   g = -1;
 
@@ -476,6 +485,20 @@ int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
   PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt", &e->dt));
   PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "strain", &e->strain));
   PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "external_work", &e->external_work));
+  if (pdk_h5_attr_exists(gs, "dt_step0")) { /* the dt_update state (files before it: none) */
+    PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt_stable", &e->dt_stable));
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "dt_step0", &v));
+    e->dt_step0 = (long)v;
+    PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt_time0", &e->dt_time0));
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "est_step", &v));
+    e->est_step = (long)v;
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "est_broken", &v));
+    e->est_broken = (pdk_bond_index)v;
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "num_estimates", &v));
+    e->num_estimates = (int)v;
+    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "num_dt_changes", &v));
+    e->num_dt_changes = (int)v;
+  }
 cleanup:
   free(extra);
   free(model_kind);

@@ -19,6 +19,13 @@ struct pdk_explicit {
   double dt, dt_stable;
   double time;
   long step;
+  /* dt_update bookkeeping (checkpointed): the last estimate's step and broken-bond count, the
+   * step and time at which dt last changed, and the counters */
+  long est_step;
+  pdk_bond_index est_broken;
+  long dt_step0;
+  double dt_time0;
+  int num_estimates, num_dt_changes;
   double rho;
   int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
   uint8_t *reaction_member[PDK_MAX_REACTION_SETS]; /* [n] 1 if in reaction set k (borrowed) */

@@ -110,6 +110,8 @@ typedef struct sc_solver {
   int type;
   double end_time, steps, dt, safety, threads;
   bool force_dt;
+  int dt_update;
+  double dt_update_interval;
   /* static solvers (adr, newton) */
   double load_steps;
   double *load_levels;
@@ -191,6 +193,9 @@ static const cyaml_strval_t function_names[] = {{"constant", PDK_TFUN_CONSTANT},
                                                 {"sine", PDK_TFUN_SINE}};
 static const cyaml_strval_t solver_names[] = {
     {"explicit", PDK_SOLVER_EXPLICIT}, {"adr", PDK_SOLVER_ADR}, {"newton", PDK_SOLVER_NEWTON}};
+static const cyaml_strval_t dt_update_names[] = {{"none", PDK_DT_UPDATE_NONE},
+                                                 {"breaks", PDK_DT_UPDATE_BREAKS},
+                                                 {"periodic", PDK_DT_UPDATE_PERIODIC}};
 static const cyaml_strval_t adr_mass_names[] = {{"auto", PDK_ADR_MASS_AUTO},
                                                 {"row_sum", PDK_ADR_MASS_ROW_SUM},
                                                 {"lanczos", PDK_ADR_MASS_LANCZOS}};
@@ -394,6 +399,9 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(solver, CYAML_FIELD_FLOAT("dt", OPT, sc_solver, dt));
   ADD(solver, CYAML_FIELD_FLOAT("safety", OPT, sc_solver, safety));
   ADD(solver, CYAML_FIELD_BOOL("force_dt", OPT, sc_solver, force_dt));
+  ADD(solver, CYAML_FIELD_ENUM("dt_update", ENUM_FLAGS, sc_solver, dt_update, dt_update_names,
+                               N_OF(dt_update_names)));
+  ADD(solver, CYAML_FIELD_FLOAT("dt_update_interval", OPT, sc_solver, dt_update_interval));
   ADD(solver, CYAML_FIELD_FLOAT("threads", OPT, sc_solver, threads));
   ADD(solver, CYAML_FIELD_FLOAT("load_steps", OPT, sc_solver, load_steps));
   ADD(solver,
@@ -1599,7 +1607,8 @@ static int resolve_bcs(loader *ld, const sc_scene *d) {
 }
 
 /* Keys of one solver family given in a scene that runs another. */
-static const char *const explicit_keys[] = {"steps", "dt", "safety", "force_dt"};
+static const char *const explicit_keys[] = {"steps",     "dt",       "safety",
+                                            "force_dt",  "dt_update", "dt_update_interval"};
 static const char *const static_keys[] = {"load_steps",
                                           "load_levels",
                                           "tolerance",
@@ -1834,6 +1843,14 @@ static int resolve_solver(loader *ld, const sc_scene *d) {
   REQUIRE(ld, isfinite(e->safety) && e->safety > 0 && e->safety <= 1, "solver.safety",
           "must be in (0, 1] (the fraction of the stable time step used), got %g", e->safety);
   e->force_dt = so->force_dt ? 1 : 0;
+  e->dt_update = has(ld, "solver.dt_update") ? (pdk_dt_update)so->dt_update : PDK_DT_UPDATE_NONE;
+  if (has(ld, "solver.dt_update_interval")) {
+    REQUIRE(ld, e->dt_update != PDK_DT_UPDATE_NONE, "solver.dt_update_interval",
+            "is given but solver.dt_update is none, so nothing is re-estimated; set dt_update "
+            "(breaks or periodic) or remove the interval");
+    PDK_CALL(check_whole(ld, "solver.dt_update_interval", so->dt_update_interval, 1, 1e15,
+                         &e->dt_update_interval));
+  }
   return PDK_SUCCESS;
 }
 

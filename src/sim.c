@@ -48,7 +48,8 @@ struct pdk_sim {
   pdk_explicit *e; /* solver.type explicit */
   pdk_static *st;  /* solver.type adr or newton */
   pdk_solver_type type;
-  long num_steps;
+  long num_steps;  /* at the dt of creation */
+  double end_time; /* solver.end_time, 0 with solver.steps */
   int has_u;
   int has_von_mises;
   pdk_bc *bcs;      /* [num_bcs], set names point into bc_fields */
@@ -159,6 +160,7 @@ static int create_explicit(pdk_sim *sim, const pdk_scene *s) {
     return err;
   }
   const double dt = pdk_explicit_dt(sim->e);
+  sim->end_time = s->steps > 0 ? 0.0 : s->end_time;
   if (s->steps > 0) {
     sim->num_steps = s->steps;
   } else {
@@ -374,7 +376,17 @@ pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim->p; }
 pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
 pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
 pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
-long pdk_sim_num_steps(const pdk_sim *sim) { return sim->num_steps; }
+long pdk_sim_num_steps(const pdk_sim *sim) {
+  long step0;
+  double time0;
+  if (!sim->e || sim->end_time <= 0) return sim->num_steps;
+  pdk_explicit_dt_start(sim->e, &step0, &time0);
+  if (step0 == 0) return sim->num_steps; /* dt as at creation */
+  /* a dt_update lowered dt at step0: the rest of the run at the new step, counted as above */
+  double q = (sim->end_time - time0) / pdk_explicit_dt(sim->e);
+  long rest = q > 0 ? (long)ceil(q * (1 - 1e-12)) : 0;
+  return step0 + rest;
+}
 pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
 pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }
 

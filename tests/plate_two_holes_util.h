@@ -60,6 +60,9 @@ typedef struct ph_result {
   pdk_bond_index broken;
   pdk_index failed;
   long compactions;
+  double dt_final;       /* the step at the end (below dt after a solver.dt_update lowered it) */
+  int num_estimates;     /* estimates of the stable step, the one at creation included */
+  int num_dt_changes;    /* how many lowered the step */
   double wall; /* seconds */
 } ph_result;
 
@@ -369,6 +372,9 @@ static inline void ph_run(pdk_ctx *ctx, const char *scene_path, const char *cons
   free(comp);
   free(trace_t);
   free(trace_f);
+  r->dt_final = pdk_explicit_dt(e);
+  r->num_estimates = pdk_explicit_num_estimates(e);
+  r->num_dt_changes = pdk_explicit_num_dt_changes(e);
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&s);
   r->wall = pdk_wtime() - wall0;
@@ -385,14 +391,15 @@ static inline void ph_print(const char *what, const ph_result *r) {
          "  %d pieces (%d components), pieces hold top and bottom: %d, |force across the crack| "
          "%.3g N\n"
          "  work: external %.4g J, plastic %.4g J, damage %.4g J, breaking %.4g J (least %.3g J); "
-         "worst energy imbalance %.3g J; %lld bonds broken, %d failed, %ld compactions\n",
+         "worst energy imbalance %.3g J; %lld bonds broken, %d failed, %ld compactions\n"
+         "  time step: %d estimate(s), lowered %d time(s), final dt %.3g s\n",
          what, (int)r->num_particles, r->dt, r->steps, r->wall, r->peak, r->t_peak, r->u_peak,
          PH_U_REF, r->force_at_ref, r->band_eps_p_at_ref, r->t_first_inner, r->t_first_outer, r->num_first,
          r->first_all_inner, r->first_edge_dist, r->t_sep, r->u_sep, r->final_force,
          100.0 * r->final_force / r->peak, r->final_window, r->final_abs_force, r->num_pieces,
          (int)r->num_components, r->pieces_ok, r->crack_force, r->external_work, r->plastic_work,
          r->damage_work, r->breaking_work, r->min_breaking, r->worst_imbalance, (long long)r->broken,
-         (int)r->failed, r->compactions);
+         (int)r->failed, r->compactions, r->num_estimates, r->num_dt_changes, r->dt_final);
 }
 
 #endif

@@ -40,6 +40,7 @@ typedef struct error_case {
 static const error_case cases[] = {
     {{"solver.type=implicit"}, "solver.type", "explicit, adr, newton"},
     {{"solver.steps=10"}, "solver.steps", "key of the explicit solver"},
+    {{"solver.dt_update=breaks"}, "solver.dt_update", "key of the explicit solver"},
     {{"solver.dt=1e-6"}, "solver.dt", "load_steps or load_levels"},
     {{"solver.load_steps=0"}, "solver.load_steps", "whole number"},
     {{"solver.load_steps=2.5"}, "solver.load_steps", "whole number"},

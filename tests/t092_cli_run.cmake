@@ -69,6 +69,22 @@ if(NOT rest2_row STREQUAL full_row)
   message(FATAL_ERROR "restarted run on 2 threads differs:\n  full: ${full_row}\n  rest: ${rest2_row}")
 endif()
 
+# solver.dt_update lowering the step (tests/scenes/t052_bar_dt.yaml: at step 10): the run says so,
+# with the grown step count, and its history ends at that step, at or after end_time.
+run(0 ${PDK_CLI} run ${PDK_SOURCE_DIR}/tests/scenes/t052_bar_dt.yaml -o dtu)
+if(NOT run_out MATCHES "dt lowered to [0-9.e+-]+ at step 10 .* ([0-9]+) steps in all now")
+  message(FATAL_ERROR "dt_update: no 'dt lowered' line:\n${run_out}")
+endif()
+set(dtu_total ${CMAKE_MATCH_1})
+if(NOT run_out MATCHES "done: ${dtu_total} steps" OR NOT run_out MATCHES "dt lowered 1 time")
+  message(FATAL_ERROR "dt_update: the run did not end at step ${dtu_total}:\n${run_out}")
+endif()
+last_row(${PDK_TEST_DIR}/dtu/bar_dt_history.csv dtu_row)
+if(NOT dtu_row MATCHES "^${dtu_total},0\\.0002")
+  message(FATAL_ERROR
+          "dt_update: last history row ${dtu_row}, expected step ${dtu_total} at t >= 2e-4")
+endif()
+
 # Ctrl-C: a long run interrupted by SIGINT ends with 130, a checkpoint and finished files.
 find_program(TIMEOUT timeout)
 if(TIMEOUT)

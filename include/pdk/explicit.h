@@ -53,10 +53,28 @@ typedef struct pdk_bc {
   const char *scale_field;
 } pdk_bc;
 
+/* Re-estimating the stable step during a run. The stable step of a body is not fixed: a family
+ * that loses bonds can stiffen its particle (correspondence: the stiffness of a particle grows
+ * like K^-1 of its family, which grows as the family shrinks), so a step chosen at creation may
+ * exceed the stable one after breaks. With an update, the solver re-runs the creation's Lanczos
+ * estimate (on trial forces at the current state: no history moves, positions and forces are
+ * restored bit for bit) and, when the step is more than 0.1% above safety x the new estimate,
+ * lowers the step to safety x the estimate from the next step on. The step never grows back.
+ * Each estimate costs about 42 force passes, hence the interval. */
+typedef enum pdk_dt_update {
+  PDK_DT_UPDATE_NONE = 0,    /* the step chosen at creation throughout (default) */
+  PDK_DT_UPDATE_BREAKS = 1,  /* re-estimate when bonds broke since the last estimate, at most
+                                once per dt_update_interval steps */
+  PDK_DT_UPDATE_PERIODIC = 2 /* re-estimate every dt_update_interval steps */
+} pdk_dt_update;
+
 typedef struct pdk_explicit_opts {
   double dt;             /* time step; 0: safety * estimated stable step */
-  double safety;         /* fraction of the stable step used when dt = 0 (default 0.8) */
+  double safety;         /* fraction of the stable step used when dt = 0 (default 0.8), and the
+                            fraction kept below each re-estimate of a dt_update */
   int force_dt;          /* 1: accept a dt above the stable estimate */
+  pdk_dt_update dt_update;
+  long dt_update_interval; /* steps between two estimates of a dt_update (0: 100) */
   const pdk_bc *bcs;
   int num_bcs;
   /* Initial velocity v0 = v0_const + v0_grad X (affine field), on every particle. */
@@ -98,8 +116,16 @@ void pdk_explicit_destroy(pdk_explicit **e);
  * limit, and the safety factor is the margin. During a run, a blow-up (non-finite state, or
  * kinetic + strain energy above 100 times the initial energy plus the work done) stops it with a
  * message naming the step and the particle. */
-double pdk_explicit_stable_dt(const pdk_explicit *e);
-double pdk_explicit_dt(const pdk_explicit *e);
+double pdk_explicit_stable_dt(const pdk_explicit *e); /* the latest estimate */
+double pdk_explicit_dt(const pdk_explicit *e);        /* the current step */
+/* Step count and time at which the current step took effect (0, 0 until a dt_update lowers it),
+ * so a run to end time T needs step0 + ceil((T - time0) / dt) steps in all. */
+void pdk_explicit_dt_start(const pdk_explicit *e, long *step0, double *time0);
+/* Estimates of the stable step so far, counting the one at creation, and how many lowered dt. */
+int pdk_explicit_num_estimates(const pdk_explicit *e);
+int pdk_explicit_num_dt_changes(const pdk_explicit *e);
+/* The options in effect (dt_update_interval 0 resolved to its default). */
+const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e);
 
 /* Advances num_steps steps. hist (may be NULL) receives the state after the last step. */
 int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist);

@@ -105,7 +105,9 @@ int pdk_output_close(pdk_output **o, int success);
  *
  * Layout: / attributes kind = "pdk checkpoint", format (int), pdk_version, build_flags,
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
- * dataset /scene); /solver attributes time, step, dt, strain, external_work;
+ * dataset /scene); /solver attributes time, step, dt, strain, external_work, and the dt_update
+ * state dt_stable, dt_step0, dt_time0, est_step, est_broken, num_estimates, num_dt_changes (a
+ * file without them restores as if no estimate had been made since creation);
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
  * s0 f64 [n] when the model can break bonds; with ul connectivity also attributes ul_rebuilt,
  * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and

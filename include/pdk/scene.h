@@ -79,7 +79,9 @@ pdk_particles *pdk_sim_particles(pdk_sim *sim);
 pdk_families *pdk_sim_families(pdk_sim *sim);
 pdk_model *pdk_sim_model(pdk_sim *sim);
 pdk_explicit *pdk_sim_explicit(pdk_sim *sim); /* NULL for a static solver */
-/* explicit: solver.steps, or ceil(end_time / dt); static: the number of load steps */
+/* explicit: solver.steps, or ceil(end_time / dt) (after a solver.dt_update lowered dt at step s0,
+ * time t0: s0 + ceil((end_time - t0) / dt), so the count can grow during a run); static: the
+ * number of load steps */
 long pdk_sim_num_steps(const pdk_sim *sim);
 
 /* Static solvers (solver.type adr or newton). A static run is a sequence of load steps; each is

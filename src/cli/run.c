@@ -185,6 +185,15 @@ static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
     fprintf(out, "explicit: dt %.4g (stable estimate %.4g), %ld steps to t = %.4g, %d thread(s)\n",
             pdk_explicit_dt(e), pdk_explicit_stable_dt(e), pdk_sim_num_steps(sim),
             pdk_sim_num_steps(sim) * pdk_explicit_dt(e), pdk_ctx_num_threads(ctx));
+    const pdk_explicit_opts *eo = pdk_explicit_opts_get(e);
+    if (eo->dt_update != PDK_DT_UPDATE_NONE)
+      fprintf(out,
+              "dt_update %s: the stable step is re-estimated %s %ld steps (about 42 force "
+              "passes each), dt lowered to %.3g x each estimate below it\n",
+              eo->dt_update == PDK_DT_UPDATE_BREAKS ? "breaks" : "periodic",
+              eo->dt_update == PDK_DT_UPDATE_BREAKS ? "after bonds broke, at most once per"
+                                                    : "every",
+              eo->dt_update_interval, eo->safety);
   } else {
     const int nl = pdk_static_num_levels(st);
     const double last = pdk_static_level_time(st, nl - 1);
@@ -408,8 +417,9 @@ int pdk_cli_run(int argc, char **argv) {
     rc = run_static(ctx, &a, scene, sim, &out, dir, wall0);
     goto done;
   }
-  const long total = pdk_sim_num_steps(sim);
+  long total = pdk_sim_num_steps(sim); /* grows when a solver.dt_update lowers dt */
   const long start = pdk_explicit_step(e);
+  int dt_changes = pdk_explicit_num_dt_changes(e);
   const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
   const long field_every = so->field_interval;
   const long ckpt_every = so->checkpoint_interval;
@@ -434,6 +444,19 @@ int pdk_cli_run(int argc, char **argv) {
     long chunk = next - s < 100 ? next - s : 100;
     if ((err = pdk_explicit_run(e, chunk, &h))) break;
     s = pdk_explicit_step(e);
+    if (pdk_explicit_num_dt_changes(e) != dt_changes) {
+      dt_changes = pdk_explicit_num_dt_changes(e);
+      total = pdk_sim_num_steps(sim);
+      long s0;
+      double t0;
+      pdk_explicit_dt_start(e, &s0, &t0);
+      if (!a.quiet)
+        fprintf(stderr,
+                "%sdt lowered to %.4g at step %ld (t %.4g): stable estimate %.4g (%d estimates so "
+                "far); %ld steps in all now\n",
+                tty ? "\r" : "", pdk_explicit_dt(e), s0, t0, pdk_explicit_stable_dt(e),
+                pdk_explicit_num_estimates(e), total);
+    }
     if (s % hist_every == 0 || s == total) err = pdk_output_write_history(out, &h);
     if (!err && ((field_every > 0 && s % field_every == 0) || s == total)) {
       err = pdk_sim_update_output_fields(sim);
@@ -495,6 +518,12 @@ int pdk_cli_run(int argc, char **argv) {
         steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
         (long long)pdk_model_num_broken(pdk_sim_model(sim)), dir, pdk_scene_name(scene),
         pdk_scene_name(scene));
+    if (pdk_explicit_opts_get(e)->dt_update != PDK_DT_UPDATE_NONE)
+      fprintf(stderr,
+              "dt_update: %d estimates of the stable step, dt lowered %d time(s), final dt %.4g "
+              "(latest estimate %.4g)\n",
+              pdk_explicit_num_estimates(e), pdk_explicit_num_dt_changes(e), pdk_explicit_dt(e),
+              pdk_explicit_stable_dt(e));
   }
 done:
   pdk_output_close(&out, 0);
