@@ -110,10 +110,10 @@ typedef struct pdk_explicit pdk_explicit;
 int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts, pdk_explicit **out);
 void pdk_explicit_destroy(pdk_explicit **e);
 
-/* Stable time step of the model at the current state: 2 / sqrt(lambda_max(M^-1 K)), from 40
- * Lanczos steps on trial force differences (model-agnostic), computed at creation. The Lanczos
- * value is a lower bound of lambda_max, tight on lattices: the estimate is close to the true
- * limit, and the safety factor is the margin. During a run, a blow-up (non-finite state, or
+/* Stable time step of the model: 2 / sqrt(lambda_max(M^-1 K)), from 40 Lanczos steps on trial
+ * force differences (model-agnostic), computed at creation and, with dt_update, again during the
+ * run at the state of that step. The Lanczos value is a lower bound of lambda_max, tight on
+ * lattices: the estimate is close to the true limit, and the safety factor is the margin. During a run, a blow-up (non-finite state, or
  * kinetic + strain energy above 100 times the initial energy plus the work done) stops it with a
  * message naming the step and the particle. */
 double pdk_explicit_stable_dt(const pdk_explicit *e); /* the latest estimate */
