@@ -253,8 +253,10 @@ static double time_phase(karrays *ka, setup *s, phase ph, int repeat) {
   return median(t, repeat);
 }
 
+/* dt_interval > 0: re-estimate the stable step every dt_interval steps (solver.dt_update
+ * periodic), to time what an estimate costs. */
 static double time_steps(pdk_ctx *ctx, setup *s, const pdk_model_opts *mo, int repeat, long steps,
-                         pdk_bond_index *broken) {
+                         long dt_interval, pdk_bond_index *broken) {
   double t[MAX_REPEAT];
   *broken = 0;
   for (int r = 0; r < repeat; ++r) {
@@ -295,6 +297,10 @@ static double time_steps(pdk_ctx *ctx, setup *s, const pdk_model_opts *mo, int r
     pdk_explicit_opts eo = pdk_explicit_opts_default();
     eo.bcs = bcs;
     eo.num_bcs = 2;
+    if (dt_interval > 0) {
+      eo.dt_update = PDK_DT_UPDATE_PERIODIC;
+      eo.dt_update_interval = dt_interval;
+    }
     pdk_explicit *e = NULL;
     CHECK(ctx, pdk_explicit_create(m, &eo, &e));
     for (int d = 0; d < 2; ++d) /* at rest in the stretched state */
@@ -415,17 +421,18 @@ int main(int argc, char **argv) {
 
   /* Part 2: whole steps. */
   pdk_bond_index br_el, br_jc, br_keep;
-  const double st_el = time_steps(ctx, &s, &mo_el, repeat, steps, &br_el);
-  const double st_jc = time_steps(ctx, &s, &mo_jc, repeat, steps, &br_jc);
+  const double st_el = time_steps(ctx, &s, &mo_el, repeat, steps, 0, &br_el);
+  const double st_jc = time_steps(ctx, &s, &mo_jc, repeat, steps, 0, &br_jc);
   pdk_model_opts mo_keep = model_opts(1, 1);
-  const double st_keep = time_steps(ctx, &s, &mo_keep, repeat, steps, &br_keep);
+  const double st_keep = time_steps(ctx, &s, &mo_keep, repeat, steps, 0, &br_keep);
   pdk_model_opts mo_soft = mo_jc, mo_fam = mo_jc, mo_both = mo_jc;
   mo_soft.stab_softening = mo_both.stab_softening = 1;
   mo_fam.damage_triaxiality = mo_both.damage_triaxiality = PDK_TRIAX_FAMILY;
   pdk_bond_index br_x;
-  const double st_soft = time_steps(ctx, &s, &mo_soft, repeat, steps, &br_x);
-  const double st_fam = time_steps(ctx, &s, &mo_fam, repeat, steps, &br_x);
-  const double st_both = time_steps(ctx, &s, &mo_both, repeat, steps, &br_x);
+  const double st_soft = time_steps(ctx, &s, &mo_soft, repeat, steps, 0, &br_x);
+  const double st_fam = time_steps(ctx, &s, &mo_fam, repeat, steps, 0, &br_x);
+  const double st_both = time_steps(ctx, &s, &mo_both, repeat, steps, 0, &br_x);
+  const double st_du = time_steps(ctx, &s, &mo_jc, repeat, steps, 10, &br_x);
   printf("\nPart 2: explicit steps, %d thread(s), %ld steps per run, medians of %d runs\n",
          pdk_ctx_num_threads(ctx), steps, repeat);
   printf("%-44s %10s %9s %9s\n", "step", "ms/step", "ns/bond", "vs elastic");
@@ -440,6 +447,9 @@ int main(int argc, char **argv) {
          1e9 * st_fam / nbd, st_fam / st_el, st_fam / st_jc);
   printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC)\n", "JC, softened + family", 1e3 * st_both,
          1e9 * st_both / nbd, st_both / st_el, st_both / st_jc);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC: one estimate costs %.1f JC steps)\n",
+         "JC, stable step re-estimated every 10 steps", 1e3 * st_du, 1e9 * st_du / nbd,
+         st_du / st_el, st_du / st_jc, 10.0 * (st_du / st_jc - 1.0));
   const long long broken_all = (long long)(br_el + br_jc + br_keep);
   printf("bonds broken in these runs: %lld%s; breaking on / off = %.3f\n", broken_all,
          broken_all ? " (some runs broke bonds: use fewer --steps to time the steps where nothing "
