@@ -275,12 +275,27 @@ static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history
     fprintf(stderr, "; bonds broke and this model does not book the energy they held, so the "
                     "account does not close");
   fputc('\n', stderr);
-  if (!unbooked && in > 0.0 && fabs(imb) > PDK_ENERGY_WARN * in)
+  if (!unbooked && in > 0.0 && fabs(imb) > PDK_ENERGY_WARN * in) {
+    /* Johnson-Cook correspondence runs that broke bonds: what fixed their account on the
+     * two-hole plate (docs/validation/plate_two_holes.md, items 9 and 10) */
+    const pdk_model_opts *mo = pdk_model_opts_get(pdk_sim_model(sim));
+    const pdk_explicit *e = pdk_sim_explicit(sim);
+    const int jc_broke = e && h->broken > h0->broken && mo->kind == PDK_MODEL_CORRESPONDENCE &&
+                         mo->law == PDK_LAW_JC && mo->connectivity != PDK_CONNECTIVITY_UL;
+    const char *hint = "";
+    if (jc_broke && mo->break_stress == PDK_BREAK_STRESS_REFIT)
+      hint = "; bonds broke, and with model.break_stress refit a particle's stress jumps when its "
+             "family loses bonds: model.break_stress: continuous with solver.dt_update: breaks "
+             "keeps the account through the tearing";
+    else if (jc_broke && pdk_explicit_opts_get(e)->dt_update == PDK_DT_UPDATE_NONE)
+      hint = "; bonds broke, and the stable step can fall as families lose bonds: "
+             "solver.dt_update: breaks follows it";
     fprintf(stderr,
             "pdk: warning: the energy balance is off by %.2g%% of the energy put in (more than "
             "%.0f%%): the time step does not resolve this run; rerun with a smaller solver.dt "
-            "(or solver.safety) and compare\n",
-            100.0 * fabs(imb) / in, 100.0 * PDK_ENERGY_WARN);
+            "(or solver.safety) and compare%s\n",
+            100.0 * fabs(imb) / in, 100.0 * PDK_ENERGY_WARN, hint);
+  }
 }
 
 static int run_static(pdk_ctx *ctx, const run_args *a, pdk_scene *scene, pdk_sim *sim,
