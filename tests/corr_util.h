@@ -2,6 +2,7 @@
 #ifndef PDK_CORR_UTIL_H
 #define PDK_CORR_UTIL_H
 
+#include "pdk/explicit.h"
 #include "pdk/geometry.h"
 #include "pdk/model.h"
 #include "test_util.h"
@@ -174,5 +175,33 @@ static inline double cu_omega(int infl, double r, double delta) {
 
 /* Largest lattice offset within the horizon m (unit spacing). */
 static inline int cu_reach(double m) { return (int)floor(m * (1.0 + 1e-12)); }
+
+/* The biaxially pulled 2-D block of t052, t133 and t134 on [0, L]^2: grips two spacings deep on
+ * the four sides (sets "left", "right", "bottom", "top") and velocity conditions moving each grip
+ * outwards along its normal at V, reached by a smooth ramp over `ramp`. */
+static inline void cu_biaxial_grips(pdk_ctx *ctx, pdk_particles *p, double L, double V, double ramp,
+                                    pdk_bc bcs[4]) {
+  const double e = 2.0;
+  const double l0[3] = {-1, -1, -1}, l1[3] = {e, L + 1, 1};
+  const double r0[3] = {L - e, -1, -1}, r1[3] = {L + 1, L + 1, 1};
+  const double b0[3] = {-1, -1, -1}, b1[3] = {L + 1, e, 1};
+  const double t0[3] = {-1, L - e, -1}, t1[3] = {L + 1, L + 1, 1};
+  const pdk_region grips[4] = {pdk_region_box(l0, l1), pdk_region_box(r0, r1),
+                               pdk_region_box(b0, b1), pdk_region_box(t0, t1)};
+  static const char *const set[4] = {"left", "right", "bottom", "top"};
+  static const char *const field[4] = {"set:left", "set:right", "set:bottom", "set:top"};
+  for (int k = 0; k < 4; ++k) T_OK(ctx, pdk_particles_set_define(p, set[k], &grips[k], NULL));
+  const double sign[4] = {-1, 1, -1, 1};
+  memset(bcs, 0, 4 * sizeof *bcs);
+  for (int k = 0; k < 4; ++k) {
+    const int c = k < 2 ? 0 : 1;
+    bcs[k].kind = PDK_BC_VELOCITY;
+    bcs[k].set = field[k];
+    bcs[k].components = 1u << c;
+    bcs[k].value[c].kind = PDK_TFUN_SMOOTH;
+    bcs[k].value[c].a = sign[k] * V;
+    bcs[k].value[c].b = ramp;
+  }
+}
 
 #endif

@@ -42,6 +42,25 @@ static inline void jcu_bar(pdk_ctx *ctx, int notch, pdk_particles **p, pdk_famil
   T_OK(ctx, pdk_families_build(*p, &fo, fam));
 }
 
+/* The model of t106's (and t052's) tearing bar: Johnson-Cook correspondence with damage (D1 0.02,
+ * D2 0.3, D3 -2.12: failure within the run), Silling stabilization softened with the plastic
+ * modulus, family triaxiality, and the given stress at a break. */
+static inline pdk_model_opts jcu_tearing_opts(pdk_break_stress bs) {
+  pdk_model_opts mo = pdk_model_opts_default();
+  mo.kind = PDK_MODEL_CORRESPONDENCE;
+  mo.law = PDK_LAW_JC;
+  mo.bulk_modulus = mo.shear_modulus = mo.density = 0.0; /* from mo.jc */
+  mo.jc.damage = 1;
+  mo.jc.D1 = 0.02;
+  mo.jc.D2 = 0.3;
+  mo.jc.D3 = -2.12;
+  mo.stabilization = PDK_STAB_SILLING;
+  mo.stab_softening = 1;
+  mo.damage_triaxiality = PDK_TRIAX_FAMILY;
+  mo.break_stress = bs;
+  return mo;
+}
+
 /* The bar's loads: "left" held (all components), "right" pulled along x at v, by a velocity
  * condition (by_displacement = 0) or by the displacement u = v t (1: positions exact at every
  * step). */

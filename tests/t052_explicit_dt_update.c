@@ -195,18 +195,7 @@ static void lowering(pdk_ctx *ctx1, pdk_ctx *ctx2) {
  * 10 steps at safety 1 (dt is about half the stable step, so they do not lower it). */
 static void jc_bar(pdk_ctx *ctx, int update, jcu_sim *s) {
   jcu_bar(ctx, 1, &s->p, &s->fam);
-  pdk_model_opts mo = pdk_model_opts_default();
-  mo.kind = PDK_MODEL_CORRESPONDENCE;
-  mo.law = PDK_LAW_JC;
-  mo.bulk_modulus = mo.shear_modulus = mo.density = 0.0; /* from mo.jc */
-  mo.jc.damage = 1;
-  mo.jc.D1 = 0.02;
-  mo.jc.D2 = 0.3;
-  mo.jc.D3 = -2.12;
-  mo.stabilization = PDK_STAB_SILLING;
-  mo.stab_softening = 1;
-  mo.damage_triaxiality = PDK_TRIAX_FAMILY;
-  mo.break_stress = PDK_BREAK_STRESS_CONTINUOUS;
+  pdk_model_opts mo = jcu_tearing_opts(PDK_BREAK_STRESS_CONTINUOUS);
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
   jcu_bar_pull(s->bcs, 1, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
@@ -262,34 +251,14 @@ static void jc_history_untouched(pdk_ctx *ctx) {
  * with periodic estimates every 10 steps against none, bitwise, with rebuilds in between. */
 static void ul_block(pdk_ctx *ctx, int update, jcu_sim *s, pdk_bc bcs[4]) {
   const int N = 16;
-  const double L = N, e = 2.0;
+  const double L = N;
   s->p = cu_lattice(ctx, 2, N, 0.02, 5);
-  const double l0[3] = {-1, -1, -1}, l1[3] = {e, L + 1, 1};
-  const double r0[3] = {L - e, -1, -1}, r1[3] = {L + 1, L + 1, 1};
-  const double b0[3] = {-1, -1, -1}, b1[3] = {L + 1, e, 1};
-  const double t0[3] = {-1, L - e, -1}, t1[3] = {L + 1, L + 1, 1};
-  const pdk_region grips[4] = {pdk_region_box(l0, l1), pdk_region_box(r0, r1),
-                               pdk_region_box(b0, b1), pdk_region_box(t0, t1)};
-  static const char *set[4] = {"left", "right", "bottom", "top"};
-  static const char *field[4] = {"set:left", "set:right", "set:bottom", "set:top"};
-  for (int k = 0; k < 4; ++k)
-    T_OK(ctx, pdk_particles_set_define(s->p, set[k], &grips[k], NULL));
+  cu_biaxial_grips(ctx, s->p, L, 0.001 * (0.5 * L - 1.0), 50.0, bcs);
   s->fam = cu_families(ctx, s->p, 3.015);
   pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
   mo.connectivity = PDK_CONNECTIVITY_UL;
   mo.ul_skin = 0.1;
   s->m = cu_model(ctx, s->p, s->fam, &mo);
-  const double V = 0.001 * (0.5 * L - 1.0), sign[4] = {-1, 1, -1, 1};
-  memset(bcs, 0, 4 * sizeof *bcs);
-  for (int k = 0; k < 4; ++k) {
-    const int c = k < 2 ? 0 : 1;
-    bcs[k].kind = PDK_BC_VELOCITY;
-    bcs[k].set = field[k];
-    bcs[k].components = 1u << c;
-    bcs[k].value[c].kind = PDK_TFUN_SMOOTH;
-    bcs[k].value[c].a = sign[k] * V;
-    bcs[k].value[c].b = 50.0;
-  }
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 4;

@@ -167,18 +167,7 @@ static void point(int dim) {
 static void build(pdk_ctx *ctx, pdk_break_stress bs, pdk_stencil_mode stencil,
                   pdk_connectivity conn, sim *s) {
   jcu_bar(ctx, 1, &s->p, &s->fam);
-  pdk_model_opts mo = pdk_model_opts_default();
-  mo.kind = PDK_MODEL_CORRESPONDENCE;
-  mo.law = PDK_LAW_JC;
-  mo.bulk_modulus = mo.shear_modulus = mo.density = 0.0; /* from mo.jc */
-  mo.jc.damage = 1;
-  mo.jc.D1 = 0.02;
-  mo.jc.D2 = 0.3;
-  mo.jc.D3 = -2.12;
-  mo.stabilization = PDK_STAB_SILLING;
-  mo.stab_softening = 1;
-  mo.damage_triaxiality = PDK_TRIAX_FAMILY;
-  mo.break_stress = bs;
+  pdk_model_opts mo = jcu_tearing_opts(bs);
   mo.stencil = stencil;
   mo.connectivity = conn;
   mo.compact_fraction = 0.0; /* semi-TL: compact in every pass that broke bonds */

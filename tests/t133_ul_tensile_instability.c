@@ -132,35 +132,15 @@ static void measure(pdk_particles *p, pdk_families *fam, double lambda, run_resu
 static run_result run(pdk_ctx *ctx, const run_opts *ro, double rate, double stretch) {
   const double L = N_SIDE, ramp = 100.0;
   pdk_particles *p = cu_lattice(ctx, 2, N_SIDE, 0.02, 3);
-  const double e = 2.0;
-  const double l0[3] = {-1, -1, -1}, l1[3] = {e, L + 1, 1};
-  const double r0[3] = {L - e, -1, -1}, r1[3] = {L + 1, L + 1, 1};
-  const double b0[3] = {-1, -1, -1}, b1[3] = {L + 1, e, 1};
-  const double t0[3] = {-1, L - e, -1}, t1[3] = {L + 1, L + 1, 1};
-  const pdk_region grips[4] = {pdk_region_box(l0, l1), pdk_region_box(r0, r1),
-                               pdk_region_box(b0, b1), pdk_region_box(t0, t1)};
-  const char *set[4] = {"left", "right", "bottom", "top"};
-  const char *field[4] = {"set:left", "set:right", "set:bottom", "set:top"};
-  for (int k = 0; k < 4; ++k)
-    T_OK(ctx, pdk_particles_set_define(p, set[k], &grips[k], NULL));
+  /* Grip speed: the homogeneous stretch rate times the distance of the grip's centre. */
+  const double V = rate * (0.5 * L - 1.0);
+  pdk_bc bcs[4];
+  cu_biaxial_grips(ctx, p, L, V, ramp, bcs);
   pdk_families *fam = cu_families(ctx, p, 3.015);
   pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, ro->influence, ro->stab, ro->cs);
   mo.connectivity = ro->mode;
   mo.ul_skin = ro->skin;
   pdk_model *m = cu_model(ctx, p, fam, &mo);
-  /* Grip speed: the homogeneous stretch rate times the distance of the grip's centre. */
-  const double V = rate * (0.5 * L - 1.0), sign[4] = {-1, 1, -1, 1};
-  pdk_bc bcs[4];
-  memset(bcs, 0, sizeof bcs);
-  for (int k = 0; k < 4; ++k) {
-    const int c = k < 2 ? 0 : 1;
-    bcs[k].kind = PDK_BC_VELOCITY;
-    bcs[k].set = field[k];
-    bcs[k].components = 1u << c;
-    bcs[k].value[c].kind = PDK_TFUN_SMOOTH;
-    bcs[k].value[c].a = sign[k] * V;
-    bcs[k].value[c].b = ramp;
-  }
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 4;

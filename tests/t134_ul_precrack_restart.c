@@ -143,33 +143,14 @@ typedef struct sim {
 static pdk_bc bcs[4];
 
 static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
-  const double L = RN, e = 2.0;
+  const double L = RN;
   s->p = cu_lattice(ctx, 2, RN, 0.02, 5);
-  const double l0[3] = {-1, -1, -1}, l1[3] = {e, L + 1, 1};
-  const double r0[3] = {L - e, -1, -1}, r1[3] = {L + 1, L + 1, 1};
-  const double b0[3] = {-1, -1, -1}, b1[3] = {L + 1, e, 1};
-  const double t0[3] = {-1, L - e, -1}, t1[3] = {L + 1, L + 1, 1};
-  const pdk_region grips[4] = {pdk_region_box(l0, l1), pdk_region_box(r0, r1),
-                               pdk_region_box(b0, b1), pdk_region_box(t0, t1)};
-  static const char *set[4] = {"left", "right", "bottom", "top"};
-  static const char *field[4] = {"set:left", "set:right", "set:bottom", "set:top"};
-  for (int k = 0; k < 4; ++k) T_OK(ctx, pdk_particles_set_define(s->p, set[k], &grips[k], NULL));
+  cu_biaxial_grips(ctx, s->p, L, 0.001 * (0.5 * L - 1.0), 50.0, bcs);
   s->fam = cu_families(ctx, s->p, 3.015);
   pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
   mo.connectivity = mode;
   mo.ul_skin = 0.1;
   s->m = cu_model(ctx, s->p, s->fam, &mo);
-  const double V = 0.001 * (0.5 * L - 1.0), sign[4] = {-1, 1, -1, 1};
-  memset(bcs, 0, sizeof bcs);
-  for (int k = 0; k < 4; ++k) {
-    const int c = k < 2 ? 0 : 1;
-    bcs[k].kind = PDK_BC_VELOCITY;
-    bcs[k].set = field[k];
-    bcs[k].components = 1u << c;
-    bcs[k].value[c].kind = PDK_TFUN_SMOOTH;
-    bcs[k].value[c].a = sign[k] * V;
-    bcs[k].value[c].b = 50.0;
-  }
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 4;
