@@ -22,6 +22,9 @@
  *    history field, the bond state, x, v and f bitwise equal after every 10 steps (measured: 81
  *    estimates, 620 bonds broken, no change of dt). t134's updated-Lagrangian block (16 x 16,
  *    rebuilds during the run), 300 steps: the same, with the same rebuild count.
+ * 5. A free PMB square blown apart (every bond breaks): the estimates after that find nothing
+ *    that limits the step and keep the last one; the run goes on (21 estimates in 200 steps,
+ *    dt unchanged) instead of stopping with "no stiffness".
  * labels: unit threads */
 #include <stdio.h>
 
@@ -286,6 +289,43 @@ static void ul_untouched(pdk_ctx *ctx) {
   jcu_sim_destroy(&b);
 }
 
+/* ---- 5. a body that loses every bond ----------------------------------------------------------
+ */
+
+/* A free 2-D PMB square blown apart by an initial expansion (velocity gradient 2000/s, critical
+ * stretch 1e-4): every bond breaks within the run, and the estimates after that (nothing left
+ * to limit the step) keep the last estimate instead of stopping the run. */
+static void fragments(pdk_ctx *ctx) {
+  static const char *text = "dimension: 2\n"
+                            "geometry: {spacing: 1.0e-3, box: {lo: [0, 0], hi: [0.01, 0.01]}}\n"
+                            "material: {density: 8000, bulk_modulus: 1.0e9}\n"
+                            "model: {kind: pmb, critical_stretch: 1.0e-4}\n"
+                            "initial_conditions: {velocity_gradient: [[2000, 0], [0, 2000]]}\n"
+                            "solver: {steps: 200, dt_update: periodic, dt_update_interval: 10}\n";
+  const char *path = "t052_fragments.yaml";
+  FILE *f = fopen(path, "wb");
+  T_ASSERT(f && fputs(text, f) >= 0 && !fclose(f), "writing %s", path);
+  pdk_scene *scene = NULL;
+  pdk_sim *sim = NULL;
+  T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, &scene));
+  T_OK(ctx, pdk_sim_create(ctx, scene, &sim));
+  pdk_explicit *e = pdk_sim_explicit(sim);
+  const double dt0 = pdk_explicit_dt(e), est0 = pdk_explicit_stable_dt(e);
+  T_OK(ctx, pdk_explicit_run(e, 200, NULL));
+  const pdk_bond_index nb = pdk_families_num_bonds(pdk_sim_families(sim));
+  T_ASSERT(pdk_model_num_broken(pdk_sim_model(sim)) == nb,
+           "precondition: all %lld bonds broke "
+           "(%lld did)",
+           (long long)nb, (long long)pdk_model_num_broken(pdk_sim_model(sim)));
+  T_ASSERT(pdk_explicit_num_estimates(e) == 21 && pdk_explicit_dt(e) == dt0 &&
+               isfinite(pdk_explicit_stable_dt(e)) && pdk_explicit_stable_dt(e) >= est0,
+           "fragments: %d estimates, dt %g (from %g), latest estimate %g (from %g)",
+           pdk_explicit_num_estimates(e), pdk_explicit_dt(e), dt0, pdk_explicit_stable_dt(e), est0);
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&scene);
+  remove(path);
+}
+
 int main(void) {
   pdk_ctx *ctx1 = t_ctx(1), *ctx2 = t_ctx(2);
   estimates_leave_trajectory(ctx2);
@@ -293,6 +333,7 @@ int main(void) {
   lowering(ctx1, ctx2);
   jc_history_untouched(ctx2);
   ul_untouched(ctx2);
+  fragments(ctx2);
   pdk_ctx_destroy(&ctx1);
   pdk_ctx_destroy(&ctx2);
   return 0;
