@@ -133,6 +133,13 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
 }
 
 /* The explicit solver of the scene, and the number of steps. */
+/* Steps of dt that cover a time span: ceil(span / dt), not counting a last step that round-off
+ * alone would add; 0 for an empty span. */
+static long steps_to_cover(double span, double dt) {
+  const double q = span / dt;
+  return q > 0 ? (long)ceil(q * (1 - 1e-12)) : 0;
+}
+
 static int create_explicit(pdk_sim *sim, const pdk_scene *s) {
   pdk_ctx *ctx = sim->ctx;
   int err = PDK_SUCCESS;
@@ -164,12 +171,11 @@ static int create_explicit(pdk_sim *sim, const pdk_scene *s) {
   if (s->steps > 0) {
     sim->num_steps = s->steps;
   } else {
-    /* ceil(end_time / dt), not counting a last step that round-off alone would add */
-    double q = s->end_time / dt;
+    const double q = s->end_time / dt;
     PDK_CHECK(q < 1e15, ctx, PDK_ERR_ARG,
               "%s: solver.end_time %g needs %g steps of %g; shorten it or raise dt", s->path,
               s->end_time, q, dt);
-    sim->num_steps = (long)ceil(q * (1 - 1e-12));
+    sim->num_steps = steps_to_cover(s->end_time, dt);
     if (sim->num_steps < 1) sim->num_steps = 1;
   }
 
@@ -382,10 +388,8 @@ long pdk_sim_num_steps(const pdk_sim *sim) {
   if (!sim->e || sim->end_time <= 0) return sim->num_steps;
   pdk_explicit_dt_start(sim->e, &step0, &time0);
   if (step0 == 0) return sim->num_steps; /* dt as at creation */
-  /* a dt_update lowered dt at step0: the rest of the run at the new step, counted as above */
-  double q = (sim->end_time - time0) / pdk_explicit_dt(sim->e);
-  long rest = q > 0 ? (long)ceil(q * (1 - 1e-12)) : 0;
-  return step0 + rest;
+  /* a dt_update lowered dt at step0: the rest of the run at the new step */
+  return step0 + steps_to_cover(sim->end_time - time0, pdk_explicit_dt(sim->e));
 }
 pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
 pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }

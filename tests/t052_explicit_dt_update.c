@@ -56,15 +56,17 @@ static void close_run(run *r) {
 
 static pdk_explicit *ex(run *r) { return pdk_sim_explicit(r->sim); }
 
-/* 1 when field `name` (f64, dim components) of both runs is bitwise equal */
-static int same_field(run *a, run *b, const char *name) {
-  pdk_particles *pa = pdk_sim_particles(a->sim), *pb = pdk_sim_particles(b->sim);
-  const pdk_index n = pdk_particles_count(pa);
-  for (int c = 0; c < pdk_particles_dim(pa); ++c)
-    if (memcmp(pdk_particles_field_data(pa, name, c), pdk_particles_field_data(pb, name, c),
-               (size_t)n * sizeof(double)))
+/* 1 when field `name` (f64, dim components) of both stores is bitwise equal */
+static int same_particles(pdk_particles *a, pdk_particles *b, const char *name) {
+  for (int c = 0; c < pdk_particles_dim(a); ++c)
+    if (memcmp(pdk_particles_field_data(a, name, c), pdk_particles_field_data(b, name, c),
+               (size_t)pdk_particles_count(a) * sizeof(double)))
       return 0;
   return 1;
+}
+
+static int same_field(run *a, run *b, const char *name) {
+  return same_particles(pdk_sim_particles(a->sim), pdk_sim_particles(b->sim), name);
 }
 
 static int same_state(run *a, run *b) {
@@ -211,14 +213,6 @@ static void jc_bar(pdk_ctx *ctx, int update, jcu_sim *s) {
     eo.dt_update_interval = 10;
   }
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
-}
-
-static int same_particles(pdk_particles *a, pdk_particles *b, const char *name) {
-  for (int c = 0; c < pdk_particles_dim(a); ++c)
-    if (memcmp(pdk_particles_field_data(a, name, c), pdk_particles_field_data(b, name, c),
-               (size_t)pdk_particles_count(a) * sizeof(double)))
-      return 0;
-  return 1;
 }
 
 static void jc_history_untouched(pdk_ctx *ctx) {
