@@ -644,6 +644,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     memset(hist, 0, sizeof *hist);
     hist->step = e->step;
     hist->time = e->time;
+    hist->dt = e->dt;
     hist->kinetic = kinetic_energy(e);
     hist->strain = e->strain;
     hist->external_work = e->external_work;

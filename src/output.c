@@ -15,7 +15,7 @@
  * of OUT_HIST_CHUNK rows). Columns (o->col_name): step, time, kinetic, strain, external_work,
  * broken, then reaction_<set>_<c> for every reaction set and component, then disp_<set>_<c> for
  * every reaction set whose "set:<set>" field exists (mean of x - X over its members, in index
- * order). col_absmax keeps each column's largest |value| so the plot can pick the component
+ * order), then plastic_work, damage_work, breaking_work and dt (the step size; 0 in static). col_absmax keeps each column's largest |value| so the plot can pick the component
  * that carries the load.
  */
 #define _DEFAULT_SOURCE /* fork, execlp, pipe, access */
@@ -41,7 +41,7 @@ enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_NUM_FILES };
  * uncompressed, for files 44% smaller; that is not cheap next to a force pass. */
 #define OUT_STATIC_DEFLATE 1
 #define OUT_MAX_REACTION 8 /* = the size of pdk_history.reaction */
-#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 3)
+#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 4)
 #define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
 #define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
 
@@ -529,6 +529,7 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
   add_column(o, "plastic_work", o->unit_energy);
   add_column(o, "damage_work", o->unit_energy);
   add_column(o, "breaking_work", o->unit_energy);
+  add_column(o, "dt", o->unit_time); /* the explicit step size (changes with dt_update) */
   return PDK_SUCCESS;
 }
 
@@ -826,6 +827,7 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   row[o->work_col] = h->plastic_work;
   row[o->work_col + 1] = h->damage_work;
   row[o->work_col + 2] = h->breaking_work;
+  row[o->work_col + 3] = h->dt;
 
   o->failed = 1; /* until the row is complete */
   hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};

@@ -348,29 +348,30 @@ static void check_history_columns(pdk_ctx *ctx) {
   h.plastic_work = 1.25;
   h.damage_work = 0.5;
   h.breaking_work = 0.0625;
+  h.dt = 3.5e-7;
   T_OK(ctx, pdk_output_write_history(o, &h));
   T_OK(ctx, pdk_output_close(&o, 1));
   char *csv = slurp("t062_out/hist_history.csv");
   char *eol = strchr(csv, '\n');
   T_ASSERT(eol, "CSV has a header line");
   *eol = '\0';
-  const char *tail = "plastic_work [J],damage_work [J],breaking_work [J]";
+  const char *tail = "plastic_work [J],damage_work [J],breaking_work [J],dt [s]";
   T_ASSERT(strlen(csv) >= strlen(tail) && !strcmp(csv + strlen(csv) - strlen(tail), tail),
-           "CSV header ends with the work columns: %s", csv);
+           "CSV header ends with the work columns and dt: %s", csv);
   const char *row = eol + 1;
-  /* last three numbers of the row */
-  double v[3];
+  /* last four numbers of the row */
+  double v[4];
   const char *q = row + strlen(row);
   while (q > row && (q[-1] == '\n'))
     --q;
   int found = 0;
-  for (const char *r = q; r > row && found < 3; --r)
+  for (const char *r = q; r > row && found < 4; --r)
     if (r[-1] == ',') {
-      v[2 - found] = strtod(r, NULL);
+      v[3 - found] = strtod(r, NULL);
       ++found;
     }
-  T_ASSERT(found == 3 && v[0] == 1.25 && v[1] == 0.5 && v[2] == 0.0625,
-           "work columns written as given: %g %g %g", v[0], v[1], v[2]);
+  T_ASSERT(found == 4 && v[0] == 1.25 && v[1] == 0.5 && v[2] == 0.0625 && v[3] == 3.5e-7,
+           "work columns and dt written as given: %g %g %g %g", v[0], v[1], v[2], v[3]);
   free(csv);
   remove("t062_out/hist_history.csv");
   remove("t062_out/hist.h5");

@@ -84,6 +84,23 @@ if(NOT dtu_row MATCHES "^${dtu_total},0\\.0002")
   message(FATAL_ERROR
           "dt_update: last history row ${dtu_row}, expected step ${dtu_total} at t >= 2e-4")
 endif()
+# the history's last column is the step size: the scene's before step 10, the lowered one (the
+# value the run printed, to its 4 digits) from then on
+file(STRINGS ${PDK_TEST_DIR}/dtu/bar_dt_history.csv dtu_rows)
+list(GET dtu_rows 0 dtu_header)
+list(GET dtu_rows 1 dtu_first)
+if(NOT dtu_header MATCHES ",dt \\[[a-z]+\\]$")
+  message(FATAL_ERROR "dt_update: the history's last column is not dt: ${dtu_header}")
+endif()
+string(REGEX MATCH "[^,]+$" dt_first "${dtu_first}")
+string(REGEX MATCH "[^,]+$" dt_last "${dtu_row}")
+string(REGEX MATCH "dt lowered to ([0-9.e+-]+) at step" _ "${run_out}")
+set(dt_printed ${CMAKE_MATCH_1})
+execute_process(COMMAND printf "%.4g" ${dt_last} OUTPUT_VARIABLE dt_last4)
+if(NOT dt_last LESS dt_first OR NOT dt_last4 STREQUAL dt_printed)
+  message(FATAL_ERROR "dt_update: history dt ${dt_first} at the start, ${dt_last} (${dt_last4}) "
+                      "at the end; the run printed 'dt lowered to ${dt_printed}'")
+endif()
 
 # Ctrl-C: a long run interrupted by SIGINT ends with 130, a checkpoint and finished files.
 find_program(TIMEOUT timeout)

@@ -103,6 +103,9 @@ typedef struct pdk_history {
   double plastic_work;
   double damage_work;
   double breaking_work;
+  /* Size of the step that led to this record (it changes during a run only with dt_update);
+   * 0 in static solves, which have no time step. */
+  double dt;
 } pdk_history;
 
 typedef struct pdk_explicit pdk_explicit;
