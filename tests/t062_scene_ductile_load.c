@@ -191,8 +191,9 @@ static void check_defaults(pdk_ctx *ctx) {
 static void check_shipped(pdk_ctx *ctx) {
   const char *src = getenv("PDK_SOURCE_DIR");
   T_ASSERT(src, "PDK_SOURCE_DIR is not set (ctest sets it)");
-  const char *names[] = {"plate_two_holes", "plate_two_holes_fine", "plate_one_hole_ductile"};
-  for (int k = 0; k < 3; ++k) {
+  const char *names[] = {"plate_two_holes", "plate_two_holes_fine", "plate_two_holes_close",
+                         "plate_one_hole_ductile"};
+  for (int k = 0; k < 4; ++k) {
     char path[2048];
     snprintf(path, sizeof path, "%s/scenes/%s.yaml", src, names[k]);
     pdk_scene *s = NULL;

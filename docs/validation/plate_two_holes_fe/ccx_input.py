@@ -26,6 +26,8 @@ g = ap.add_mutually_exclusive_group(required=True)
 g.add_argument('--static', type=float, metavar='U_MAX')
 g.add_argument('--dynamic', type=float, metavar='T_END')
 ap.add_argument('--increment', type=float, required=True)
+ap.add_argument('--centres', type=float, nargs=4, default=[17.5, 42.5, 32.5, 57.5],
+                metavar=('X1', 'Y1', 'X2', 'Y2'), help='hole centres [mm] (plate.geo x1 ... y2)')
 a = ap.parse_args()
 
 nodes, elems, mode = {}, [], None
@@ -42,7 +44,7 @@ for line in open(a.mesh):
 if not elems:
     raise SystemExit('%s: no CPS8 elements (mesh with plate.geo, second order, recombined)' % a.mesh)
 used = sorted({n for e in elems for n in e[1:]})
-centres = (np.array([17.5, 42.5]), np.array([32.5, 57.5]))
+centres = (np.array(a.centres[:2]), np.array(a.centres[2:]))
 
 
 def write_set(f, kind, name, ids):

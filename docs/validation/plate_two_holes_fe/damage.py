@@ -15,8 +15,9 @@ Prints: the first elements to reach D_c (grip displacement, region, centroid, et
 printed increment the largest D in the ligament between the holes ("inner": between the two
 centres along their line and within one radius of it, as tests/plate_two_holes_util.h) and
 elsewhere ("outer"), with eps_p and eta there and the largest eps_p of the region; the reaction.
-With --pdk CSV --at U: the element means next to pdk's particle values along y = 42.5 mm and along
-the line between the hole centres, at grip displacement U mm (CSV from
+With --pdk CSV --at U: the element means next to pdk's particle values along the lower hole's
+horizontal diameter, along the line between the hole centres and around the lower hole's edge, at
+grip displacement U mm (CSV from
 PDK_PLATE_DUMP/PDK_PLATE_DUMP_AT of tests/t120, columns X,Y,x,y,eps_p,damage,...,eta,...).
 
   damage.py job.dat job.inp --u-per-time U_MAX     (static job: step time 1 = U_MAX mm)
@@ -31,9 +32,11 @@ ap.add_argument('inp')
 ap.add_argument('--u-per-time', type=float, required=True)
 ap.add_argument('--pdk', help='pdk particle dump (csv) to compare with')
 ap.add_argument('--at', type=float, help='grip displacement [mm] of the comparison')
+ap.add_argument('--centres', type=float, nargs=4, default=[17.5, 42.5, 32.5, 57.5],
+                metavar=('X1', 'Y1', 'X2', 'Y2'), help='hole centres [mm] (plate.geo x1 ... y2)')
 a = ap.parse_args()
 D1, D2, D3, DC = 0.05, 3.44, -2.12, 0.3
-C1, C2, R = np.array([17.5, 42.5]), np.array([32.5, 57.5]), 5.0
+C1, C2, R = np.array(a.centres[:2]), np.array(a.centres[2:]), 5.0
 
 nodes, cent, mode = {}, {}, None
 for line in open(a.inp):
@@ -139,13 +142,16 @@ if a.pdk and snap is not None:
             print('%6.2f | %.3f %5.2f %.3f | %.3f %5.2f %.3f' %
                   (coord(X[k], Y[k]), P[k, 4], P[k, 9], P[k, 5], pm[j], em[j], Dm[j]))
 
-    row = np.min(np.abs(Y - 42.5))
-    show('y = 42.5 mm (lower hole, horizontal diameter), x [mm]', np.abs(Y - 42.5) <= row + 1e-9,
-         lambda x, y: x)
+    row = np.min(np.abs(Y - C1[1]))
+    show('y = %g mm (lower hole, horizontal diameter), x [mm]' % C1[1],
+         np.abs(Y - C1[1]) <= row + 1e-9, lambda x, y: x)
     d = (C2 - C1) / np.linalg.norm(C2 - C1)
     along = (X - C1[0]) * d[0] + (Y - C1[1]) * d[1]
     perp = np.abs((X - C1[0]) * d[1] - (Y - C1[1]) * d[0])
     h = np.min(np.diff(np.unique(np.round(X, 9))))
+    rad = np.hypot(X - C1[0], Y - C1[1])
+    show('lower hole, the particles within one spacing of its edge, angle from +x [degrees]',
+         rad < R + h + 1e-9, lambda x, y: np.degrees(np.arctan2(y - C1[1], x - C1[0])))
     show('line between the centres, distance from the lower centre [mm]',
          (perp < 0.5 * h + 1e-9) & (along > R) & (along < np.linalg.norm(C2 - C1) - R),
          lambda x, y: (x - C1[0]) * d[0] + (y - C1[1]) * d[1])
