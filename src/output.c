@@ -15,8 +15,9 @@
  * of OUT_HIST_CHUNK rows). Columns (o->col_name): step, time, kinetic, strain, external_work,
  * broken, then reaction_<set>_<c> for every reaction set and component, then disp_<set>_<c> for
  * every reaction set whose "set:<set>" field exists (mean of x - X over its members, in index
- * order), then plastic_work, damage_work, breaking_work and dt (the step size; 0 in static). col_absmax keeps each column's largest |value| so the plot can pick the component
- * that carries the load.
+ * order), then plastic_work, damage_work, breaking_work and dt (the step size; 0 in static).
+ * col_absmax keeps each column's largest |value| so the plot can pick the component that carries
+ * the load.
  */
 #define _DEFAULT_SOURCE /* fork, execlp, pipe, access */
 #include <errno.h>
