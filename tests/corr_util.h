@@ -190,7 +190,8 @@ static inline void cu_biaxial_grips(pdk_ctx *ctx, pdk_particles *p, double L, do
                                pdk_region_box(b0, b1), pdk_region_box(t0, t1)};
   static const char *const set[4] = {"left", "right", "bottom", "top"};
   static const char *const field[4] = {"set:left", "set:right", "set:bottom", "set:top"};
-  for (int k = 0; k < 4; ++k) T_OK(ctx, pdk_particles_set_define(p, set[k], &grips[k], NULL));
+  for (int k = 0; k < 4; ++k)
+    T_OK(ctx, pdk_particles_set_define(p, set[k], &grips[k], NULL));
   const double sign[4] = {-1, 1, -1, 1};
   memset(bcs, 0, 4 * sizeof *bcs);
   for (int k = 0; k < 4; ++k) {
@@ -202,6 +203,22 @@ static inline void cu_biaxial_grips(pdk_ctx *ctx, pdk_particles *p, double L, do
     bcs[k].value[c].a = sign[k] * V;
     bcs[k].value[c].b = ramp;
   }
+}
+
+/* The block of t134, also run by t052: N x N points jittered by 0.02 (seed 5), gripped and pulled
+ * as cu_biaxial_grips at the homogeneous stretch rate 0.001 (ramp 50), horizon 3.015, Neo-Hooke,
+ * cubic influence, Silling 0.1, `mode` connectivity (UL skin 0.1). Returns the model; *p and *fam
+ * are what it was built on. */
+static inline pdk_model *cu_pulled_block(pdk_ctx *ctx, int N, pdk_connectivity mode, pdk_bc bcs[4],
+                                         pdk_particles **p, pdk_families **fam) {
+  const double L = N;
+  *p = cu_lattice(ctx, 2, N, 0.02, 5);
+  cu_biaxial_grips(ctx, *p, L, 0.001 * (0.5 * L - 1.0), 50.0, bcs);
+  *fam = cu_families(ctx, *p, 3.015);
+  pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
+  mo.connectivity = mode;
+  mo.ul_skin = 0.1;
+  return cu_model(ctx, *p, *fam, &mo);
 }
 
 #endif

@@ -247,15 +247,7 @@ static void jc_history_untouched(pdk_ctx *ctx) {
 /* t134's updated-Lagrangian block (16 x 16, pulled biaxially, rebuilds on both halves): 300 steps
  * with periodic estimates every 10 steps against none, bitwise, with rebuilds in between. */
 static void ul_block(pdk_ctx *ctx, int update, jcu_sim *s, pdk_bc bcs[4]) {
-  const int N = 16;
-  const double L = N;
-  s->p = cu_lattice(ctx, 2, N, 0.02, 5);
-  cu_biaxial_grips(ctx, s->p, L, 0.001 * (0.5 * L - 1.0), 50.0, bcs);
-  s->fam = cu_families(ctx, s->p, 3.015);
-  pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
-  mo.connectivity = PDK_CONNECTIVITY_UL;
-  mo.ul_skin = 0.1;
-  s->m = cu_model(ctx, s->p, s->fam, &mo);
+  s->m = cu_pulled_block(ctx, 16, PDK_CONNECTIVITY_UL, bcs, &s->p, &s->fam);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 4;

@@ -143,14 +143,7 @@ typedef struct sim {
 static pdk_bc bcs[4];
 
 static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
-  const double L = RN;
-  s->p = cu_lattice(ctx, 2, RN, 0.02, 5);
-  cu_biaxial_grips(ctx, s->p, L, 0.001 * (0.5 * L - 1.0), 50.0, bcs);
-  s->fam = cu_families(ctx, s->p, 3.015);
-  pdk_model_opts mo = cu_opts(PDK_LAW_NEO_HOOKE, PDK_INFLUENCE_CUBIC, PDK_STAB_SILLING, 0.1);
-  mo.connectivity = mode;
-  mo.ul_skin = 0.1;
-  s->m = cu_model(ctx, s->p, s->fam, &mo);
+  s->m = cu_pulled_block(ctx, RN, mode, bcs, &s->p, &s->fam);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
   eo.bcs = bcs;
   eo.num_bcs = 4;
