@@ -1,11 +1,13 @@
 /* Force-loop benchmark: one force pass of the PMB, LPS (and correspondence, when that model is part
  * of the build) models on a free simple-cubic cube of side L (L^3 particles), horizon 3.015
  * spacings, LAMMPS partial volumes on (lattice constant = spacing), no bond breaking, particles in
- * Morton order of the family cells (or lattice order). Each configuration is timed R times after
- * two warm-up passes; the median is reported, per thread count.
+ * the order pdk_sim_create gives a scene (--order auto, the default: Morton order of the family
+ * cells, and the lattice's rows for the correspondence stencil rows), or all in Morton order
+ * (--order morton) or in the lattice's generation order (--order lattice). Each configuration is
+ * timed R times after two warm-up passes; the median is reported, per thread count.
  *
  *   bench_forces [--side L]... [--plate L]... [--model pmb|lps|corr|pmb-r0]... [--threads T]...
- *                [--repeat R] [--order morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
+ *                [--repeat R] [--order auto|morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
  *                [--layout csr|sell|stencil]... [--sell-sigma S]
@@ -77,13 +79,14 @@ static double median(double *v, int n) {
 }
 
 static void usage(void) {
-  fprintf(stderr,
-          "usage: bench_forces [--side L]... [--plate L]... [--model pmb|lps|corr]...\n"
-          "                    [--threads T]... [--repeat R] [--order morton|lattice] [--s00 S]\n"
-          "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
-          "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-          "                    [--stab none|silling|hourglass] [--layout csr|sell|stencil]...\n"
-          "                    [--sell-sigma S]\n");
+  fprintf(
+      stderr,
+      "usage: bench_forces [--side L]... [--plate L]... [--model pmb|lps|corr]...\n"
+      "                    [--threads T]... [--repeat R] [--order auto|morton|lattice] [--s00 S]\n"
+      "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
+      "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
+      "                    [--stab none|silling|hourglass] [--layout csr|sell|stencil]...\n"
+      "                    [--sell-sigma S]\n");
   exit(2);
 }
 
@@ -260,7 +263,7 @@ int main(int argc, char **argv) {
   int num_sides = 2, threads[MAX_LIST] = {1, 2}, num_threads = 2, user_sides = 0, user_threads = 0;
   pdk_model_kind models[MAX_LIST] = {PDK_MODEL_PMB, PDK_MODEL_LPS, PDK_MODEL_CORRESPONDENCE};
   int num_models = 3, user_models = 0, repeat = 10, steps = 0;
-  const char *order = "morton";
+  const char *order = "auto";
   double s00 = 0.0, triad_mib = 512.0;
   long plates[MAX_LIST];
   int num_plates = 0, num_kernels = 0, num_prec = 1, user_prec = 0;
@@ -292,7 +295,7 @@ int main(int argc, char **argv) {
       repeat = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--order") && k + 1 < argc) {
       order = argv[++k];
-      if (strcmp(order, "morton") && strcmp(order, "lattice")) usage();
+      if (strcmp(order, "auto") && strcmp(order, "morton") && strcmp(order, "lattice")) usage();
     } else if (!strcmp(argv[k], "--s00") && k + 1 < argc) {
       s00 = atof(argv[++k]);
     } else if (!strcmp(argv[k], "--steps") && k + 1 < argc) {
@@ -384,17 +387,19 @@ int main(int argc, char **argv) {
       lo.lo[a] = 0.0, lo.hi[a] = a < dim ? (double)L * dx : dx;
     lo.spacing = dx;
     lo.thickness = dx;
-    pdk_particles *p = NULL;
-    if (pdk_lattice_create(ctx, &lo, &p)) die(ctx, "lattice");
-    if (!strcmp(order, "morton") &&
-        pdk_particles_reorder_morton(p, pdk_families_cell_edge(p, delta), NULL))
-      die(ctx, "reorder");
-    const pdk_index n = pdk_particles_count(p);
+    /* the particle sets: [0] Morton (lattice with --order lattice), [1] rows, built when a
+     * correspondence stencil configuration first needs it (--order auto) */
+    pdk_particles *sets_p[2] = {NULL, NULL};
+    pdk_families *sets_fam[2] = {NULL, NULL};
     pdk_families_opts fo = pdk_families_opts_default();
     fo.horizon = delta;
-    pdk_families *fam = NULL;
-    if (pdk_families_build(p, &fo, &fam)) die(ctx, "families");
-    const pdk_bond_index nb = pdk_families_num_bonds(fam);
+    if (pdk_lattice_create(ctx, &lo, &sets_p[0])) die(ctx, "lattice");
+    if (strcmp(order, "lattice") &&
+        pdk_particles_reorder_morton(sets_p[0], pdk_families_cell_edge(sets_p[0], delta), NULL))
+      die(ctx, "reorder");
+    if (pdk_families_build(sets_p[0], &fo, &sets_fam[0])) die(ctx, "families");
+    const pdk_index n = pdk_particles_count(sets_p[0]);
+    const pdk_bond_index nb = pdk_families_num_bonds(sets_fam[0]);
     const double bpp = (double)nb / n;
 
     for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
@@ -409,6 +414,17 @@ int main(int argc, char **argv) {
         continue;
       if (experiment && prec != PDK_PRECISION_DOUBLE) continue;
       if (experiment && dim != 3) continue;
+      /* --order auto: the correspondence stencil path on particles in row order, as pdk_sim_create
+       * numbers a scene that takes it */
+      const int rows =
+          !strcmp(order, "auto") && stencil && models[im / num_prec] == PDK_MODEL_CORRESPONDENCE;
+      if (rows && !sets_p[1]) {
+        if (pdk_lattice_create(ctx, &lo, &sets_p[1])) die(ctx, "lattice");
+        if (pdk_particles_reorder_rows(sets_p[1], dx, NULL)) die(ctx, "reorder");
+        if (pdk_families_build(sets_p[1], &fo, &sets_fam[1])) die(ctx, "families");
+      }
+      pdk_particles *p = sets_p[rows];
+      pdk_families *fam = sets_fam[rows];
       pmb_r0_case ex = {
           p, fam, NULL, 18.0 * 1.6e11 / (M_PI * pow(delta, 4)), delta + 0.5 * dx, 1.0 / dx};
       pdk_model_opts mo = pdk_model_opts_default();
@@ -527,8 +543,10 @@ int main(int argc, char **argv) {
       pdk_model_destroy(&m);
       free(ex.r0);
     }
-    pdk_families_destroy(&fam);
-    pdk_particles_destroy(&p);
+    for (int k = 0; k < 2; ++k) {
+      pdk_families_destroy(&sets_fam[k]);
+      pdk_particles_destroy(&sets_p[k]);
+    }
   }
   pdk_ctx_destroy(&kctx);
   pdk_ctx_destroy(&ctx0);

@@ -354,9 +354,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
     m->ops = opts->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul
                                                        : &pdk_model_ops_corr;
     if (opts->connectivity == PDK_CONNECTIVITY_UL && opts->stencil != PDK_STENCIL_OFF)
-      snprintf(m->stencil_why, sizeof m->stencil_why,
-               "correspondence with ul connectivity (its families are rebuilt in the current "
-               "configuration)");
+      snprintf(m->stencil_why, sizeof m->stencil_why, "%s", pdk_stencil_corr_refusal(opts));
     break;
   }
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,

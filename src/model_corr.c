@@ -509,12 +509,9 @@ static int corr_setup(pdk_model *m) {
    * stabilization; K^-1 and m above stay the general path's. When it is taken the packed rows
    * are not needed. */
   if (o->stencil != PDK_STENCIL_OFF) {
-    if (o->connectivity != PDK_CONNECTIVITY_TL || o->stabilization == PDK_STAB_HOURGLASS) {
-      snprintf(m->stencil_why, sizeof m->stencil_why, "%s",
-               o->connectivity != PDK_CONNECTIVITY_TL
-                   ? "correspondence with semi_tl connectivity (its bond list is compacted)"
-                   : "correspondence with hourglass stabilization (the stencil passes implement "
-                     "none and silling)");
+    const char *refusal = pdk_stencil_corr_refusal(o);
+    if (refusal) {
+      snprintf(m->stencil_why, sizeof m->stencil_why, "%s", refusal);
       PDK_CHECK(o->stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
                 "correspondence model: stencil on, but the stencil path does not apply: %s; use "
                 "stencil auto (the general path then) or off",

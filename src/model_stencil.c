@@ -652,6 +652,18 @@ int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k
 #define STENCIL_CORR_XI_TOL 1e-10
 #define STENCIL_CORR_OMEGA_RTOL 1e-9
 
+const char *pdk_stencil_corr_refusal(const pdk_model_opts *o) {
+  if (o->connectivity == PDK_CONNECTIVITY_UL)
+    return "correspondence with ul connectivity (its families are rebuilt in the current "
+           "configuration)";
+  if (o->connectivity != PDK_CONNECTIVITY_TL)
+    return "correspondence with semi_tl connectivity (its bond list is compacted)";
+  if (o->stabilization == PDK_STAB_HOURGLASS)
+    return "correspondence with hourglass stabilization (the stencil passes implement none and "
+           "silling)";
+  return NULL;
+}
+
 int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_storage) {
   pdk_stencil *st = m->stencil;
   pdk_ctx *ctx = m->ctx;

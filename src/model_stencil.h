@@ -34,6 +34,9 @@ int pdk_stencil_lps_setup(pdk_model *m, pdk_stencil *st, const double *inv_m);
 int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k, double *theta,
                           double *s0_next, double *w, pdk_bond_index *broken);
 
+/* Correspondence: NULL when the options allow the stencil path (tl connectivity, stabilization none
+ * or silling), else why not; the lattice itself is checked by pdk_stencil_create. */
+const char *pdk_stencil_corr_refusal(const pdk_model_opts *o);
 /* Correspondence: xi and omega per offset from the families (bond_omega: the model's [num_bonds])
  * and the per-site pass-2 arrays (float_storage: also their float copy); once, after
  * pdk_stencil_model_setup built m->stencil. When some bond's xi or omega differs from its

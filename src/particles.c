@@ -295,76 +295,130 @@ uint64_t pdk_morton3(uint32_t cx, uint32_t cy, uint32_t cz) {
   return spread3(cx) | (spread3(cy) << 1) | (spread3(cz) << 2);
 }
 
-int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out) {
+/* Stable LSD radix sort of the particles by key[0..n) (8 bits per pass; a pass whose byte is 0 in
+ * every key is skipped), then every field regathered. key is overwritten; the caller frees it.
+ * perm_out (n entries, new -> old) when not NULL. */
+static int reorder_by_key(pdk_particles *p, uint64_t *key, pdk_index *perm_out) {
   int err = PDK_SUCCESS;
   pdk_ctx *ctx = p->ctx;
-  uint64_t *key = NULL, *key_tmp = NULL;
-  pdk_index *perm = NULL, *perm_tmp = NULL;
-  PDK_CHECK(isfinite(cell_edge) && cell_edge > 0, ctx, PDK_ERR_ARG,
-            "Morton cell edge must be a positive finite length, got %g", cell_edge);
-  PDK_CALL(pdk_particles_check_finite(p));
-  const int dim = p->dim;
   const pdk_index n = p->n;
-  double lo[3] = {0, 0, 0};
-  uint32_t max_cells = dim == 2 ? 0xffffffffu : (1u << 21) - 1;
-  for (int c = 0; c < dim; ++c) {
-    const double *x = pdk_particles_X(p, c);
-    double mn = x[0], mx = x[0];
-    for (pdk_index i = 1; i < n; ++i) {
-      mn = x[i] < mn ? x[i] : mn;
-      mx = x[i] > mx ? x[i] : mx;
-    }
-    lo[c] = mn;
-    PDK_CHECK((mx - mn) / cell_edge < (double)max_cells, ctx, PDK_ERR_ARG,
-              "the body spans %g cells of edge %g along axis %d; at most %u fit a Morton key",
-              (mx - mn) / cell_edge, cell_edge, c, max_cells);
-  }
-  key = malloc((size_t)n * sizeof *key);
-  key_tmp = malloc((size_t)n * sizeof *key_tmp);
-  perm = malloc((size_t)n * sizeof *perm);
-  perm_tmp = malloc((size_t)n * sizeof *perm_tmp);
-  PDK_CHECK_GOTO(key && key_tmp && perm && perm_tmp, ctx, PDK_ERR_MEMORY,
+  uint64_t *const key_buf = malloc((size_t)n * sizeof *key_buf);
+  pdk_index *const perm_buf = malloc((size_t)n * sizeof *perm_buf);
+  pdk_index *const perm_buf2 = malloc((size_t)n * sizeof *perm_buf2);
+  PDK_CHECK_GOTO(key_buf && perm_buf && perm_buf2, ctx, PDK_ERR_MEMORY,
                  "out of memory sorting %d particles", (int)n);
-  {
-    const double *x0 = pdk_particles_X(p, 0), *x1 = pdk_particles_X(p, 1);
-    const double *x2 = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-        int nthreads = ctx->num_threads;
-#pragma omp parallel for default(none) shared(key, perm, x0, x1, x2, lo, n, dim, cell_edge) schedule(static) num_threads(nthreads)
-    for (pdk_index i = 0; i < n; ++i) {
-      /* cell = floor((x - lo) / edge), by division so the rule is exact as documented */
-      uint32_t cx = (uint32_t)((x0[i] - lo[0]) / cell_edge);
-      uint32_t cy = (uint32_t)((x1[i] - lo[1]) / cell_edge);
-      key[i] = dim == 2 ? pdk_morton2(cx, cy)
-                        : pdk_morton3(cx, cy, (uint32_t)((x2[i] - lo[2]) / cell_edge));
-      perm[i] = i;
-    }
-  }
-  /* LSD radix sort, 8 bits per pass: stable, so equal keys keep their order. */
+  uint64_t *k_cur = key, *k_tmp = key_buf;
+  pdk_index *perm = perm_buf, *perm_tmp = perm_buf2;
+  for (pdk_index i = 0; i < n; ++i)
+    perm[i] = i;
   for (int shift = 0; shift < 64; shift += 8) {
     size_t count[257] = {0};
     int any = 0;
     for (pdk_index i = 0; i < n; ++i) {
-      unsigned b = (unsigned)(key[i] >> shift) & 0xffu;
+      unsigned b = (unsigned)(k_cur[i] >> shift) & 0xffu;
       count[b + 1]++;
       any |= b != 0;
     }
     if (!any) continue;
     for (int b = 0; b < 256; ++b) count[b + 1] += count[b];
     for (pdk_index i = 0; i < n; ++i) {
-      unsigned b = (unsigned)(key[i] >> shift) & 0xffu;
+      unsigned b = (unsigned)(k_cur[i] >> shift) & 0xffu;
       size_t dst = count[b]++;
-      key_tmp[dst] = key[i];
+      k_tmp[dst] = k_cur[i];
       perm_tmp[dst] = perm[i];
     }
-    uint64_t *tk = key; key = key_tmp; key_tmp = tk;
-    pdk_index *tp = perm; perm = perm_tmp; perm_tmp = tp;
+    uint64_t *tk = k_cur;
+    k_cur = k_tmp;
+    k_tmp = tk;
+    pdk_index *tp = perm;
+    perm = perm_tmp;
+    perm_tmp = tp;
   }
   PDK_CALL_GOTO(regather(p, perm, n));
   if (perm_out) memcpy(perm_out, perm, (size_t)n * sizeof *perm);
 cleanup:
+  free(key_buf);
+  free(perm_buf);
+  free(perm_buf2);
+  return err;
+}
+
+/* Low corner of the reference positions' bounding box, and the extent along each axis in units of
+ * `unit`; error when an extent reaches `max_units`. */
+static int bounding_box(pdk_particles *p, double unit, double max_units, const char *what,
+                        const char *key_name, double lo[3]) {
+  for (int c = 0; c < 3; ++c)
+    lo[c] = 0.0;
+  for (int c = 0; c < p->dim; ++c) {
+    const double *x = pdk_particles_X(p, c);
+    double mn = x[0], mx = x[0];
+    for (pdk_index i = 1; i < p->n; ++i) {
+      mn = x[i] < mn ? x[i] : mn;
+      mx = x[i] > mx ? x[i] : mx;
+    }
+    lo[c] = mn;
+    PDK_CHECK((mx - mn) / unit < max_units, p->ctx, PDK_ERR_ARG,
+              "the body spans %g %s %g along axis %d; at most %.0f fit a %s key", (mx - mn) / unit,
+              what, unit, c, max_units, key_name);
+  }
+  return PDK_SUCCESS;
+}
+
+int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out) {
+  pdk_ctx *ctx = p->ctx;
+  PDK_CHECK(isfinite(cell_edge) && cell_edge > 0, ctx, PDK_ERR_ARG,
+            "Morton cell edge must be a positive finite length, got %g", cell_edge);
+  PDK_CALL(pdk_particles_check_finite(p));
+  const int dim = p->dim;
+  const pdk_index n = p->n;
+  double lo[3];
+  PDK_CALL(bounding_box(p, cell_edge, dim == 2 ? 4294967295.0 : 2097151.0, "cells of edge",
+                        "Morton", lo));
+  uint64_t *key = malloc((size_t)n * sizeof *key);
+  PDK_CHECK(key, ctx, PDK_ERR_MEMORY, "out of memory sorting %d particles", (int)n);
+  const double *x0 = pdk_particles_X(p, 0), *x1 = pdk_particles_X(p, 1);
+  const double *x2 = dim == 3 ? pdk_particles_X(p, 2) : NULL;
+  const int nthreads = ctx->num_threads;
+#pragma omp parallel for default(none) shared(key, x0, x1, x2, lo, n, dim, cell_edge)              \
+    schedule(static) num_threads(nthreads)
+  for (pdk_index i = 0; i < n; ++i) {
+    /* cell = floor((x - lo) / edge), by division so the rule is exact as documented */
+    uint32_t cx = (uint32_t)((x0[i] - lo[0]) / cell_edge);
+    uint32_t cy = (uint32_t)((x1[i] - lo[1]) / cell_edge);
+    key[i] = dim == 2 ? pdk_morton2(cx, cy)
+                      : pdk_morton3(cx, cy, (uint32_t)((x2[i] - lo[2]) / cell_edge));
+  }
+  const int err = reorder_by_key(p, key, perm_out);
   free(key);
-  free(key_tmp);
-  free(perm);
-  free(perm_tmp);
+  return err;
+}
+
+int pdk_particles_reorder_rows(pdk_particles *p, double spacing, pdk_index *perm_out) {
+  pdk_ctx *ctx = p->ctx;
+  PDK_CHECK(isfinite(spacing) && spacing > 0, ctx, PDK_ERR_ARG,
+            "row order: the lattice spacing must be a positive finite length, got %g", spacing);
+  PDK_CALL(pdk_particles_check_finite(p));
+  const int dim = p->dim;
+  const pdk_index n = p->n;
+  double lo[3];
+  PDK_CALL(bounding_box(p, spacing, dim == 2 ? 4294967294.0 : 2097150.0, "lattice spacings of",
+                        "row", lo));
+  uint64_t *key = malloc((size_t)n * sizeof *key);
+  PDK_CHECK(key, ctx, PDK_ERR_MEMORY, "out of memory sorting %d particles", (int)n);
+  const int nthreads = ctx->num_threads;
+  const double *x[3] = {pdk_particles_X(p, 0), pdk_particles_X(p, 1),
+                        dim == 3 ? pdk_particles_X(p, 2) : NULL};
+  /* index = nearest lattice point (x - lo) / spacing; key = (k, j, i) in 21 (2-D: 32) bits each */
+  const int bits = dim == 2 ? 32 : 21;
+#pragma omp parallel for default(none) shared(key, x, lo, n, dim, spacing, bits) schedule(static)  \
+    num_threads(nthreads)
+  for (pdk_index i = 0; i < n; ++i) {
+    uint64_t k = 0;
+    for (int c = dim - 1; c >= 0; --c)
+      k = (k << bits) | (uint64_t)llround((x[c][i] - lo[c]) / spacing);
+    key[i] = k;
+  }
+  const int err = reorder_by_key(p, key, perm_out);
+  free(key);
   return err;
 }

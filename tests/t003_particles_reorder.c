@@ -1,6 +1,6 @@
-/* Particle store: permutation, compaction and Morton reordering carry every registered field and
- * keep the original id; the Morton order is the documented Z-order of cells, and the result is
- * bitwise the same with 1 and 2 threads.
+/* Particle store: permutation, compaction, Morton and row reordering carry every registered field
+ * and keep the original id; the Morton order is the documented Z-order of cells, the row order the
+ * lattice indices z, y, x (stable), and the result is bitwise the same with 1 and 2 threads.
  * labels: unit threads */
 #include "test_util.h"
 
@@ -96,6 +96,62 @@ int main(void) {
     T_ASSERT(!memcmp(pdk_particles_id(q1), pdk_particles_id(q2), (size_t)n * sizeof(int64_t)), "ids differ");
     pdk_particles_destroy(&q1);
     pdk_particles_destroy(&q2);
+
+    /* Row order (pdk_particles_reorder_rows): the nearest lattice indices (z, y, x) never
+     * decrease, x fastest; particles at the same lattice point (the spacing is coarse, so there
+     * are some) keep their previous relative order (stable); the same bits from 2 threads. */
+    {
+      const double h = 0.5; /* the cloud spans [0, 10): 20 lattice points per axis */
+      int64_t *before = malloc((size_t)n * sizeof *before); /* ids before the sort */
+      pdk_index *rank = malloc((size_t)n * sizeof *rank);   /* id -> position before the sort */
+      for (pdk_index i = 0; i < n; ++i) {
+        before[i] = pdk_particles_id(p)[i];
+        rank[pdk_particles_id(p)[i]] = i;
+      }
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, 2));
+      T_OK(ctx, pdk_particles_reorder_rows(p, h, perm));
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
+      check_carried(p);
+      for (pdk_index i = 0; i < n; ++i)
+        T_ASSERT(before[perm[i]] == pdk_particles_id(p)[i], "perm_out is not new -> old at %d",
+                 (int)i);
+      double rlo[3] = {1e300, 1e300, 1e300};
+      for (int c = 0; c < dim; ++c)
+        for (pdk_index i = 0; i < n; ++i)
+          rlo[c] = fmin(rlo[c], pdk_particles_X(p, c)[i]);
+      int ties = 0;
+      for (pdk_index i = 1; i < n; ++i) {
+        int cmp = 0; /* sign of key(i) - key(i - 1), z first */
+        for (int c = dim - 1; c >= 0 && !cmp; --c) {
+          const long a = lround((pdk_particles_X(p, c)[i] - rlo[c]) / h);
+          const long b = lround((pdk_particles_X(p, c)[i - 1] - rlo[c]) / h);
+          cmp = (a > b) - (a < b);
+        }
+        T_ASSERT(cmp >= 0, "row keys decrease at %d", (int)i);
+        if (!cmp) {
+          ++ties;
+          T_ASSERT(rank[pdk_particles_id(p)[i]] > rank[pdk_particles_id(p)[i - 1]],
+                   "row order is not stable at %d", (int)i);
+        }
+      }
+      T_ASSERT(ties > 0, "no two particles share a lattice point: stability unchecked");
+      pdk_particles *r1 = cloud(ctx, dim, n, 99 + (uint64_t)dim);
+      T_OK(ctx, pdk_particles_reorder_rows(r1, h, NULL));
+      pdk_particles *r2 = cloud(ctx, dim, n, 99 + (uint64_t)dim);
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, 2));
+      T_OK(ctx, pdk_particles_reorder_rows(r2, h, NULL));
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
+      for (int c = 0; c < dim; ++c)
+        T_ASSERT(
+            !memcmp(pdk_particles_X(r1, c), pdk_particles_X(r2, c), (size_t)n * sizeof(double)),
+            "row order: X differs 1 vs 2 threads");
+      pdk_particles_destroy(&r1);
+      pdk_particles_destroy(&r2);
+      T_FAILS(ctx, pdk_particles_reorder_rows(p, 0.0, NULL), PDK_ERR_ARG, "lattice spacing");
+      T_FAILS(ctx, pdk_particles_reorder_rows(p, 1e-300, NULL), PDK_ERR_ARG, "row key");
+      free(before);
+      free(rank);
+    }
 
     /* Compaction keeps the chosen particles in order with their fields. */
     uint8_t *keep = calloc((size_t)n, 1);

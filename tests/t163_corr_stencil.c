@@ -619,20 +619,52 @@ static void refusals(pdk_ctx *ctx) {
   pdk_particles_destroy(&p);
 }
 
-/* The scene key: model.stencil on with correspondence builds a stencil model. */
+/* 1 when the particles' reference positions run along the lattice's rows (z, then y, then x
+ * never decreasing, x fastest), 0 otherwise. */
+static int in_rows(pdk_particles *p) {
+  const int dim = pdk_particles_dim(p);
+  for (pdk_index i = 1; i < pdk_particles_count(p); ++i) {
+    int cmp = 0;
+    for (int c = dim - 1; c >= 0 && !cmp; --c) {
+      const double a = pdk_particles_X(p, c)[i], b = pdk_particles_X(p, c)[i - 1];
+      cmp = (a > b) - (a < b);
+    }
+    if (cmp < 0) return 0;
+  }
+  return 1;
+}
+
+/* The scene key: model.stencil on with correspondence builds a stencil model, and the scene
+ * numbers the particles along the lattice's rows (the stencil's site order), where with stencil
+ * off, or where the options refuse the stencil path (semi_tl under auto), they stay in the cells'
+ * Morton order. */
 static void scene_key(pdk_ctx *ctx) {
   const char *src = getenv("PDK_SOURCE_DIR");
   char path[2048];
   snprintf(path, sizeof path, "%s/tests/scenes/t060_minimal.yaml", src ? src : "..");
-  const char *keys[] = {"model.stencil=on", "model.kind=correspondence",
-                        "material.shear_modulus=4e8", "model.stabilization=silling"};
-  pdk_scene *sc = NULL;
-  T_OK(ctx, pdk_scene_load(ctx, path, keys, 4, &sc));
-  pdk_sim *sim = NULL;
-  T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
-  T_ASSERT(pdk_model_stencil_active(pdk_sim_model(sim)), "scene model.stencil: on not applied");
-  pdk_sim_destroy(&sim);
-  pdk_scene_destroy(&sc);
+  const char *on[] = {"model.kind=correspondence", "material.shear_modulus=4e8",
+                      "model.stabilization=silling", "model.stencil=on"};
+  const char *off[] = {"model.kind=correspondence", "material.shear_modulus=4e8",
+                       "model.stabilization=silling", "model.stencil=off"};
+  const char *refused[] = {"model.kind=correspondence", "material.shear_modulus=4e8",
+                           "model.stabilization=silling", "model.stencil=auto",
+                           "model.connectivity=semi_tl"};
+  const char **keys[3] = {on, off, refused};
+  const int num_keys[3] = {4, 4, 5};
+  for (int v = 0; v < 3; ++v) {
+    pdk_scene *sc = NULL;
+    T_OK(ctx, pdk_scene_load(ctx, path, keys[v], num_keys[v], &sc));
+    pdk_sim *sim = NULL;
+    T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
+    const int active = pdk_model_stencil_active(pdk_sim_model(sim));
+    const int rows = in_rows(pdk_sim_particles(sim));
+    T_ASSERT(active == (v == 0), "scene %s: stencil path %s", keys[v][3],
+             active ? "taken" : "not taken");
+    T_ASSERT(rows == (v == 0), "scene %s%s: particles %s in row order", keys[v][3],
+             v == 2 ? " with semi_tl" : "", rows ? "are" : "are not");
+    pdk_sim_destroy(&sim);
+    pdk_scene_destroy(&sc);
+  }
 }
 
 int main(void) {

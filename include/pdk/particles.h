@@ -76,6 +76,13 @@ int pdk_particles_compact(pdk_particles *p, const uint8_t *keep);
  * is not NULL it receives n entries (new -> old). */
 int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out);
 
+/* Sorts particles by rows of a lattice of the given spacing: the nearest lattice index
+ * round((X - lo) / spacing) per axis, z slowest and x fastest (lo the bounding box's low corner).
+ * Stable. On a regular lattice this is the site order of the stencil path (model.stencil), whose
+ * per-particle arrays are then walked in order; used by pdk_sim_create for the correspondence
+ * stencil path. perm_out as for pdk_particles_reorder_morton. */
+int pdk_particles_reorder_rows(pdk_particles *p, double spacing, pdk_index *perm_out);
+
 /* Morton key of integer cell coordinates (21 bits per axis in 3-D, 32 in 2-D). */
 uint64_t pdk_morton2(uint32_t cx, uint32_t cy);
 uint64_t pdk_morton3(uint32_t cx, uint32_t cy, uint32_t cz);
