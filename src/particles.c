@@ -343,10 +343,15 @@ cleanup:
   return err;
 }
 
-/* Low corner of the reference positions' bounding box, and the extent along each axis in units of
- * `unit`; error when an extent reaches `max_units`. */
-static int bounding_box(pdk_particles *p, double unit, double max_units, const char *what,
-                        const char *key_name, double lo[3]) {
+/* The common start of a reordering by lattice cells of size `unit`: checks unit (`unit_name`
+ * names it in the message) and the reference positions, gives the low corner lo of their bounding
+ * box, and allocates the n sort keys (*key; the caller frees it). Error when the body spans
+ * `max_units` or more units along an axis (`what` and `key_name` word the message). */
+static int sort_setup(pdk_particles *p, double unit, const char *unit_name, double max_units,
+                      const char *what, const char *key_name, double lo[3], uint64_t **key) {
+  PDK_CHECK(isfinite(unit) && unit > 0, p->ctx, PDK_ERR_ARG,
+            "%s must be a positive finite length, got %g", unit_name, unit);
+  PDK_CALL(pdk_particles_check_finite(p));
   for (int c = 0; c < 3; ++c)
     lo[c] = 0.0;
   for (int c = 0; c < p->dim; ++c) {
@@ -361,24 +366,21 @@ static int bounding_box(pdk_particles *p, double unit, double max_units, const c
               "the body spans %g %s %g along axis %d; at most %.0f fit a %s key", (mx - mn) / unit,
               what, unit, c, max_units, key_name);
   }
+  *key = malloc((size_t)p->n * sizeof **key);
+  PDK_CHECK(*key, p->ctx, PDK_ERR_MEMORY, "out of memory sorting %d particles", (int)p->n);
   return PDK_SUCCESS;
 }
 
 int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out) {
-  pdk_ctx *ctx = p->ctx;
-  PDK_CHECK(isfinite(cell_edge) && cell_edge > 0, ctx, PDK_ERR_ARG,
-            "Morton cell edge must be a positive finite length, got %g", cell_edge);
-  PDK_CALL(pdk_particles_check_finite(p));
   const int dim = p->dim;
   const pdk_index n = p->n;
   double lo[3];
-  PDK_CALL(bounding_box(p, cell_edge, dim == 2 ? 4294967295.0 : 2097151.0, "cells of edge",
-                        "Morton", lo));
-  uint64_t *key = malloc((size_t)n * sizeof *key);
-  PDK_CHECK(key, ctx, PDK_ERR_MEMORY, "out of memory sorting %d particles", (int)n);
+  uint64_t *key = NULL;
+  PDK_CALL(sort_setup(p, cell_edge, "Morton cell edge", dim == 2 ? 4294967295.0 : 2097151.0,
+                      "cells of edge", "Morton", lo, &key));
+  const int nthreads = p->ctx->num_threads;
   const double *x0 = pdk_particles_X(p, 0), *x1 = pdk_particles_X(p, 1);
   const double *x2 = dim == 3 ? pdk_particles_X(p, 2) : NULL;
-  const int nthreads = ctx->num_threads;
 #pragma omp parallel for default(none) shared(key, x0, x1, x2, lo, n, dim, cell_edge)              \
     schedule(static) num_threads(nthreads)
   for (pdk_index i = 0; i < n; ++i) {
@@ -394,18 +396,13 @@ int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *
 }
 
 int pdk_particles_reorder_rows(pdk_particles *p, double spacing, pdk_index *perm_out) {
-  pdk_ctx *ctx = p->ctx;
-  PDK_CHECK(isfinite(spacing) && spacing > 0, ctx, PDK_ERR_ARG,
-            "row order: the lattice spacing must be a positive finite length, got %g", spacing);
-  PDK_CALL(pdk_particles_check_finite(p));
   const int dim = p->dim;
   const pdk_index n = p->n;
   double lo[3];
-  PDK_CALL(bounding_box(p, spacing, dim == 2 ? 4294967294.0 : 2097150.0, "lattice spacings of",
-                        "row", lo));
-  uint64_t *key = malloc((size_t)n * sizeof *key);
-  PDK_CHECK(key, ctx, PDK_ERR_MEMORY, "out of memory sorting %d particles", (int)n);
-  const int nthreads = ctx->num_threads;
+  uint64_t *key = NULL;
+  PDK_CALL(sort_setup(p, spacing, "row order: the lattice spacing",
+                      dim == 2 ? 4294967294.0 : 2097150.0, "lattice spacings of", "row", lo, &key));
+  const int nthreads = p->ctx->num_threads;
   const double *x[3] = {pdk_particles_X(p, 0), pdk_particles_X(p, 1),
                         dim == 3 ? pdk_particles_X(p, 2) : NULL};
   /* index = nearest lattice point (x - lo) / spacing; key = (k, j, i) in 21 (2-D: 32) bits each */
