@@ -8,6 +8,10 @@
  *   OUT_CSV  <name>_history.csv    header at open, one row per history record
  *   OUT_GP   <name>_history.gp     gnuplot script, written at close
  *   OUT_PNG  <name>_history.png    made by gnuplot at close, when it is on the PATH
+ *   OUT_FCSV <name>_fields.csv     2-D only: the last field output, one row per particle,
+ *                                  written at close from the .h5 (so it is that output's data)
+ *   OUT_FGP  <name>_fields.gp      2-D only: gnuplot script drawing it, written at close
+ *   OUT_FPNG <name>_fields.png     2-D only: made by gnuplot at close, when it is on the PATH
  * Field outputs flush the HDF5 file, the XDMF and the CSV (H5Fflush, fflush); close syncs every
  * file (fsync) before its rename, and renames the .xmf last.
  *
@@ -31,7 +35,7 @@
 #include "h5io.h"
 #include "pdk/output.h"
 
-enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_NUM_FILES };
+enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_FCSV, OUT_FGP, OUT_FPNG, OUT_NUM_FILES };
 
 #define OUT_CHUNK_ROWS 32768 /* rows per field chunk: 256 kB for f64 scalars, 768 kB for vectors   \
                               */
@@ -64,6 +68,12 @@ struct pdk_output {
   hid_t history; /* /history group */
   FILE *xmf, *csv;
   int num_steps; /* field outputs written */
+  /* The fields of the last field output (as given, and their dataset names), its step and time:
+   * what <name>_fields.csv holds. */
+  int num_last;
+  char (*last_field)[OUT_NAME_MAX], (*last_dname)[OUT_NAME_MAX];
+  long last_step;
+  double last_time;
   long rows;     /* history records written */
   int num_cols;
   char col_name[OUT_MAX_COLS][OUT_COL_MAX];
@@ -663,8 +673,9 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
     free(o->h5_ref);
     o->h5_ref = escaped;
   }
-  static const char *const suffix[OUT_NUM_FILES] = {".h5", ".xmf", "_history.csv", "_history.gp",
-                                                    "_history.png"};
+  static const char *const suffix[OUT_NUM_FILES] = {".h5",         ".xmf",         "_history.csv",
+                                                    "_history.gp", "_history.png", "_fields.csv",
+                                                    "_fields.gp",  "_fields.png"};
   for (int f = 0; f < OUT_NUM_FILES; ++f) {
     o->final[f] = pdk_str_printf("%s/%s%s", dir, opts.name, suffix[f]);
     o->part[f] = pdk_str_printf("%s/%s%s.part", dir, opts.name, suffix[f]);
@@ -770,6 +781,20 @@ int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double t
   }
   fprintf(o->xmf, "    </Grid>\n");
   PDK_CALL_GOTO(flush_files(o));
+  {
+    char(*lf)[OUT_NAME_MAX] = realloc(o->last_field, ((size_t)num_fields + 1) * sizeof *lf);
+    if (lf) o->last_field = lf;
+    char(*ld)[OUT_NAME_MAX] = realloc(o->last_dname, ((size_t)num_fields + 1) * sizeof *ld);
+    if (ld) o->last_dname = ld;
+    PDK_CHECK_GOTO(lf && ld, ctx, PDK_ERR_MEMORY, "out of memory");
+    for (int k = 0; k < num_fields; ++k) {
+      snprintf(o->last_field[k], OUT_NAME_MAX, "%s", fields[k]);
+      memcpy(o->last_dname[k], dname[k], OUT_NAME_MAX);
+    }
+    o->num_last = num_fields;
+    o->last_step = step;
+    o->last_time = time;
+  }
   o->num_steps++;
   o->failed = 0;
 cleanup:
@@ -956,16 +981,16 @@ cleanup:
   return err;
 }
 
-/* Runs gnuplot on the committed script, in o->dir, writing the PNG's .part; its stderr is
- * collected for the error message. */
-static int run_gnuplot(pdk_output *o) {
+/* Runs gnuplot on the committed script <name><stem>.gp, in o->dir, writing the PNG's .part
+ * (file png); its stderr is collected for the error message. */
+static int run_gnuplot(pdk_output *o, const char *stem, int gp, int png) {
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
   int pipefd[2] = {-1, -1};
   char msg[1024] = "";
   size_t msg_len = 0;
-  char *script = pdk_str_printf("%s_history.gp", o->name);
-  char *outfile = pdk_str_printf("%s_history.png.part", o->name);
+  char *script = pdk_str_printf("%s%s.gp", o->name, stem);
+  char *outfile = pdk_str_printf("%s%s.png.part", o->name, stem);
   char *quoted = outfile ? gnuplot_quote(outfile) : NULL;
   char *expr = quoted ? pdk_str_printf("outfile='%s'", quoted) : NULL;
   PDK_CHECK_GOTO(script && expr, ctx, PDK_ERR_MEMORY, "out of memory");
@@ -1003,13 +1028,13 @@ static int run_gnuplot(pdk_output *o) {
   }
   for (size_t k = 0; k < msg_len; ++k)
     if (msg[k] == '\n') msg[k] = ' ';
-  PDK_CHECK_GOTO(WIFEXITED(status) && WEXITSTATUS(status) == 0 && pdk_file_exists(o->part[OUT_PNG]),
+  PDK_CHECK_GOTO(WIFEXITED(status) && WEXITSTATUS(status) == 0 && pdk_file_exists(o->part[png]),
                  ctx, PDK_ERR_EXTERNAL,
                  "gnuplot failed on '%s' (%s %d)%s%s; the data files are complete, only the plot "
-                 "is missing: rerun 'gnuplot %s_history.gp' in '%s'",
-                 o->final[OUT_GP], WIFEXITED(status) ? "exit status" : "signal",
+                 "is missing: rerun 'gnuplot %s' in '%s'",
+                 o->final[gp], WIFEXITED(status) ? "exit status" : "signal",
                  WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "",
-                 msg, o->name, o->dir);
+                 msg, script, o->dir);
 cleanup:
   if (pipefd[0] >= 0) close(pipefd[0]);
   if (pipefd[1] >= 0) close(pipefd[1]);
@@ -1048,10 +1073,268 @@ static void output_free(pdk_output *o) {
   }
   free(o->set_name);
   free(o->set_field);
+  free(o->last_field);
+  free(o->last_dname);
   free(o->dir);
   free(o->name);
   free(o->h5_ref);
   free(o);
+}
+
+/* ---- field snapshot (2-D) --------------------------------------------------------------------
+ */
+
+#define SNAP_MAX_PANELS 6
+
+/* What write_snapshot_csv wrote, for the plot: CSV columns (1-based) of the plotted positions and
+ * of each panel's value (|u| from two columns), and the positions' bounding box. */
+typedef struct out_snapshot {
+  int pos_col[2]; /* x, y columns; pos_add[c] > 0: plus that column (X + u) */
+  int pos_add[2];
+  int num_panels;
+  char title[SNAP_MAX_PANELS][OUT_NAME_MAX + 8];
+  int col[SNAP_MAX_PANELS]; /* value column; norm[k]: |(col, col + 1)| */
+  int norm[SNAP_MAX_PANELS];
+  /* Over the particles that have not failed (all when "failed" is not written): the positions'
+   * bounding box, the view, and each panel's range of values, its colour scale, so that failed
+   * particles flung far away do not shrink the body or the scales. */
+  double lo[2], hi[2];
+  double vlo[SNAP_MAX_PANELS], vhi[SNAP_MAX_PANELS];
+  pdk_index num_shown;
+  int failed_col; /* column of "failed" (0: not written); the other panels leave failed out */
+} out_snapshot;
+
+/* Reads rows [r0, r0 + rows) of dataset `path` ([n] or [n][cols]) as doubles into buf. */
+static int read_rows(pdk_output *o, const char *path, int cols, hsize_t r0, hsize_t rows,
+                     double *buf) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  hid_t d = -1, fspace = -1, mspace = -1;
+  herr_t st;
+  hsize_t start[2] = {r0, 0}, count[2] = {rows, (hsize_t)cols};
+  const int rank = cols > 1 ? 2 : 1;
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(o->file, path, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(d));
+  PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(rank, count, NULL));
+  PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf));
+cleanup:
+  if (mspace >= 0) H5Sclose(mspace);
+  if (fspace >= 0) H5Sclose(fspace);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+/* <name>_fields.csv: id, X, Y and every component of every field of the last field output, read
+ * back from the .h5 (still open), one row per particle in store order, 10 significant digits. A
+ * vector gives <f>_x, <f>_y, a tensor <f>_xx, <f>_xy, <f>_yx, <f>_yy, other fields <f>_0, ...
+ * Fills *snap with what the plot draws: the current positions (x when written, else X + u when
+ * u is, else X) and up to SNAP_MAX_PANELS scalar fields and |u|, in the listed order. */
+static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  const int nf = o->num_last;
+  FILE *f = NULL;
+  double **buf = calloc((size_t)nf + 2, sizeof *buf);
+  int *cols = calloc((size_t)nf + 1, sizeof *cols), *ncomp = calloc((size_t)nf + 1, sizeof *ncomp);
+  int(*col_of)[9] = calloc((size_t)nf + 1, sizeof *col_of);
+  out_layout *layout = calloc((size_t)nf + 1, sizeof *layout);
+  char path[2 * OUT_NAME_MAX + 32];
+  double *row = NULL;
+  static const char *const tsuf[9] = {"xx", "xy", "", "yx", "yy", "", "", "", ""};
+  PDK_CHECK_GOTO(buf && cols && ncomp && col_of && layout, ctx, PDK_ERR_MEMORY, "out of memory");
+  const pdk_index block = o->n < OUT_CHUNK_ROWS ? o->n : OUT_CHUNK_ROWS;
+  for (int k = 0; k < nf + 2; ++k) {
+    buf[k] = malloc((size_t)block * 9 * sizeof(double));
+    PDK_CHECK_GOTO(buf[k], ctx, PDK_ERR_MEMORY, "out of memory for the field snapshot");
+  }
+  f = fopen(o->part[OUT_FCSV], "w");
+  PDK_CHECK_GOTO(f, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_FCSV], strerror(errno));
+
+  /* header; column numbers (1-based) for the plot */
+  fprintf(f, "id,X [%s],Y [%s]", o->unit_length, o->unit_length);
+  int col = 4, x_col = 0, u_col = 0, failed_col = 0;
+  memset(snap, 0, sizeof *snap);
+  for (int k = 0; k < nf; ++k) {
+    pdk_type type;
+    PDK_CALL_GOTO(pdk_particles_field_info(o->p, o->last_field[k], &type, &ncomp[k]));
+    layout[k] = field_layout(2, ncomp[k], &cols[k], col_of[k]);
+    const char *dn = o->last_dname[k];
+    if (layout[k] == OUT_VECTOR && !strcmp(o->last_field[k], "x")) x_col = col;
+    if (layout[k] == OUT_VECTOR && !strcmp(o->last_field[k], "u")) u_col = col;
+    if (layout[k] == OUT_SCALAR && !strcmp(o->last_field[k], "failed")) failed_col = col;
+    if ((layout[k] == OUT_SCALAR || (layout[k] == OUT_VECTOR && !strcmp(o->last_field[k], "u"))) &&
+        snap->num_panels < SNAP_MAX_PANELS) {
+      const int q = snap->num_panels++;
+      snap->col[q] = col;
+      snap->norm[q] = layout[k] == OUT_VECTOR;
+      snprintf(snap->title[q], sizeof snap->title[q], snap->norm[q] ? "|%s|" : "%s", dn);
+    }
+    for (int c = 0; c < ncomp[k]; ++c, ++col) {
+      if (layout[k] == OUT_SCALAR)
+        fprintf(f, ",%s", dn);
+      else if (layout[k] == OUT_VECTOR)
+        fprintf(f, ",%s_%s", dn, axis_name[c]);
+      else if (layout[k] == OUT_TENSOR)
+        fprintf(f, ",%s_%s", dn, tsuf[col_of[k][c]]);
+      else
+        fprintf(f, ",%s_%d", dn, c);
+    }
+  }
+  fprintf(f, "\n");
+  const int num_cols = col - 1;
+  snap->failed_col = failed_col;
+  row = malloc((size_t)(num_cols + 1) * sizeof *row); /* row[c]: CSV column c (1-based) */
+  PDK_CHECK_GOTO(row, ctx, PDK_ERR_MEMORY, "out of memory");
+  for (int c = 0; c < 2; ++c) {
+    snap->pos_col[c] = x_col ? x_col + c : 2 + c;
+    snap->pos_add[c] = !x_col && u_col ? u_col + c : 0;
+    snap->lo[c] = INFINITY;
+    snap->hi[c] = -INFINITY;
+  }
+  for (int q = 0; q < snap->num_panels; ++q) {
+    snap->vlo[q] = INFINITY;
+    snap->vhi[q] = -INFINITY;
+  }
+
+  for (pdk_index r0 = 0; r0 < o->n; r0 += block) {
+    const pdk_index rows = o->n - r0 < block ? o->n - r0 : block;
+    PDK_CALL_GOTO(read_rows(o, "/static/id", 1, (hsize_t)r0, (hsize_t)rows, buf[nf]));
+    PDK_CALL_GOTO(read_rows(o, "/static/X", 3, (hsize_t)r0, (hsize_t)rows, buf[nf + 1]));
+    for (int k = 0; k < nf; ++k) {
+      snprintf(path, sizeof path, "/steps/%d/%s", o->num_steps - 1, o->last_dname[k]);
+      PDK_CALL_GOTO(read_rows(o, path, cols[k], (hsize_t)r0, (hsize_t)rows, buf[k]));
+    }
+    for (pdk_index i = 0; i < rows; ++i) {
+      row[1] = buf[nf][i];
+      row[2] = buf[nf + 1][3 * i];
+      row[3] = buf[nf + 1][3 * i + 1];
+      for (int k = 0, c0 = 4; k < nf; c0 += ncomp[k], ++k)
+        for (int c = 0; c < ncomp[k]; ++c)
+          row[c0 + c] = buf[k][(size_t)i * cols[k] + col_of[k][c]];
+      fprintf(f, "%.0f", row[1]);
+      for (int c = 2; c <= num_cols; ++c)
+        fprintf(f, ",%.10g", row[c]);
+      fprintf(f, "\n");
+      if (failed_col && row[failed_col] != 0.0) continue;
+      snap->num_shown++;
+      for (int c = 0; c < 2; ++c) {
+        const double x = row[snap->pos_col[c]] + (snap->pos_add[c] ? row[snap->pos_add[c]] : 0.0);
+        snap->lo[c] = fmin(snap->lo[c], x);
+        snap->hi[c] = fmax(snap->hi[c], x);
+      }
+      for (int q = 0; q < snap->num_panels; ++q) {
+        const int c = snap->col[q];
+        const double v = snap->norm[q] ? hypot(row[c], row[c + 1]) : row[c];
+        snap->vlo[q] = fmin(snap->vlo[q], v);
+        snap->vhi[q] = fmax(snap->vhi[q], v);
+      }
+    }
+  }
+  PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
+                 o->part[OUT_FCSV], strerror(errno));
+cleanup:
+  if (f && fclose(f) != 0 && !err)
+    err = pdk_ctx_error_set(ctx, PDK_ERR_IO, __func__, "cannot write '%s': %s", o->part[OUT_FCSV],
+                            strerror(errno));
+  if (buf)
+    for (int k = 0; k < nf + 2; ++k)
+      free(buf[k]);
+  free(buf);
+  free(cols);
+  free(ncomp);
+  free(col_of);
+  free(layout);
+  free(row);
+  return err;
+}
+
+/* <name>_fields.gp: one panel per plotted field, the particles as dots coloured by the value, in
+ * the positions of the snapshot, equal axes. */
+static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
+  pdk_ctx *ctx = o->ctx;
+  int err = PDK_SUCCESS;
+  char *stem = gnuplot_quote(o->name);
+  FILE *f = NULL;
+  PDK_CHECK_GOTO(stem, ctx, PDK_ERR_MEMORY, "out of memory");
+  f = fopen(o->part[OUT_FGP], "w");
+  PDK_CHECK_GOTO(f, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_FGP], strerror(errno));
+  /* Panel size from the body's aspect; the dot size from the mean spacing in pixels. */
+  /* (every particle failed: no box, the view and the scales are gnuplot's automatic ones) */
+  const int have_box = snap->num_shown > 0;
+  double bw = have_box ? snap->hi[0] - snap->lo[0] : 1.0,
+         bh = have_box ? snap->hi[1] - snap->lo[1] : 1.0;
+  if (!(bw > 0)) bw = bh > 0 ? bh : 1.0;
+  if (!(bh > 0)) bh = bw;
+  const int pw = 440;
+  int ph = (int)(0.78 * pw * bh / bw) + 110;
+  ph = ph < 300 ? 300 : ph > 1000 ? 1000 : ph;
+  const double scale = fmin(0.62 * pw / bw, (ph - 110.0) / bh); /* pixels per length */
+  const double h = sqrt(bw * bh / (double)o->n);
+  double ps = 1.3 * scale * h / 6.0; /* pt 7 at pointsize 1 is about 6 pixels across */
+  ps = ps < 0.05 ? 0.05 : ps > 3.0 ? 3.0 : ps;
+  fprintf(f,
+          "# pdk field plot of the last field output (step %ld, t = %.6g); rerun with: gnuplot "
+          "%s_fields.gp (in this directory)\n",
+          o->last_step, o->last_time, stem);
+  fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_fields.png'\n", stem);
+  fprintf(f,
+          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+          "  set terminal pngcairo size %d,%d noenhanced\n} else {\n"
+          "  set terminal png size %d,%d noenhanced\n}\n",
+          pw * snap->num_panels, ph, pw * snap->num_panels, ph);
+  fprintf(f,
+          "set output outfile\nset datafile separator ','\nunset key\nset size ratio -1\n"
+          "set format x '%%g'\nset format y '%%g'\nset format cb '%%g'\n"
+          "set xtics rotate by 30 right\nset xlabel '[%s]'\n",
+          o->unit_length);
+  fprintf(f, "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', "
+             "4 '#fde725')\n");
+  fprintf(f, "data = '%s_fields.csv'\n", stem);
+  if (have_box) {
+    const double m = 0.03 * fmax(bw, bh);
+    fprintf(f, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", snap->lo[0] - m,
+            snap->lo[0] + bw + m, snap->lo[1] - m, snap->lo[1] + bh + m);
+  }
+  fprintf(f, "set multiplot layout 1,%d title '%s, step %ld, t = %.6g [%s]%s'\n", snap->num_panels,
+          stem, o->last_step, o->last_time, o->unit_time,
+          snap->pos_col[0] != 2 || snap->pos_add[0] ? ", current positions" : "");
+  char xs[64], ys[64];
+  for (int c = 0; c < 2; ++c) {
+    char *dst = c ? ys : xs;
+    if (snap->pos_add[c])
+      snprintf(dst, 64, "($%d+$%d)", snap->pos_col[c], snap->pos_add[c]);
+    else
+      snprintf(dst, 64, "%d", snap->pos_col[c]);
+  }
+  for (int q = 0; q < snap->num_panels; ++q) {
+    char *title = gnuplot_quote(snap->title[q]);
+    PDK_CHECK_GOTO(title, ctx, PDK_ERR_MEMORY, "out of memory");
+    fprintf(f, "set title '%s'\n", title);
+    free(title);
+    if (have_box && snap->vhi[q] > snap->vlo[q])
+      fprintf(f, "set cbrange [%.10g:%.10g]\n", snap->vlo[q], snap->vhi[q]);
+    else
+      fprintf(f, "set autoscale cb\n");
+    char v[96], shown[160];
+    if (snap->norm[q])
+      snprintf(v, sizeof v, "sqrt($%d**2+$%d**2)", snap->col[q], snap->col[q] + 1);
+    else
+      snprintf(v, sizeof v, "$%d", snap->col[q]);
+    if (snap->failed_col && snap->col[q] != snap->failed_col)
+      snprintf(shown, sizeof shown, "($%d != 0 ? NaN : %s)", snap->failed_col, v);
+    else
+      snprintf(shown, sizeof shown, "(%s)", v);
+    fprintf(f, "plot data skip 1 using %s:%s:%s with points pt 7 ps %.3g lc palette\n", xs, ys,
+            shown, ps);
+  }
+  fprintf(f, "unset multiplot\nset output\n");
+  PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
+                 o->part[OUT_FGP], strerror(errno));
+cleanup:
+  if (f) fclose(f);
+  free(stem);
+  return err;
 }
 
 /* Completes every file and renames it: .h5 and .csv, then the plot, then the .xmf. Returns the
@@ -1081,19 +1364,30 @@ static int finish(pdk_output *o) {
   st = H5Gclose(o->history);
   o->history = -1;
   PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
+  out_snapshot snap = {0};
+  if (o->dim == 2 && o->num_steps > 0) PDK_CALL(write_snapshot_csv(o, &snap));
   hid_t file = o->file;
   o->file = -1;
   PDK_H5_CALL(ctx, H5Fclose(file));
 
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_H5], o->final[OUT_H5]));
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_CSV], o->final[OUT_CSV]));
+  if (o->dim == 2 && o->num_steps > 0)
+    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FCSV], o->final[OUT_FCSV]));
   int plot_err = PDK_SUCCESS;
   if (o->will_plot && o->rows > 0) {
     PDK_CALL(write_plot_script(o));
     PDK_CALL(pdk_file_commit(ctx, o->part[OUT_GP], o->final[OUT_GP]));
-    plot_err = run_gnuplot(o);
+    plot_err = run_gnuplot(o, "_history", OUT_GP, OUT_PNG);
     if (!plot_err) plot_err = pdk_file_commit(ctx, o->part[OUT_PNG], o->final[OUT_PNG]);
     if (plot_err) pdk_file_remove(o->part[OUT_PNG]);
+  }
+  if (snap.num_panels > 0 && o->will_plot && !plot_err) {
+    PDK_CALL(write_snapshot_script(o, &snap));
+    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FGP], o->final[OUT_FGP]));
+    plot_err = run_gnuplot(o, "_fields", OUT_FGP, OUT_FPNG);
+    if (!plot_err) plot_err = pdk_file_commit(ctx, o->part[OUT_FPNG], o->final[OUT_FPNG]);
+    if (plot_err) pdk_file_remove(o->part[OUT_FPNG]);
   }
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_XMF], o->final[OUT_XMF]));
   return plot_err;

@@ -281,7 +281,9 @@ int main(void) {
   T_OK(ctx, pdk_output_close(&o, 1));
   T_ASSERT(!o, "close sets the handle to NULL");
   T_ASSERT(exists("run.h5") && exists("run.xmf") && exists("run_history.csv"), "final files exist");
-  T_ASSERT(count_files("run") == 3 + 2 * will_plot && !exists("run.h5.part"),
+  /* .h5, .xmf, the two CSVs, the history plot (the last output has no scalar: no field plot) */
+  T_ASSERT(count_files("run") == 4 + 2 * will_plot && !exists("run.h5.part") &&
+               exists("run_fields.csv") && !exists("run_fields.png"),
            "no .part file is left (%d files)", count_files("run"));
   T_ASSERT(exists("run_history.png") == will_plot, "PNG exists iff gnuplot ran (%d)", will_plot);
   if (will_plot) {
@@ -496,8 +498,9 @@ int main(void) {
     setenv("PATH", old_path, 1);
     free(old_path);
     T_ASSERT(exists("nogp.h5") && exists("nogp.xmf") && !exists("nogp_history.png") &&
-                 !exists("nogp_history.png.part") && count_files("nogp") == 3,
-             "without gnuplot: .h5, .xmf, .csv only");
+                 !exists("nogp_history.png.part") && exists("nogp_fields.csv") &&
+                 count_files("nogp") == 4,
+             "without gnuplot: .h5, .xmf and the two .csv only");
     file = H5Fopen(DIR_OUT "/nogp.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
     check_vector(file, "/steps/0/v", saved[2][1], n);
     hid_t d = H5Dopen2(file, "/steps/0/v", H5P_DEFAULT), dcpl = H5Dget_create_plist(d);
@@ -523,6 +526,102 @@ int main(void) {
     T_ASSERT(grids == 1 && items == 6, "histories only: %d grids, %d items", grids, items);
     free(text);
     H5Fclose(file);
+  }
+
+  /* 5c. The 2-D field snapshot: <name>_fields.csv holds the last field output, read back from
+   * the .h5 (not the store at close, which changed since), every component named; the plot's
+   * view and colour scales leave out failed particles, and its panels draw them only in
+   * "failed". */
+  {
+    T_OK(ctx, pdk_particles_field_add(p, "s", PDK_F64, 1));
+    T_OK(ctx, pdk_particles_field_add(p, "failed", PDK_U8, 1));
+    double *sv = pdk_particles_field_data(p, "s", 0);
+    uint8_t *fl = pdk_particles_field_data(p, "failed", 0);
+    double *xx = pdk_particles_field_data(p, "x", 0), *xy = pdk_particles_field_data(p, "x", 1);
+    const double *X0 = pdk_particles_X(p, 0);
+    oo.name = "snap";
+    T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
+    T_OK(ctx, pdk_output_write_history(o, &hist[0]));
+    const char *first[2] = {"s", "v"};
+    for (pdk_index i = 0; i < n; ++i)
+      sv[i] = -1.0;
+    T_OK(ctx, pdk_output_write_fields(o, p, 10, 0.5, first, 2));
+    /* the last output: particle 0 failed and flung 1 m away, s = 1 + i / 7 (the failed one's
+     * 1e6, beyond every other), T and odd as set above */
+    const double x0_saved[2] = {xx[0], xy[0]};
+    xx[0] = 1.0;
+    xy[0] = 1.0;
+    for (pdk_index i = 0; i < n; ++i) {
+      sv[i] = i ? 1.0 + (double)i / 7.0 : 1e6;
+      fl[i] = i == 0;
+    }
+    const char *last[5] = {"x", "s", "T", "odd", "failed"};
+    T_OK(ctx, pdk_output_write_fields(o, p, 20, 1.5, last, 5));
+    double smax = 0.0;
+    for (pdk_index i = 1; i < n; ++i)
+      smax = fmax(smax, sv[i]);
+    for (pdk_index i = 0; i < n; ++i) /* the store moves on before close */
+      sv[i] = 42.0;
+    T_OK(ctx, pdk_output_close(&o, 1));
+    char *csv = read_text("snap_fields.csv");
+    const char *header = "id,X [m],Y [m],x_x,x_y,s,T_xx,T_xy,T_yx,T_yy,odd_0,odd_1,odd_2,odd_3,"
+                         "odd_4,failed\n";
+    T_ASSERT(!strncmp(csv, header, strlen(header)), "fields CSV header:\n%.200s", csv);
+    const int64_t *id = pdk_particles_field_data(p, "id", 0);
+    const char *q = strchr(csv, '\n') + 1;
+    pdk_index rows = 0;
+    for (; *q; q = strchr(q, '\n') + 1, ++rows) {
+      T_ASSERT(rows < n, "more fields CSV rows than particles");
+      const pdk_index i = rows;
+      double v[16];
+      char *endp = (char *)q;
+      for (int c = 0; c < 16; ++c) {
+        v[c] = strtod(endp, &endp);
+        T_ASSERT(*endp == (c < 15 ? ',' : '\n'), "row %d column %d: bad separator", (int)i, c);
+        ++endp;
+      }
+      /* expected: 10 significant digits of the values at the last output */
+      double want[16] = {(double)id[i],   X0[i],           pdk_particles_X(p, 1)[i],
+                         i ? xx[i] : 1.0, i ? xy[i] : 1.0, i ? 1.0 + (double)i / 7.0 : 1e6};
+      for (int t = 0; t < 4; ++t)
+        want[6 + t] = 10.0 * i + t + 0.5; /* T[a][c] at 2a + c: xx, xy, yx, yy */
+      for (int t = 0; t < 5; ++t)
+        want[10 + t] = (double)(7 * i - t);
+      want[15] = i == 0;
+      for (int c = 0; c < 16; ++c)
+        T_ASSERT(fabs(v[c] - want[c]) <= 1e-9 * fabs(want[c]), /* 10 digits */
+                 "fields CSV row %d column %d: %.17g, want %.17g", (int)i, c, v[c], want[c]);
+    }
+    T_ASSERT(rows == n, "%d fields CSV rows for %d particles", (int)rows, (int)n);
+    free(csv);
+    T_ASSERT(exists("snap_fields.png") == will_plot && exists("snap_fields.gp") == will_plot,
+             "field plot made iff gnuplot ran (%d)", will_plot);
+    if (will_plot) {
+      char *png = read_text("snap_fields.png");
+      T_ASSERT(!memcmp(png, "\x89PNG", 4), "snap_fields.png is a PNG");
+      free(png);
+      char *gp = read_text("snap_fields.gp");
+      /* the view: the body without the flung particle 0 (x up to 20 mm, margin 3%) */
+      const char *xr = strstr(gp, "set xrange [");
+      T_ASSERT(xr, "the field plot sets its view:\n%s", gp);
+      double xlo = strtod(xr + strlen("set xrange ["), NULL);
+      double xhi = strtod(strchr(xr, ':') + 1, NULL);
+      T_ASSERT(xhi < 0.05 && xlo < 0.001, "view [%g, %g] leaves the failed particle out", xlo, xhi);
+      /* panels s and failed (the scalars, in order); s coloured over the unfailed particles */
+      const char *ts = strstr(gp, "set title 's'"), *tf = strstr(gp, "set title 'failed'");
+      T_ASSERT(ts && tf && ts < tf && !strstr(gp, "set title 'odd"), "panels s, failed:\n%s", gp);
+      const char *cb = strstr(ts, "set cbrange [");
+      T_ASSERT(cb && cb < tf, "panel s has a colour range");
+      double clo = strtod(cb + strlen("set cbrange ["), NULL);
+      double chi = strtod(strchr(cb, ':') + 1, NULL);
+      T_ASSERT(fabs(clo - (1.0 + 1.0 / 7.0)) < 1e-9 && fabs(chi - smax) < 1e-9 * smax,
+               "panel s range [%g, %g], want [%g, %g] (particle 0 failed)", clo, chi,
+               1.0 + 1.0 / 7.0, smax);
+      T_ASSERT(strstr(ts, "($16 != 0 ? NaN : $6)") && strstr(tf, "($16)"),
+               "s is drawn without the failed particles, failed with all:\n%s", gp);
+    }
+    xx[0] = x0_saved[0];
+    xy[0] = x0_saved[1];
   }
 
   /* 6. close(.., 0) removes everything. */

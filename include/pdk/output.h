@@ -1,5 +1,6 @@
 /* Run output: one HDF5 file per run with an XDMF file beside it for ParaView, histories as CSV,
- * a PNG plot of the histories (when gnuplot is present), and checkpoints for restart.
+ * a PNG plot of the histories (when gnuplot is present), in 2-D the last field output as CSV and
+ * PNG, and checkpoints for restart.
  *
  * HDF5 layout of <dir>/<name>.h5 (n particles, in the store's current order):
  *   /                       attributes: pdk_version, build_type, build_flags, compiler,
@@ -39,6 +40,15 @@
  * <dir>/<name>_history.png: reaction vs time, reaction vs displacement and energies vs time (with
  *   the dissipated energies and their sum with kinetic and strain when a run dissipated), made by
  *   gnuplot from <dir>/<name>_history.gp (kept, so the plot can be redone or edited).
+ * 2-D runs with at least one field output, at close:
+ * <dir>/<name>_fields.csv: the last field output, read back from the .h5: one row per particle
+ *   (store order), columns id, X, Y, then every component of every field written (<f> for a
+ *   scalar, <f>_x, <f>_y for a vector, <f>_xx, <f>_xy, <f>_yx, <f>_yy for a tensor, <f>_0, ...
+ *   otherwise), 10 significant digits.
+ * <dir>/<name>_fields.png: one panel per scalar field of that output and |u| (up to 6, in the
+ *   order listed), the particles coloured by the value at their current positions (x when it
+ *   was written, else X + u when u was, else X), equal axes; made by gnuplot from
+ *   <dir>/<name>_fields.gp when the history PNG is made.
  *
  * Crash safety: every file is written under a temporary name (<file>.part) and flushed as it
  * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its
@@ -92,9 +102,9 @@ int pdk_output_will_plot(const pdk_output *o);
 /* Number of field outputs and history records written so far. */
 int pdk_output_num_field_steps(const pdk_output *o);
 long pdk_output_num_history_rows(const pdk_output *o);
-/* success = 1: finish the XDMF, CSV and PNG and rename every file to its final name;
+/* success = 1: finish the XDMF, CSVs and PNGs and rename every file to its final name;
  * success = 0: remove the temporary files. Always frees (accepts NULL). If gnuplot runs but
- * fails, the data files are still completed and renamed, no PNG is left, and the error
+ * fails, the data files are still completed and renamed, that PNG is not left, and the error
  * (PDK_ERR_EXTERNAL) names the script to rerun. */
 int pdk_output_close(pdk_output **o, int success);
 

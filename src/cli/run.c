@@ -163,6 +163,18 @@ static int make_ctx(int threads, pdk_ctx **ctx) {
   return 0;
 }
 
+/* The "output:" line after a run: the ParaView index and the CSV and PNG files the run left. */
+static void print_outputs(const char *dir, const char *name) {
+  static const char *const extra[] = {"_history.csv", "_history.png", "_fields.csv", "_fields.png"};
+  fprintf(stderr, "output: %s/%s.xmf (ParaView)", dir, name);
+  for (size_t k = 0; k < sizeof extra / sizeof extra[0]; ++k) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s%s", dir, name, extra[k]);
+    if (access(path, F_OK) == 0) fprintf(stderr, ", %s%s", name, extra[k]);
+  }
+  fputc('\n', stderr);
+}
+
 static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
   pdk_particles *p = pdk_sim_particles(sim);
   pdk_families *f = pdk_sim_families(sim);
@@ -362,9 +374,10 @@ static int run_static(pdk_ctx *ctx, const run_args *a, pdk_scene *scene, pdk_sim
   warn_float_roundoff(sim);
   fprintf(stderr,
           "done: %ld load steps in %.2f s (%.2f s solving), peak memory %.1f MiB, %lld bonds "
-          "broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
+          "broken\n",
           h.step, pdk_wtime() - wall0, pdk_wtime() - run0, pdk_peak_memory_bytes() / 1048576.0,
-          (long long)h.broken, dir, pdk_scene_name(scene), pdk_scene_name(scene));
+          (long long)h.broken);
+  print_outputs(dir, pdk_scene_name(scene));
   return 0;
 }
 
@@ -529,10 +542,10 @@ int pdk_cli_run(int argc, char **argv) {
     fprintf(
         stderr,
         "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f MiB, "
-        "%lld bonds broken\noutput: %s/%s.xmf (ParaView), %s_history.csv\n",
+        "%lld bonds broken\n",
         steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
-        (long long)pdk_model_num_broken(pdk_sim_model(sim)), dir, pdk_scene_name(scene),
-        pdk_scene_name(scene));
+        (long long)pdk_model_num_broken(pdk_sim_model(sim)));
+    print_outputs(dir, pdk_scene_name(scene));
     if (pdk_explicit_opts_get(e)->dt_update != PDK_DT_UPDATE_NONE)
       fprintf(stderr,
               "dt_update: %d estimates of the stable step, dt lowered %d time(s), final dt %.4g "
