@@ -619,6 +619,7 @@ int main(void) {
                1.0 + 1.0 / 7.0, smax);
       T_ASSERT(strstr(ts, "($16 != 0 ? NaN : $6)") && strstr(tf, "($16)"),
                "s is drawn without the failed particles, failed with all:\n%s", gp);
+      free(gp);
     }
     xx[0] = x0_saved[0];
     xy[0] = x0_saved[1];
