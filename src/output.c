@@ -1266,10 +1266,13 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
          bh = have_box ? snap->hi[1] - snap->lo[1] : 1.0;
   if (!(bw > 0)) bw = bh > 0 ? bh : 1.0;
   if (!(bh > 0)) bh = bw;
-  const int pw = 440;
-  int ph = (int)(0.78 * pw * bh / bw) + 110;
-  ph = ph < 300 ? 300 : ph > 1000 ? 1000 : ph;
-  const double scale = fmin(0.62 * pw / bw, (ph - 110.0) / bh); /* pixels per length */
+  /* Side by side, or stacked when the body is wide (a bar): pixels per panel */
+  const int wide = bw > 1.5 * bh, np = snap->num_panels;
+  const int pw = wide ? 900 : 440;
+  int ph = (int)((wide ? 0.7 : 0.78) * pw * bh / bw) + 110;
+  ph = ph < (wide ? 260 : 300) ? (wide ? 260 : 300) : ph > 1000 ? 1000 : ph;
+  const int width = wide ? pw : (pw * np < 640 ? 640 : pw * np), height = wide ? ph * np : ph;
+  const double scale = fmin((wide ? 0.7 : 0.62) * pw / bw, (ph - 110.0) / bh); /* px per length */
   const double h = sqrt(bw * bh / (double)o->n);
   double ps = 1.3 * scale * h / 6.0; /* pt 7 at pointsize 1 is about 6 pixels across */
   ps = ps < 0.05 ? 0.05 : ps > 3.0 ? 3.0 : ps;
@@ -1282,7 +1285,7 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
           "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
           "  set terminal pngcairo size %d,%d noenhanced\n} else {\n"
           "  set terminal png size %d,%d noenhanced\n}\n",
-          pw * snap->num_panels, ph, pw * snap->num_panels, ph);
+          width, height, width, height);
   fprintf(f,
           "set output outfile\nset datafile separator ','\nunset key\nset size ratio -1\n"
           "set format x '%%g'\nset format y '%%g'\nset format cb '%%g'\n"
@@ -1296,8 +1299,8 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
     fprintf(f, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", snap->lo[0] - m,
             snap->lo[0] + bw + m, snap->lo[1] - m, snap->lo[1] + bh + m);
   }
-  fprintf(f, "set multiplot layout 1,%d title '%s, step %ld, t = %.6g [%s]%s'\n", snap->num_panels,
-          stem, o->last_step, o->last_time, o->unit_time,
+  fprintf(f, "set multiplot layout %d,%d title '%s, step %ld, t = %.6g [%s]%s'\n", wide ? np : 1,
+          wide ? 1 : np, stem, o->last_step, o->last_time, o->unit_time,
           snap->pos_col[0] != 2 || snap->pos_add[0] ? ", current positions" : "");
   char xs[64], ys[64];
   for (int c = 0; c < 2; ++c) {
