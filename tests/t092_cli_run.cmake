@@ -1,5 +1,5 @@
-# The pdk command end to end: `pdk run` writes the HDF5, XDMF, CSV and checkpoint (no .part file
-# left), `pdk check` validates without writing, a restarted run ends bitwise where an uninterrupted
+# The pdk command end to end: `pdk run` writes the HDF5, XDMF, CSVs and checkpoint (no .part file
+# left; in 2-D the last field output as CSV), `pdk check` validates without writing, a restarted run ends bitwise where an uninterrupted
 # one ends, Ctrl-C stops cleanly with a checkpoint and exit 130, bad scenes and overrides exit 2
 # with file:line:key messages.
 # labels: unit
@@ -47,6 +47,14 @@ endif()
 last_row(${PDK_TEST_DIR}/full/bar_history.csv full_row)
 if(NOT full_row MATCHES "^400,")
   message(FATAL_ERROR "last history row is not step 400: ${full_row}")
+endif()
+# a 2-D run leaves its last field output as CSV: the header, one row per particle (40 x 6)
+file(STRINGS ${PDK_TEST_DIR}/full/bar_fields.csv fields_rows)
+list(LENGTH fields_rows fields_len)
+list(GET fields_rows 0 fields_header)
+if(NOT fields_header STREQUAL "id,X [length],Y [length],u_x,u_y,v_x,v_y" OR
+   NOT fields_len EQUAL 241)
+  message(FATAL_ERROR "bar_fields.csv: ${fields_len} lines, header '${fields_header}'")
 endif()
 
 # restart: half the steps, then continue from its checkpoint to the end: the same last row, bit
