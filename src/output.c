@@ -1302,14 +1302,16 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   fprintf(f, "set multiplot layout %d,%d title '%s, step %ld, t = %.6g [%s]%s'\n", wide ? np : 1,
           wide ? 1 : np, stem, o->last_step, o->last_time, o->unit_time,
           snap->pos_col[0] != 2 || snap->pos_add[0] ? ", current positions" : "");
-  char xs[64], ys[64];
+  char xs[64], ys[64], xs_unfailed[96];
   for (int c = 0; c < 2; ++c) {
     char *dst = c ? ys : xs;
     if (snap->pos_add[c])
       snprintf(dst, 64, "($%d+$%d)", snap->pos_col[c], snap->pos_add[c]);
     else
-      snprintf(dst, 64, "%d", snap->pos_col[c]);
+      snprintf(dst, 64, "($%d)", snap->pos_col[c]);
   }
+  /* a failed particle's x undefined: gnuplot skips the point (a NaN colour would be drawn) */
+  snprintf(xs_unfailed, sizeof xs_unfailed, "($%d != 0 ? NaN : %s)", snap->failed_col, xs);
   for (int q = 0; q < snap->num_panels; ++q) {
     char *title = gnuplot_quote(snap->title[q]);
     PDK_CHECK_GOTO(title, ctx, PDK_ERR_MEMORY, "out of memory");
@@ -1319,17 +1321,14 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
       fprintf(f, "set cbrange [%.10g:%.10g]\n", snap->vlo[q], snap->vhi[q]);
     else
       fprintf(f, "set autoscale cb\n");
-    char v[96], shown[160];
+    char v[96];
     if (snap->norm[q])
-      snprintf(v, sizeof v, "sqrt($%d**2+$%d**2)", snap->col[q], snap->col[q] + 1);
+      snprintf(v, sizeof v, "(sqrt($%d**2+$%d**2))", snap->col[q], snap->col[q] + 1);
     else
-      snprintf(v, sizeof v, "$%d", snap->col[q]);
-    if (snap->failed_col && snap->col[q] != snap->failed_col)
-      snprintf(shown, sizeof shown, "($%d != 0 ? NaN : %s)", snap->failed_col, v);
-    else
-      snprintf(shown, sizeof shown, "(%s)", v);
-    fprintf(f, "plot data skip 1 using %s:%s:%s with points pt 7 ps %.3g lc palette\n", xs, ys,
-            shown, ps);
+      snprintf(v, sizeof v, "($%d)", snap->col[q]);
+    const int leave_failed = snap->failed_col && snap->col[q] != snap->failed_col;
+    fprintf(f, "plot data skip 1 using %s:%s:%s with points pt 7 ps %.3g lc palette\n",
+            leave_failed ? xs_unfailed : xs, ys, v, ps);
   }
   fprintf(f, "unset multiplot\nset output\n");
   PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",

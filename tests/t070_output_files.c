@@ -617,7 +617,8 @@ int main(void) {
       T_ASSERT(fabs(clo - (1.0 + 1.0 / 7.0)) < 1e-9 && fabs(chi - smax) < 1e-9 * smax,
                "panel s range [%g, %g], want [%g, %g] (particle 0 failed)", clo, chi,
                1.0 + 1.0 / 7.0, smax);
-      T_ASSERT(strstr(ts, "($16 != 0 ? NaN : $6)") && strstr(tf, "($16)"),
+      T_ASSERT(strstr(ts, "using ($16 != 0 ? NaN : ($4)):($5):($6)") &&
+                   strstr(tf, "using ($4):($5):($16)"),
                "s is drawn without the failed particles, failed with all:\n%s", gp);
       free(gp);
     }
