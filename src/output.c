@@ -982,7 +982,8 @@ cleanup:
 }
 
 /* Runs gnuplot on the committed script <name><stem>.gp, in o->dir, writing the PNG's .part
- * (file png); its stderr is collected for the error message. */
+ * (file png), and commits the PNG; when gnuplot fails, its stderr goes into the error message and
+ * no PNG is left. */
 static int run_gnuplot(pdk_output *o, const char *stem, int gp, int png) {
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
@@ -1035,7 +1036,9 @@ static int run_gnuplot(pdk_output *o, const char *stem, int gp, int png) {
                  o->final[gp], WIFEXITED(status) ? "exit status" : "signal",
                  WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "",
                  msg, script, o->dir);
+  err = pdk_file_commit(ctx, o->part[png], o->final[png]);
 cleanup:
+  if (err) pdk_file_remove(o->part[png]);
   if (pipefd[0] >= 0) close(pipefd[0]);
   if (pipefd[1] >= 0) close(pipefd[1]);
   free(script);
@@ -1367,29 +1370,25 @@ static int finish(pdk_output *o) {
   o->history = -1;
   PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
   out_snapshot snap = {0};
-  if (o->dim == 2 && o->num_steps > 0) PDK_CALL(write_snapshot_csv(o, &snap));
+  const int snapshot = o->dim == 2 && o->num_steps > 0;
+  if (snapshot) PDK_CALL(write_snapshot_csv(o, &snap));
   hid_t file = o->file;
   o->file = -1;
   PDK_H5_CALL(ctx, H5Fclose(file));
 
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_H5], o->final[OUT_H5]));
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_CSV], o->final[OUT_CSV]));
-  if (o->dim == 2 && o->num_steps > 0)
-    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FCSV], o->final[OUT_FCSV]));
+  if (snapshot) PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FCSV], o->final[OUT_FCSV]));
   int plot_err = PDK_SUCCESS;
   if (o->will_plot && o->rows > 0) {
     PDK_CALL(write_plot_script(o));
     PDK_CALL(pdk_file_commit(ctx, o->part[OUT_GP], o->final[OUT_GP]));
     plot_err = run_gnuplot(o, "_history", OUT_GP, OUT_PNG);
-    if (!plot_err) plot_err = pdk_file_commit(ctx, o->part[OUT_PNG], o->final[OUT_PNG]);
-    if (plot_err) pdk_file_remove(o->part[OUT_PNG]);
   }
   if (snap.num_panels > 0 && o->will_plot && !plot_err) {
     PDK_CALL(write_snapshot_script(o, &snap));
     PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FGP], o->final[OUT_FGP]));
     plot_err = run_gnuplot(o, "_fields", OUT_FGP, OUT_FPNG);
-    if (!plot_err) plot_err = pdk_file_commit(ctx, o->part[OUT_FPNG], o->final[OUT_FPNG]);
-    if (plot_err) pdk_file_remove(o->part[OUT_FPNG]);
   }
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_XMF], o->final[OUT_XMF]));
   return plot_err;

@@ -7,7 +7,9 @@
  *   - the geometry is the step's "x" when written, else /static/X; a 2-D tensor is [n][9] with
  *     zeros in the z row and column, an int32 field of 5 components [n][5] (Matrix);
  *   - the CSV has the header with units and one row per history record;
- *   - the PNG exists iff gnuplot is on the PATH (and pdk_output_will_plot says so);
+ *   - the PNG exists iff gnuplot is on the PATH (and pdk_output_will_plot says so); a gnuplot
+ *     that fails is reported, naming the script, and leaves the data files complete, no PNG;
+ *   - in 2-D, <name>_fields.csv holds the last field output and <name>_fields.png draws it;
  *   - close(.., 0) leaves no file; a killed process leaves only .part files;
  *   - bad field names are errors that name the field.
  * Test files go to ./t070_out (the build's tests/ directory under ctest).
@@ -624,6 +626,40 @@ int main(void) {
     }
     xx[0] = x0_saved[0];
     xy[0] = x0_saved[1];
+  }
+
+  /* 5d. A gnuplot that fails: close reports it, naming the script to rerun and gnuplot's
+   * message; the data files are complete, no PNG and no .part file is left. */
+  {
+    const char *fake = DIR_OUT "/fakebin";
+    mkdir(fake, 0755);
+    FILE *g = fopen(DIR_OUT "/fakebin/gnuplot", "w");
+    T_ASSERT(g, "cannot write the fake gnuplot");
+    fprintf(g, "#!/bin/sh\necho 'fake gnuplot: broken' >&2\nexit 3\n");
+    fclose(g);
+    chmod(DIR_OUT "/fakebin/gnuplot", 0755);
+    char *old_path = strdup(getenv("PATH") ? getenv("PATH") : "");
+    char cwd[512], bin[700];
+    T_ASSERT(getcwd(cwd, sizeof cwd), "getcwd");
+    snprintf(bin, sizeof bin, "%s/%s", cwd, fake);
+    setenv("PATH", bin, 1);
+    oo.name = "badgp";
+    T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
+    T_ASSERT(pdk_output_will_plot(o), "the fake gnuplot is on the PATH");
+    T_OK(ctx, pdk_output_write_history(o, &hist[0]));
+    const char *sf[1] = {"s"};
+    T_OK(ctx, pdk_output_write_fields(o, p, steps[0], times[0], sf, 1));
+    T_FAILS(ctx, pdk_output_close(&o, 1), PDK_ERR_EXTERNAL, "badgp_history.gp");
+    T_ASSERT(strstr(pdk_ctx_error_message(ctx), "fake gnuplot: broken"),
+             "the message carries gnuplot's: %s", pdk_ctx_error_message(ctx));
+    setenv("PATH", old_path, 1);
+    free(old_path);
+    T_ASSERT(exists("badgp.h5") && exists("badgp.xmf") && exists("badgp_history.csv") &&
+                 exists("badgp_fields.csv") && exists("badgp_history.gp") &&
+                 !exists("badgp_history.png") && !exists("badgp_fields.png") &&
+                 count_files("badgp") == 5,
+             "a failed plot: the data files and the script, no PNG, no .part (%d files)",
+             count_files("badgp"));
   }
 
   /* 6. close(.., 0) removes everything. */
