@@ -8,10 +8,10 @@
  *   OUT_CSV  <name>_history.csv    header at open, one row per history record
  *   OUT_GP   <name>_history.gp     gnuplot script, written at close
  *   OUT_PNG  <name>_history.png    made by gnuplot at close, when it is on the PATH
- *   OUT_FCSV <name>_fields.csv     2-D only: the last field output, one row per particle,
+ *   OUT_FCSV <name>_fields.csv     the last field output, one row per particle (3-D: one layer),
  *                                  written at close from the .h5 (so it is that output's data)
- *   OUT_FGP  <name>_fields.gp      2-D only: gnuplot script drawing it, written at close
- *   OUT_FPNG <name>_fields.png     2-D only: made by gnuplot at close, when it is on the PATH
+ *   OUT_FGP  <name>_fields.gp      gnuplot script drawing it, written at close
+ *   OUT_FPNG <name>_fields.png     made by gnuplot at close, when it is on the PATH
  * Field outputs flush the HDF5 file, the XDMF and the CSV (H5Fflush, fflush); close syncs every
  * file (fsync) before its rename, and renames the .xmf last.
  *
@@ -1084,7 +1084,7 @@ static void output_free(pdk_output *o) {
   free(o);
 }
 
-/* ---- field snapshot (2-D) --------------------------------------------------------------------
+/* ---- field snapshot -----------------------------------------------------------------------------
  */
 
 #define SNAP_MAX_PANELS 6
@@ -1096,7 +1096,7 @@ typedef struct out_snapshot {
   int pos_add[2];
   int num_panels;
   char title[SNAP_MAX_PANELS][OUT_NAME_MAX + 8];
-  int col[SNAP_MAX_PANELS]; /* value column; norm[k]: |(col, col + 1)| */
+  int col[SNAP_MAX_PANELS]; /* value column; norm[k] > 0: the length of that many from col */
   int norm[SNAP_MAX_PANELS];
   /* Over the particles that have not failed (all when "failed" is not written): the positions'
    * bounding box, the view, and each panel's range of values, its colour scale, so that failed
@@ -1105,6 +1105,8 @@ typedef struct out_snapshot {
   double vlo[SNAP_MAX_PANELS], vhi[SNAP_MAX_PANELS];
   pdk_index num_shown;
   int failed_col; /* column of "failed" (0: not written); the other panels leave failed out */
+  double slice_z; /* 3-D: the reference z of the layer written; NAN in 2-D */
+  pdk_index num_rows; /* particles written */
 } out_snapshot;
 
 /* Reads rows [r0, r0 + rows) of dataset `path` ([n] or [n][cols]) as doubles into buf. */
@@ -1128,40 +1130,66 @@ cleanup:
   return err;
 }
 
-/* <name>_fields.csv: id, X, Y and every component of every field of the last field output, read
- * back from the .h5 (still open), one row per particle in store order, 10 significant digits. A
- * vector gives <f>_x, <f>_y, a tensor <f>_xx, <f>_xy, <f>_yx, <f>_yy, other fields <f>_0, ...
- * Fills *snap with what the plot draws: the current positions (x when written, else X + u when
- * u is, else X) and up to SNAP_MAX_PANELS scalar fields and |u|, in the listed order. */
+/* <name>_fields.csv: id, X, Y (, Z) and every component of every field of the last field output,
+ * read back from the .h5 (still open), one row per particle in store order, 10 significant
+ * digits. A vector gives <f>_x, <f>_y (, <f>_z), a tensor <f>_xx, <f>_xy, ... (its dim x dim
+ * components), other fields <f>_0, ... In 3-D only one layer is written: the particles whose
+ * reference z lies within half their own size (cube root of the volume) of z_s, the reference z of
+ * the particle nearest the middle of the body's z extent; on a lattice, the layer nearest the
+ * mid-plane. Fills *snap with what the plot draws: the current in-plane positions (x when
+ * written, else X + u when u is, else X) and up to SNAP_MAX_PANELS scalar fields and |u|, in the
+ * listed order. */
 static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
   const int nf = o->num_last;
   FILE *f = NULL;
-  double **buf = calloc((size_t)nf + 2, sizeof *buf);
+  double **buf = calloc((size_t)nf + 3, sizeof *buf); /* fields, then id, X, volume */
   int *cols = calloc((size_t)nf + 1, sizeof *cols), *ncomp = calloc((size_t)nf + 1, sizeof *ncomp);
   int(*col_of)[9] = calloc((size_t)nf + 1, sizeof *col_of);
   out_layout *layout = calloc((size_t)nf + 1, sizeof *layout);
   char path[2 * OUT_NAME_MAX + 32];
   double *row = NULL;
-  static const char *const tsuf[9] = {"xx", "xy", "", "yx", "yy", "", "", "", ""};
+  static const char *const tsuf[9] = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
+  const int dim = o->dim, c_fields = 2 + dim; /* first field column (1-based) */
   PDK_CHECK_GOTO(buf && cols && ncomp && col_of && layout, ctx, PDK_ERR_MEMORY, "out of memory");
   const pdk_index block = o->n < OUT_CHUNK_ROWS ? o->n : OUT_CHUNK_ROWS;
-  for (int k = 0; k < nf + 2; ++k) {
+  for (int k = 0; k < nf + 3; ++k) {
     buf[k] = malloc((size_t)block * 9 * sizeof(double));
     PDK_CHECK_GOTO(buf[k], ctx, PDK_ERR_MEMORY, "out of memory for the field snapshot");
   }
   f = fopen(o->part[OUT_FCSV], "w");
   PDK_CHECK_GOTO(f, ctx, PDK_ERR_IO, "cannot create '%s': %s", o->part[OUT_FCSV], strerror(errno));
 
+  memset(snap, 0, sizeof *snap);
+  snap->slice_z = NAN;
+  if (dim == 3) { /* the layer: z_s nearest the middle of the reference z extent */
+    double zlo = INFINITY, zhi = -INFINITY, best = INFINITY;
+    for (int pass = 0; pass < 2; ++pass)
+      for (pdk_index r0 = 0; r0 < o->n; r0 += block) {
+        const pdk_index rows = o->n - r0 < block ? o->n - r0 : block;
+        PDK_CALL_GOTO(read_rows(o, "/static/X", 3, (hsize_t)r0, (hsize_t)rows, buf[nf + 1]));
+        for (pdk_index i = 0; i < rows; ++i) {
+          const double z = buf[nf + 1][3 * i + 2];
+          if (pass == 0) {
+            zlo = fmin(zlo, z);
+            zhi = fmax(zhi, z);
+          } else if (fabs(z - 0.5 * (zlo + zhi)) < best) {
+            best = fabs(z - 0.5 * (zlo + zhi));
+            snap->slice_z = z;
+          }
+        }
+      }
+  }
+
   /* header; column numbers (1-based) for the plot */
   fprintf(f, "id,X [%s],Y [%s]", o->unit_length, o->unit_length);
-  int col = 4, x_col = 0, u_col = 0, failed_col = 0;
-  memset(snap, 0, sizeof *snap);
+  if (dim == 3) fprintf(f, ",Z [%s]", o->unit_length);
+  int col = c_fields, x_col = 0, u_col = 0, failed_col = 0;
   for (int k = 0; k < nf; ++k) {
     pdk_type type;
     PDK_CALL_GOTO(pdk_particles_field_info(o->p, o->last_field[k], &type, &ncomp[k]));
-    layout[k] = field_layout(2, ncomp[k], &cols[k], col_of[k]);
+    layout[k] = field_layout(dim, ncomp[k], &cols[k], col_of[k]);
     const char *dn = o->last_dname[k];
     if (layout[k] == OUT_VECTOR && !strcmp(o->last_field[k], "x")) x_col = col;
     if (layout[k] == OUT_VECTOR && !strcmp(o->last_field[k], "u")) u_col = col;
@@ -1170,7 +1198,7 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
         snap->num_panels < SNAP_MAX_PANELS) {
       const int q = snap->num_panels++;
       snap->col[q] = col;
-      snap->norm[q] = layout[k] == OUT_VECTOR;
+      snap->norm[q] = layout[k] == OUT_VECTOR ? dim : 0;
       snprintf(snap->title[q], sizeof snap->title[q], snap->norm[q] ? "|%s|" : "%s", dn);
     }
     for (int c = 0; c < ncomp[k]; ++c, ++col) {
@@ -1204,15 +1232,20 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
     const pdk_index rows = o->n - r0 < block ? o->n - r0 : block;
     PDK_CALL_GOTO(read_rows(o, "/static/id", 1, (hsize_t)r0, (hsize_t)rows, buf[nf]));
     PDK_CALL_GOTO(read_rows(o, "/static/X", 3, (hsize_t)r0, (hsize_t)rows, buf[nf + 1]));
+    if (dim == 3)
+      PDK_CALL_GOTO(read_rows(o, "/static/volume", 1, (hsize_t)r0, (hsize_t)rows, buf[nf + 2]));
     for (int k = 0; k < nf; ++k) {
       snprintf(path, sizeof path, "/steps/%d/%s", o->num_steps - 1, o->last_dname[k]);
       PDK_CALL_GOTO(read_rows(o, path, cols[k], (hsize_t)r0, (hsize_t)rows, buf[k]));
     }
     for (pdk_index i = 0; i < rows; ++i) {
+      if (dim == 3 && !(fabs(buf[nf + 1][3 * i + 2] - snap->slice_z) <= 0.5 * cbrt(buf[nf + 2][i])))
+        continue;
+      snap->num_rows++;
       row[1] = buf[nf][i];
-      row[2] = buf[nf + 1][3 * i];
-      row[3] = buf[nf + 1][3 * i + 1];
-      for (int k = 0, c0 = 4; k < nf; c0 += ncomp[k], ++k)
+      for (int c = 0; c < dim; ++c)
+        row[2 + c] = buf[nf + 1][3 * i + c];
+      for (int k = 0, c0 = c_fields; k < nf; c0 += ncomp[k], ++k)
         for (int c = 0; c < ncomp[k]; ++c)
           row[c0 + c] = buf[k][(size_t)i * cols[k] + col_of[k][c]];
       fprintf(f, "%.0f", row[1]);
@@ -1228,7 +1261,13 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
       }
       for (int q = 0; q < snap->num_panels; ++q) {
         const int c = snap->col[q];
-        const double v = snap->norm[q] ? hypot(row[c], row[c + 1]) : row[c];
+        double v = row[c];
+        if (snap->norm[q]) {
+          v = 0.0;
+          for (int a = 0; a < snap->norm[q]; ++a)
+            v += row[c + a] * row[c + a];
+          v = sqrt(v);
+        }
         snap->vlo[q] = fmin(snap->vlo[q], v);
         snap->vhi[q] = fmax(snap->vhi[q], v);
       }
@@ -1241,7 +1280,7 @@ cleanup:
     err = pdk_ctx_error_set(ctx, PDK_ERR_IO, __func__, "cannot write '%s': %s", o->part[OUT_FCSV],
                             strerror(errno));
   if (buf)
-    for (int k = 0; k < nf + 2; ++k)
+    for (int k = 0; k < nf + 3; ++k)
       free(buf[k]);
   free(buf);
   free(cols);
@@ -1257,7 +1296,7 @@ cleanup:
 static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
-  char *stem = gnuplot_quote(o->name);
+  char *stem = gnuplot_quote(o->name), *title = NULL;
   FILE *f = NULL;
   PDK_CHECK_GOTO(stem, ctx, PDK_ERR_MEMORY, "out of memory");
   f = fopen(o->part[OUT_FGP], "w");
@@ -1274,10 +1313,19 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   const int pw = wide ? 900 : 440;
   int ph = (int)((wide ? 0.7 : 0.78) * pw * bh / bw) + 110;
   ph = ph < (wide ? 260 : 300) ? (wide ? 260 : 300) : ph > 1000 ? 1000 : ph;
-  const int width = wide ? pw : (pw * np < 640 ? 640 : pw * np), height = wide ? ph * np : ph;
+  char slice[96] = "";
+  if (!isnan(snap->slice_z))
+    snprintf(slice, sizeof slice, ", layer Z = %.6g [%s]", snap->slice_z, o->unit_length);
+  title = pdk_str_printf("%s, step %ld, t = %.6g [%s]%s%s", stem, o->last_step, o->last_time,
+                         o->unit_time, slice,
+                         snap->pos_col[0] != 2 || snap->pos_add[0] ? ", current positions" : "");
+  PDK_CHECK_GOTO(title, ctx, PDK_ERR_MEMORY, "out of memory");
+  int width = wide ? pw : pw * np; /* at least the title's width, about 8 pixels a character */
+  if (width < 8 * (int)strlen(title) + 60) width = 8 * (int)strlen(title) + 60;
+  const int height = wide ? ph * np : ph;
   const double scale = fmin((wide ? 0.7 : 0.62) * pw / bw, (ph - 110.0) / bh); /* px per length */
-  const double h = sqrt(bw * bh / (double)o->n);
-  double ps = 1.3 * scale * h / 6.0; /* pt 7 at pointsize 1 is about 6 pixels across */
+  const double h = sqrt(bw * bh / (double)(snap->num_rows > 0 ? snap->num_rows : 1));
+  double ps = 1.6 * scale * h / 6.0; /* pt 7 at pointsize 1 is about 6 pixels across */
   ps = ps < 0.05 ? 0.05 : ps > 3.0 ? 3.0 : ps;
   fprintf(f,
           "# pdk field plot of the last field output (step %ld, t = %.6g); rerun with: gnuplot "
@@ -1296,15 +1344,13 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
           o->unit_length);
   fprintf(f, "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', "
              "4 '#fde725')\n");
-  fprintf(f, "data = '%s_fields.csv'\n", stem);
+  fprintf(f, "data = '%s_fields.csv'\ntitle = '%s'\n", stem, title);
   if (have_box) {
     const double m = 0.03 * fmax(bw, bh);
     fprintf(f, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", snap->lo[0] - m,
             snap->lo[0] + bw + m, snap->lo[1] - m, snap->lo[1] + bh + m);
   }
-  fprintf(f, "set multiplot layout %d,%d title '%s, step %ld, t = %.6g [%s]%s'\n", wide ? np : 1,
-          wide ? 1 : np, stem, o->last_step, o->last_time, o->unit_time,
-          snap->pos_col[0] != 2 || snap->pos_add[0] ? ", current positions" : "");
+  fprintf(f, "set multiplot layout %d,%d title title\n", wide ? np : 1, wide ? 1 : np);
   char xs[64], ys[64], xs_unfailed[96];
   for (int c = 0; c < 2; ++c) {
     char *dst = c ? ys : xs;
@@ -1316,16 +1362,19 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   /* a failed particle's x undefined: gnuplot skips the point (a NaN colour would be drawn) */
   snprintf(xs_unfailed, sizeof xs_unfailed, "($%d != 0 ? NaN : %s)", snap->failed_col, xs);
   for (int q = 0; q < snap->num_panels; ++q) {
-    char *title = gnuplot_quote(snap->title[q]);
-    PDK_CHECK_GOTO(title, ctx, PDK_ERR_MEMORY, "out of memory");
-    fprintf(f, "set title '%s'\n", title);
-    free(title);
+    char *pt = gnuplot_quote(snap->title[q]);
+    PDK_CHECK_GOTO(pt, ctx, PDK_ERR_MEMORY, "out of memory");
+    fprintf(f, "set title '%s'\n", pt);
+    free(pt);
     if (have_box && snap->vhi[q] > snap->vlo[q])
       fprintf(f, "set cbrange [%.10g:%.10g]\n", snap->vlo[q], snap->vhi[q]);
     else
       fprintf(f, "set autoscale cb\n");
     char v[96];
-    if (snap->norm[q])
+    if (snap->norm[q] == 3)
+      snprintf(v, sizeof v, "(sqrt($%d**2+$%d**2+$%d**2))", snap->col[q], snap->col[q] + 1,
+               snap->col[q] + 2);
+    else if (snap->norm[q])
       snprintf(v, sizeof v, "(sqrt($%d**2+$%d**2))", snap->col[q], snap->col[q] + 1);
     else
       snprintf(v, sizeof v, "($%d)", snap->col[q]);
@@ -1339,6 +1388,7 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
 cleanup:
   if (f) fclose(f);
   free(stem);
+  free(title);
   return err;
 }
 
@@ -1370,7 +1420,7 @@ static int finish(pdk_output *o) {
   o->history = -1;
   PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
   out_snapshot snap = {0};
-  const int snapshot = o->dim == 2 && o->num_steps > 0;
+  const int snapshot = o->num_steps > 0;
   if (snapshot) PDK_CALL(write_snapshot_csv(o, &snap));
   hid_t file = o->file;
   o->file = -1;

@@ -9,7 +9,8 @@
  *   - the CSV has the header with units and one row per history record;
  *   - the PNG exists iff gnuplot is on the PATH (and pdk_output_will_plot says so); a gnuplot
  *     that fails is reported, naming the script, and leaves the data files complete, no PNG;
- *   - in 2-D, <name>_fields.csv holds the last field output and <name>_fields.png draws it;
+ *   - <name>_fields.csv holds the last field output and <name>_fields.png draws it (3-D: the
+ *     layer nearest the mid-plane);
  *   - close(.., 0) leaves no file; a killed process leaves only .part files;
  *   - bad field names are errors that name the field.
  * Test files go to ./t070_out (the build's tests/ directory under ctest).
@@ -626,6 +627,68 @@ int main(void) {
     }
     xx[0] = x0_saved[0];
     xy[0] = x0_saved[1];
+  }
+
+  /* 5e. 3-D: the fields CSV and plot hold the layer nearest the mid-plane, Z and _z columns. */
+  {
+    pdk_lattice_opts lo3 = pdk_lattice_opts_default();
+    lo3.type = PDK_LATTICE_CUBIC;
+    lo3.spacing = 1e-3;
+    lo3.hi[0] = 5e-3;
+    lo3.hi[1] = 4e-3;
+    lo3.hi[2] = 5e-3; /* z layers at 0.5 ... 4.5 mm: the middle one at 2.5 mm */
+    pdk_particles *p3;
+    T_OK(ctx, pdk_lattice_create(ctx, &lo3, &p3));
+    const pdk_index n3 = pdk_particles_count(p3);
+    T_OK(ctx, pdk_particles_field_add(p3, "s", PDK_F64, 1));
+    T_OK(ctx, pdk_particles_field_add(p3, "u", PDK_F64, 3));
+    for (pdk_index i = 0; i < n3; ++i) {
+      ((double *)pdk_particles_field_data(p3, "s", 0))[i] = 0.25 * (double)i;
+      for (int c = 0; c < 3; ++c)
+        ((double *)pdk_particles_field_data(p3, "u", c))[i] = 1e-6 * (double)(3 * i + c);
+    }
+    oo.name = "cube";
+    oo.num_reaction_sets = 0;
+    T_OK(ctx, pdk_output_open(ctx, &oo, p3, &o));
+    T_OK(ctx, pdk_output_write_history(o, &hist[0]));
+    const char *f3[2] = {"s", "u"};
+    T_OK(ctx, pdk_output_write_fields(o, p3, 5, 0.25, f3, 2));
+    T_OK(ctx, pdk_output_close(&o, 1));
+    oo.num_reaction_sets = 2;
+    char *csv = read_text("cube_fields.csv");
+    const char *header = "id,X [m],Y [m],Z [m],s,u_x,u_y,u_z\n";
+    T_ASSERT(!strncmp(csv, header, strlen(header)), "3-D fields CSV header:\n%.200s", csv);
+    const int64_t *id3 = pdk_particles_field_data(p3, "id", 0);
+    int rows = 0;
+    for (const char *q = strchr(csv, '\n') + 1; *q; q = strchr(q, '\n') + 1, ++rows) {
+      char *endp = (char *)q;
+      double v[8];
+      for (int c = 0; c < 8; ++c) {
+        v[c] = strtod(endp, &endp);
+        ++endp;
+      }
+      pdk_index i = -1;
+      for (pdk_index j = 0; j < n3; ++j)
+        if ((double)id3[j] == v[0]) i = j;
+      T_ASSERT(i >= 0, "row %d: id %g is no particle's", rows, v[0]);
+      T_ASSERT(fabs(v[3] - 2.5e-3) < 1e-12 && fabs(pdk_particles_X(p3, 2)[i] - 2.5e-3) < 1e-12,
+               "row %d: Z %.17g, not the middle layer", rows, v[3]);
+      T_ASSERT(fabs(v[1] - pdk_particles_X(p3, 0)[i]) < 1e-12 && v[4] == 0.25 * (double)i,
+               "row %d: X %g, s %g for particle %d", rows, v[1], v[4], (int)i);
+      for (int c = 0; c < 3; ++c)
+        T_ASSERT(fabs(v[5 + c] - 1e-6 * (double)(3 * i + c)) <= 1e-9 * 1e-6 * (3 * i + c),
+                 "row %d: u_%d %.17g", rows, c, v[5 + c]);
+    }
+    T_ASSERT(rows == 5 * 4, "%d rows in the 3-D fields CSV, want the 20 of one layer", rows);
+    free(csv);
+    T_ASSERT(exists("cube_fields.png") == will_plot, "3-D field plot made iff gnuplot ran");
+    if (will_plot) {
+      char *gp = read_text("cube_fields.gp");
+      T_ASSERT(strstr(gp, "layer Z = 0.0025 [m]") && strstr(gp, "sqrt($6**2+$7**2+$8**2)"),
+               "the plot names the layer and draws |u| of 3 components:\n%s", gp);
+      free(gp);
+    }
+    pdk_particles_destroy(&p3);
   }
 
   /* 5d. A gnuplot that fails: close reports it, naming the script to rerun and gnuplot's

@@ -1,6 +1,6 @@
 /* Run output: one HDF5 file per run with an XDMF file beside it for ParaView, histories as CSV,
- * a PNG plot of the histories (when gnuplot is present), in 2-D the last field output as CSV and
- * PNG, and checkpoints for restart.
+ * a PNG plot of the histories (when gnuplot is present), the last field output as CSV and PNG
+ * (in 3-D its mid-plane layer), and checkpoints for restart.
  *
  * HDF5 layout of <dir>/<name>.h5 (n particles, in the store's current order):
  *   /                       attributes: pdk_version, build_type, build_flags, compiler,
@@ -40,11 +40,13 @@
  * <dir>/<name>_history.png: reaction vs time, reaction vs displacement and energies vs time (with
  *   the dissipated energies and their sum with kinetic and strain when a run dissipated), made by
  *   gnuplot from <dir>/<name>_history.gp (kept, so the plot can be redone or edited).
- * 2-D runs with at least one field output, at close:
+ * Runs with at least one field output, at close:
  * <dir>/<name>_fields.csv: the last field output, read back from the .h5: one row per particle
- *   (store order), columns id, X, Y, then every component of every field written (<f> for a
- *   scalar, <f>_x, <f>_y for a vector, <f>_xx, <f>_xy, <f>_yx, <f>_yy for a tensor, <f>_0, ...
- *   otherwise), 10 significant digits.
+ *   (store order), columns id, X, Y (, Z), then every component of every field written (<f> for
+ *   a scalar, <f>_x, <f>_y (, <f>_z) for a vector, <f>_xx, <f>_xy, ... for a tensor, <f>_0, ...
+ *   otherwise), 10 significant digits. In 3-D only one layer: the particles whose reference z is
+ *   within half their size (cube root of the volume) of the reference z nearest the middle of
+ *   the body's z extent (on a lattice, the layer nearest the mid-plane).
  * <dir>/<name>_fields.png: one panel per scalar field of that output and |u| (up to 6, in the
  *   order listed), the particles coloured by the value at their current positions (x when it
  *   was written, else X + u when u was, else X), equal axes; made by gnuplot from
