@@ -261,20 +261,8 @@ cleanup:
 /* Reads component c of /fields/<name> (n entries) into dst, in memory type `type`. */
 static int read_component(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, int c, hsize_t n,
                           void *dst) {
-  int err = PDK_SUCCESS;
-  hid_t d = -1, space = -1, mspace = -1;
-  herr_t st;
-  hsize_t start[2] = {(hsize_t)c, 0}, count[2] = {1, n};
-  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(g, name, H5P_DEFAULT));
-  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
-  PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(space, H5S_SELECT_SET, start, NULL, count, NULL));
-  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(1, &n, NULL));
-  PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, pdk_h5_mem_type(type), mspace, space, H5P_DEFAULT, dst));
-cleanup:
-  if (mspace >= 0) H5Sclose(mspace);
-  if (space >= 0) H5Sclose(space);
-  if (d >= 0) H5Dclose(d);
-  return err;
+  const hsize_t start[2] = {(hsize_t)c, 0}, count[2] = {1, n};
+  return pdk_h5_read_block(ctx, g, name, pdk_h5_mem_type(type), 2, start, count, dst);
 }
 
 static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count,

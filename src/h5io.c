@@ -171,6 +171,23 @@ int pdk_h5_text_read(pdk_ctx *ctx, hid_t file, const char *name, char **text) {
   return PDK_SUCCESS;
 }
 
+int pdk_h5_read_block(pdk_ctx *ctx, hid_t loc, const char *name, hid_t mem_type, int rank,
+                      const hsize_t *start, const hsize_t *count, void *dst) {
+  int err = PDK_SUCCESS;
+  hid_t d = -1, fspace = -1, mspace = -1;
+  herr_t st;
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(loc, name, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(d));
+  PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
+  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(rank, count, NULL));
+  PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, mem_type, mspace, fspace, H5P_DEFAULT, dst));
+cleanup:
+  if (mspace >= 0) H5Sclose(mspace);
+  if (fspace >= 0) H5Sclose(fspace);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
 int pdk_h5_write_provenance(pdk_ctx *ctx, hid_t file, const char *kind) {
   PDK_CALL(pdk_h5_attr_write_string(ctx, file, "kind", kind));
   PDK_CALL(pdk_h5_attr_write_string(ctx, file, "pdk_version", PDK_VERSION_STRING));

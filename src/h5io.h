@@ -29,6 +29,10 @@ int pdk_h5_attr_read_string(pdk_ctx *ctx, hid_t obj, const char *name, char **te
 int pdk_h5_text_write(pdk_ctx *ctx, hid_t file, const char *name, const char *text);
 /* Reads what pdk_h5_text_write stored; *text = NULL when there is neither. */
 int pdk_h5_text_read(pdk_ctx *ctx, hid_t file, const char *name, char **text);
+/* Reads the block start[0..rank) + count[0..rank) of dataset `name` in loc into dst (dense, in
+ * row-major order), converted to mem_type. */
+int pdk_h5_read_block(pdk_ctx *ctx, hid_t loc, const char *name, hid_t mem_type, int rank,
+                      const hsize_t *start, const hsize_t *count, void *dst);
 
 /* The root attributes every pdk file carries: kind, pdk_version, build_type, build_flags,
  * compiler. */

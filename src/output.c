@@ -1112,22 +1112,9 @@ typedef struct out_snapshot {
 /* Reads rows [r0, r0 + rows) of dataset `path` ([n] or [n][cols]) as doubles into buf. */
 static int read_rows(pdk_output *o, const char *path, int cols, hsize_t r0, hsize_t rows,
                      double *buf) {
-  pdk_ctx *ctx = o->ctx;
-  int err = PDK_SUCCESS;
-  hid_t d = -1, fspace = -1, mspace = -1;
-  herr_t st;
-  hsize_t start[2] = {r0, 0}, count[2] = {rows, (hsize_t)cols};
-  const int rank = cols > 1 ? 2 : 1;
-  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(o->file, path, H5P_DEFAULT));
-  PDK_H5_CALL_GOTO(ctx, fspace, H5Dget_space(d));
-  PDK_H5_CALL_GOTO(ctx, st, H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL));
-  PDK_H5_CALL_GOTO(ctx, mspace, H5Screate_simple(rank, count, NULL));
-  PDK_H5_CALL_GOTO(ctx, st, H5Dread(d, H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, buf));
-cleanup:
-  if (mspace >= 0) H5Sclose(mspace);
-  if (fspace >= 0) H5Sclose(fspace);
-  if (d >= 0) H5Dclose(d);
-  return err;
+  const hsize_t start[2] = {r0, 0}, count[2] = {rows, (hsize_t)cols};
+  return pdk_h5_read_block(o->ctx, o->file, path, H5T_NATIVE_DOUBLE, cols > 1 ? 2 : 1, start, count,
+                           buf);
 }
 
 /* <name>_fields.csv: id, X, Y (, Z) and every component of every field of the last field output,
