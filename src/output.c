@@ -1102,6 +1102,7 @@ typedef struct out_snapshot {
    * bounding box, the view, and each panel's range of values, its colour scale, so that failed
    * particles flung far away do not shrink the body or the scales. */
   double lo[2], hi[2];
+  double ref_lo[2], ref_hi[2]; /* reference positions of every particle written: the failed panel */
   double vlo[SNAP_MAX_PANELS], vhi[SNAP_MAX_PANELS];
   pdk_index num_shown;
   int failed_col; /* column of "failed" (0: not written); the other panels leave failed out */
@@ -1207,8 +1208,8 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
   for (int c = 0; c < 2; ++c) {
     snap->pos_col[c] = x_col ? x_col + c : 2 + c;
     snap->pos_add[c] = !x_col && u_col ? u_col + c : 0;
-    snap->lo[c] = INFINITY;
-    snap->hi[c] = -INFINITY;
+    snap->lo[c] = snap->ref_lo[c] = INFINITY;
+    snap->hi[c] = snap->ref_hi[c] = -INFINITY;
   }
   for (int q = 0; q < snap->num_panels; ++q) {
     snap->vlo[q] = INFINITY;
@@ -1239,6 +1240,10 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
       for (int c = 2; c <= num_cols; ++c)
         fprintf(f, ",%.10g", row[c]);
       fprintf(f, "\n");
+      for (int c = 0; c < 2; ++c) {
+        snap->ref_lo[c] = fmin(snap->ref_lo[c], row[2 + c]);
+        snap->ref_hi[c] = fmax(snap->ref_hi[c], row[2 + c]);
+      }
       if (failed_col && row[failed_col] != 0.0) continue;
       snap->num_shown++;
       for (int c = 0; c < 2; ++c) {
@@ -1332,10 +1337,12 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   fprintf(f, "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', "
              "4 '#fde725')\n");
   fprintf(f, "data = '%s_fields.csv'\ntitle = '%s'\n", stem, title);
+  char view[256] = "set autoscale xy\n";
   if (have_box) {
     const double m = 0.03 * fmax(bw, bh);
-    fprintf(f, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", snap->lo[0] - m,
-            snap->lo[0] + bw + m, snap->lo[1] - m, snap->lo[1] + bh + m);
+    snprintf(view, sizeof view, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n",
+             snap->lo[0] - m, snap->lo[0] + bw + m, snap->lo[1] - m, snap->lo[1] + bh + m);
+    fputs(view, f);
   }
   fprintf(f, "set multiplot layout %d,%d title title\n", wide ? np : 1, wide ? 1 : np);
   char xs[64], ys[64], xs_unfailed[96];
@@ -1351,6 +1358,25 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   for (int q = 0; q < snap->num_panels; ++q) {
     char *pt = gnuplot_quote(snap->title[q]);
     PDK_CHECK_GOTO(pt, ctx, PDK_ERR_MEMORY, "out of memory");
+    const int fc = snap->failed_col;
+    if (fc && snap->col[q] == fc) {
+      /* where the body broke: every particle at its reference position, the failed ones (1)
+       * drawn over the others (0), in the view of the reference positions */
+      fprintf(f, "set title '%s, reference positions'\n", pt);
+      free(pt);
+      const double rw = snap->ref_hi[0] - snap->ref_lo[0], rh = snap->ref_hi[1] - snap->ref_lo[1];
+      if (snap->num_rows > 0) {
+        const double m = 0.03 * fmax(rw, rh) + (rw > 0 || rh > 0 ? 0.0 : 1.0);
+        fprintf(f, "set xrange [%.10g:%.10g]\nset yrange [%.10g:%.10g]\n", snap->ref_lo[0] - m,
+                snap->ref_hi[0] + m, snap->ref_lo[1] - m, snap->ref_hi[1] + m);
+      }
+      fprintf(f,
+              "set cbrange [0:1]\nplot data skip 1 using ($%d != 0 ? NaN : $2):($3):(0) with "
+              "points pt 7 ps %.3g lc palette, data skip 1 using ($%d == 0 ? NaN : $2):($3):(1) "
+              "with points pt 7 ps %.3g lc palette\n%s",
+              fc, ps, fc, ps, view);
+      continue;
+    }
     fprintf(f, "set title '%s'\n", pt);
     free(pt);
     if (have_box && snap->vhi[q] > snap->vlo[q])

@@ -611,7 +611,8 @@ int main(void) {
       double xhi = strtod(strchr(xr, ':') + 1, NULL);
       T_ASSERT(xhi < 0.05 && xlo < 0.001, "view [%g, %g] leaves the failed particle out", xlo, xhi);
       /* panels s and failed (the scalars, in order); s coloured over the unfailed particles */
-      const char *ts = strstr(gp, "set title 's'"), *tf = strstr(gp, "set title 'failed'");
+      const char *ts = strstr(gp, "set title 's'"),
+                 *tf = strstr(gp, "set title 'failed, reference positions'");
       T_ASSERT(ts && tf && ts < tf && !strstr(gp, "set title 'odd"), "panels s, failed:\n%s", gp);
       const char *cb = strstr(ts, "set cbrange [");
       T_ASSERT(cb && cb < tf, "panel s has a colour range");
@@ -620,9 +621,31 @@ int main(void) {
       T_ASSERT(fabs(clo - (1.0 + 1.0 / 7.0)) < 1e-9 && fabs(chi - smax) < 1e-9 * smax,
                "panel s range [%g, %g], want [%g, %g] (particle 0 failed)", clo, chi,
                1.0 + 1.0 / 7.0, smax);
-      T_ASSERT(strstr(ts, "using ($16 != 0 ? NaN : ($4)):($5):($6)") &&
-                   strstr(tf, "using ($4):($5):($16)"),
-               "s is drawn without the failed particles, failed with all:\n%s", gp);
+      T_ASSERT(strstr(ts, "using ($16 != 0 ? NaN : ($4)):($5):($6)"),
+               "s is drawn without the failed particles:\n%s", gp);
+      /* panel failed: every particle at its reference position (columns 2, 3), the failed ones
+       * drawn last, in the view of the reference positions (particle 0 at its lattice point, not
+       * where it was flung); then the current view again for any later panel */
+      T_ASSERT(strstr(tf, "using ($16 != 0 ? NaN : $2):($3):(0)") &&
+                   strstr(tf, "using ($16 == 0 ? NaN : $2):($3):(1)") &&
+                   strstr(tf, "using ($16 != 0 ? NaN : $2)") <
+                       strstr(tf, "using ($16 == 0 ? NaN : $2)"),
+               "failed is drawn at the reference positions, the failed particles on top:\n%s", gp);
+      const char *fr = strstr(tf, "set xrange [");
+      T_ASSERT(fr, "panel failed sets its view");
+      double rlo = strtod(fr + strlen("set xrange ["), NULL),
+             rhi = strtod(strchr(fr, ':') + 1, NULL);
+      double Xlo = INFINITY, Xhi = -INFINITY;
+      for (pdk_index i = 0; i < n; ++i) {
+        Xlo = fmin(Xlo, X0[i]);
+        Xhi = fmax(Xhi, X0[i]);
+      }
+      T_ASSERT(rlo < Xlo && rlo > Xlo - 0.1 * (Xhi - Xlo) && rhi > Xhi &&
+                   rhi < Xhi + 0.1 * (Xhi - Xlo),
+               "panel failed's view [%g, %g], reference positions [%g, %g]", rlo, rhi, Xlo, Xhi);
+      const char *back = strstr(fr + 1, "set xrange [");
+      T_ASSERT(back && strtod(back + strlen("set xrange ["), NULL) == xlo,
+               "the current view is restored after panel failed:\n%s", tf);
       free(gp);
     }
     xx[0] = x0_saved[0];

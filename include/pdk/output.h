@@ -49,8 +49,9 @@
  *   the body's z extent (on a lattice, the layer nearest the mid-plane).
  * <dir>/<name>_fields.png: one panel per scalar field of that output and |u| (up to 6, in the
  *   order listed), the particles coloured by the value at their current positions (x when it
- *   was written, else X + u when u was, else X), equal axes; made by gnuplot from
- *   <dir>/<name>_fields.gp when the history PNG is made.
+ *   was written, else X + u when u was, else X), equal axes; the "failed" panel instead at the
+ *   reference positions, failed particles drawn over the others (the crack path); made by
+ *   gnuplot from <dir>/<name>_fields.gp when the history PNG is made.
  *
  * Crash safety: every file is written under a temporary name (<file>.part) and flushed as it
  * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its
