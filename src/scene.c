@@ -127,6 +127,7 @@ typedef struct sc_solver {
 } sc_solver;
 typedef struct sc_output {
   double field_interval, history_interval, checkpoint_interval;
+  int units;
   char **fields;
   unsigned fields_count;
   char **reactions;
@@ -169,6 +170,10 @@ static const cyaml_strval_t law_names[] = {{"linear_elastic", PDK_LAW_LINEAR_ELA
 static const cyaml_strval_t connectivity_names[] = {{"tl", PDK_CONNECTIVITY_TL},
                                                     {"semi_tl", PDK_CONNECTIVITY_SEMI_TL},
                                                     {"ul", PDK_CONNECTIVITY_UL}};
+/* output.units: the labels of the output files' columns and axes (pdk has no built-in units) */
+enum { UNITS_NONE, UNITS_SI, UNITS_MM };
+static const cyaml_strval_t units_names[] = {
+    {"none", UNITS_NONE}, {"SI", UNITS_SI}, {"mm-N-s-tonne", UNITS_MM}};
 static const cyaml_strval_t coupling_names[] = {{"none", PDK_JC_COUPLING_NONE},
                                                 {"effective", PDK_JC_COUPLING_EFFECTIVE}};
 static const cyaml_strval_t failed_mode_names[] = {{"zero", PDK_JC_FAILED_ZERO},
@@ -432,6 +437,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(output, CYAML_FIELD_FLOAT("history_interval", OPT, sc_output, history_interval));
   ADD(output, CYAML_FIELD_SEQUENCE("reactions", OPT_PTR, sc_output, reactions, &sc->str, 0, 64));
   ADD(output, CYAML_FIELD_FLOAT("checkpoint_interval", OPT, sc_output, checkpoint_interval));
+  ADD(output,
+      CYAML_FIELD_ENUM("units", ENUM_FLAGS, sc_output, units, units_names, N_OF(units_names)));
 
   ADD(scene, CYAML_FIELD_STRING_PTR("name", OPT, sc_scene, name, 1, 255));
   ADD(scene, CYAML_FIELD_STRING_PTR("description", OPT, sc_scene, description, 0, CYAML_UNLIMITED));
@@ -1867,6 +1874,7 @@ static int resolve_output(loader *ld, const sc_scene *d) {
                          &out->history_interval));
   PDK_CALL(check_whole(ld, "output.checkpoint_interval", o->checkpoint_interval, 0, 1e15,
                        &out->checkpoint_interval));
+  out->units = o->units == UNITS_SI ? "SI" : o->units == UNITS_MM ? "mm-N-s-tonne" : NULL;
 
   const char *default_fields[] = {"u", "v"};
   const int hf = has(ld, "output.fields");

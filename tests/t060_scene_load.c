@@ -100,6 +100,7 @@ static void check_full_mapping(const pdk_scene *s, const char *path) {
   const pdk_scene_output *o = pdk_scene_output_get(s);
   T_ASSERT(o->field_interval == 100 && o->history_interval == 5 && o->checkpoint_interval == 1000,
            "output intervals");
+  T_ASSERT(o->units && !strcmp(o->units, "SI"), "output units %s", o->units ? o->units : "none");
   T_ASSERT(o->num_fields == 3 && !strcmp(o->fields[0], "u") && !strcmp(o->fields[2], "f"),
            "output fields");
   T_ASSERT(o->num_reaction_sets == 2 && !strcmp(o->reaction_sets[0], "top") &&
@@ -202,7 +203,7 @@ static void check_minimal(pdk_ctx *ctx) {
   const pdk_scene_output *o = pdk_scene_output_get(s);
   T_ASSERT(o->field_interval == 0 && o->history_interval == 10 && o->checkpoint_interval == 0 &&
                o->num_fields == 2 && !strcmp(o->fields[0], "u") && !strcmp(o->fields[1], "v") &&
-               o->num_reaction_sets == 0,
+               o->num_reaction_sets == 0 && !o->units,
            "output defaults");
   pdk_sim *sim = NULL;
   int threads_before = pdk_ctx_num_threads(ctx);

@@ -70,6 +70,14 @@ run(0 ${PDK_CLI} run ${scene} -o thr --threads 1 --set solver.threads=2 --set so
 if(NOT run_out MATCHES ", 1 thread\\(s\\)")
   message(FATAL_ERROR "--threads 1 not honoured: ${run_out}")
 endif()
+# output.units labels the files' columns (the bar's scene has none: [length] above)
+run(0 ${PDK_CLI} run ${scene} -o si -q --set solver.steps=10 --set output.units=SI)
+file(STRINGS ${PDK_TEST_DIR}/si/bar_fields.csv si_fields LIMIT_COUNT 1)
+file(STRINGS ${PDK_TEST_DIR}/si/bar_history.csv si_history LIMIT_COUNT 1)
+if(NOT si_fields STREQUAL "id,X [m],Y [m],u_x,u_y,v_x,v_y" OR
+   NOT si_history MATCHES "^step \\[-\\],time \\[s\\],kinetic \\[J\\],")
+  message(FATAL_ERROR "output.units=SI: fields header '${si_fields}', history '${si_history}'")
+endif()
 # the same with 2 threads on the continuation
 run(0 ${PDK_CLI} run ${scene} -o rest2 -q --threads 2 --restart ${PDK_TEST_DIR}/half/bar_checkpoint.h5)
 last_row(${PDK_TEST_DIR}/rest2/bar_history.csv rest2_row)

@@ -9,7 +9,7 @@ A panel given after --field NAME:VMAX shows that field (0 to VMAX) with the fail
 top; the window is the plate (0-50 x 0-100 mm) unless --window X0,X1,Y0,Y1 (mm) comes first.
 Panels given after --turn DEG come from a plate turned by DEG degrees in the lattice (about its
 centre, 25, 50 mm) and are drawn turned back, in the plate's own frame (--turn 0 ends that).
-The files may also be `pdk run`'s <name>_fields.csv (columns "X [length]", ...).
+The files may also be `pdk run`'s <name>_fields.csv (columns "X [<unit>]", ...).
 Used for docs/validation/plate_two_holes.md items 11 and 12."""
 import sys
 
@@ -39,7 +39,7 @@ def main(argv):
     fig, axs = plt.subplots(1, len(panels), figsize=(2.4 * len(panels), 4.6), squeeze=False)
     for ax, (title, path, fld, win, deg) in zip(axs[0], panels):
         d = np.genfromtxt(path, delimiter=",", names=True)
-        names = d.dtype.names  # genfromtxt turns "X [length]" into "X_length"
+        names = d.dtype.names  # genfromtxt turns "X [m]" into "X_m"
         cx = next(c for c in names if c == "X" or c.startswith("X_"))
         cy = next(c for c in names if c == "Y" or c.startswith("Y_"))
         th = np.radians(deg)

@@ -65,6 +65,7 @@ typedef struct pdk_scene_output {
   const char *const *fields; /* particle field names to write, e.g. "u", "v", "f" */
   int num_reaction_sets;
   const char *const *reaction_sets; /* set names (without "set:") whose reactions are recorded */
+  const char *units; /* output.units: "SI", "mm-N-s-tonne" or NULL (none): pdk_output_opts.units */
 } pdk_scene_output;
 
 const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s);

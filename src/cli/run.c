@@ -428,6 +428,7 @@ int pdk_cli_run(int argc, char **argv) {
     oo.scene_text = pdk_scene_text(scene);
     oo.reaction_sets = so->reaction_sets;
     oo.num_reaction_sets = so->num_reaction_sets;
+    oo.units = so->units;
     oo.plot = 1;
     if (pdk_output_open(ctx, &oo, p, &out)) {
       fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
