@@ -1391,9 +1391,9 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
       snprintf(v, sizeof v, "(sqrt($%d**2+$%d**2))", snap->col[q], snap->col[q] + 1);
     else
       snprintf(v, sizeof v, "($%d)", snap->col[q]);
-    const int leave_failed = snap->failed_col && snap->col[q] != snap->failed_col;
+    /* (the failed panel took the branch above: every other panel leaves failed particles out) */
     fprintf(f, "plot data skip 1 using %s:%s:%s with points pt 7 ps %.3g lc palette\n",
-            leave_failed ? xs_unfailed : xs, ys, v, ps);
+            fc ? xs_unfailed : xs, ys, v, ps);
   }
   fprintf(f, "unset multiplot\nset output\n");
   PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
