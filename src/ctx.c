@@ -6,9 +6,6 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/resource.h>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 #include <time.h>
 
 #include "ext.h"
@@ -75,23 +72,6 @@ void *pdk_alloc_aligned(size_t count, size_t size) {
   void *ptr = aligned_alloc(PDK_ALIGN, bytes);
   if (ptr) memset(ptr, 0, bytes);
   return ptr;
-}
-
-void *pdk_alloc_aligned_huge(size_t count, size_t size) {
-#if defined(MADV_HUGEPAGE)
-  const size_t huge = (size_t)2 << 20;
-  if (size && count > (SIZE_MAX - huge) / size) return NULL;
-  size_t bytes = count * size;
-  if (bytes < 2 * huge) return pdk_alloc_aligned(count, size);
-  bytes = (bytes + huge - 1) / huge * huge;
-  void *ptr = aligned_alloc(huge, bytes);
-  if (!ptr) return NULL;
-  madvise(ptr, bytes, MADV_HUGEPAGE); /* a hint: without it the pages stay 4 KiB */
-  memset(ptr, 0, bytes);
-  return ptr;
-#else
-  return pdk_alloc_aligned(count, size);
-#endif
 }
 
 void pdk_free_aligned(void *ptr) { free(ptr); }

@@ -296,8 +296,9 @@ static int corr_setup(pdk_model *m) {
   c->pass1 = ctx->kernels.corr_pass1;
   c->pass2 = ctx->kernels.corr_pass2;
   c->num_blocks = (n + PDK_CORR_BLOCK - 1) / PDK_CORR_BLOCK;
-  /* streamed once per sweep, 8 B per bond: huge pages where granted (fewer TLB misses) */
-  c->bond_omega = pdk_alloc_aligned_huge((size_t)(nb > 0 ? nb : 1), sizeof(double));
+  /* streamed once per sweep, 8 B per bond (4 KiB pages: bench/README.md, "Transparent huge
+   * pages, dropped") */
+  c->bond_omega = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
   c->W = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
   c->block_energy = pdk_alloc_aligned((size_t)c->num_blocks, sizeof(double));
   int ok = c->bond_omega && c->W && c->block_energy;
@@ -353,14 +354,14 @@ static int corr_setup(pdk_model *m) {
     }
   }
   if (layout & 32u) {
-    /* ref4, cur4 and the rows are read at the neighbours' places: huge pages where granted */
-    c->ref4 = pdk_alloc_aligned_huge(4 * (size_t)n_pad, sizeof(double));
-    c->cur4 = pdk_alloc_aligned_huge(4 * (size_t)n_pad, sizeof(double));
+    /* ref4, cur4 and the rows are read at the neighbours' places */
+    c->ref4 = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
+    c->cur4 = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
     c->own = pdk_alloc_aligned(4 * (size_t)n_pad, sizeof(double));
     if (o->precision == PDK_PRECISION_FLOAT)
-      c->rowf = pdk_alloc_aligned_huge((size_t)n_pad, sizeof(pdk_corr_rowf));
+      c->rowf = pdk_alloc_aligned((size_t)n_pad, sizeof(pdk_corr_rowf));
     else
-      c->row = pdk_alloc_aligned_huge((size_t)n_pad, sizeof(pdk_corr_row));
+      c->row = pdk_alloc_aligned((size_t)n_pad, sizeof(pdk_corr_row));
     ok = ok && c->ref4 && c->cur4 && c->own && (c->rowf || c->row);
     if (ok) {
       const double *V = pdk_particles_volume(p);

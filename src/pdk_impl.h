@@ -133,14 +133,6 @@ void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid);
 /* 64-byte aligned allocation of `count` elements of `size` bytes; NULL on overflow or failure.
  * Memory is zeroed. Free with pdk_free_aligned. */
 void *pdk_alloc_aligned(size_t count, size_t size);
-/* The same for a large array read in bond order or at the neighbours' places (the correspondence
- * model's influence weights and packed rows): on Linux, from 4 MiB on, aligned to 2 MiB, rounded
- * up to a multiple of it and advised for transparent huge pages (MADV_HUGEPAGE), so the reads
- * miss the TLB less; a system that does not grant them keeps 4 KiB pages. Not for every array:
- * per-particle arrays all starting at 2 MiB boundaries put particle i's entries of many of them in
- * the same cache sets (bench/README.md, "Correspondence packed rows: one pass-2 record").
- * Free with pdk_free_aligned. */
-void *pdk_alloc_aligned_huge(size_t count, size_t size);
 void pdk_free_aligned(void *ptr);
 
 static inline pdk_index pdk_pad_count(pdk_index n) {
