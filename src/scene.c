@@ -1378,6 +1378,9 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if (has(ld, "model.law")) m->law = (pdk_law)mo->law;
   if (has(ld, "model.precision")) m->precision = (pdk_precision)mo->precision;
   if (has(ld, "model.layout")) m->layout = (pdk_layout)mo->layout;
+  /* Scenes take the lattice path where it applies (auto) unless they name a layout or a stencil
+   * mode; the C API's default stays off (pdk_model_opts_default), so code chooses its path. */
+  if (!has(ld, "model.layout")) m->stencil = PDK_STENCIL_AUTO;
   if (has(ld, "model.stencil")) {
     m->stencil = (pdk_stencil_mode)mo->stencil;
     REQUIRE(ld,

@@ -70,7 +70,7 @@ static void check_full_mapping(const pdk_scene *s, const char *path) {
   const pdk_model_opts *m = &s->model;
   T_ASSERT(m->kind == PDK_MODEL_CORRESPONDENCE && m->influence == PDK_INFLUENCE_CUBIC &&
                m->stabilization == PDK_STAB_SILLING && m->law == PDK_LAW_NEO_HOOKE &&
-               m->precision == PDK_PRECISION_DOUBLE,
+               m->precision == PDK_PRECISION_DOUBLE && m->stencil == PDK_STENCIL_OFF,
            "model enums");
   T_NEAR(m->bulk_modulus, 200e9 / 1.5, 1e-15, 0, "K from E, nu");
   T_NEAR(m->shear_modulus, 80e9, 1e-15, 0, "G from E, nu");
@@ -195,7 +195,8 @@ static void check_minimal(pdk_ctx *ctx) {
            "geometry defaults");
   T_ASSERT(s->model.kind == PDK_MODEL_PMB && s->model.bulk_modulus == 1e9 &&
                s->model.stabilization == PDK_STAB_NONE && s->model.critical_stretch == 0 &&
-               s->model.influence == PDK_INFLUENCE_CONSTANT,
+               s->model.influence == PDK_INFLUENCE_CONSTANT &&
+               s->model.stencil == PDK_STENCIL_AUTO && s->model.layout == PDK_LAYOUT_CSR,
            "model defaults");
   T_ASSERT(s->steps == 3 && s->end_time == 0 && s->solver.dt == 0 && s->solver.safety == 0.8 &&
                !s->solver.force_dt && s->threads == 0 && s->num_bcs == 0 && s->num_sets == 0,

@@ -471,8 +471,8 @@ static void explicit_run(pdk_ctx *ctx) {
   for (int k = 0; k < 2; ++k) free(x[k][0]), free(x[k][1]);
 }
 
-/* The scene key model.stencil: on builds a stencil model; bad values and kinds are refused naming
- * the key. */
+/* The scene key model.stencil: on builds a stencil model, a scene without it takes the stencil
+ * path unless it names model.layout; bad values and kinds are refused naming the key. */
 static void scene_key(pdk_ctx *ctx) {
   const char *src = getenv("PDK_SOURCE_DIR");
   char path[2048];
@@ -483,6 +483,23 @@ static void scene_key(pdk_ctx *ctx) {
   pdk_sim *sim = NULL;
   T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
   T_ASSERT(pdk_model_stencil_active(pdk_sim_model(sim)), "scene model.stencil: on not applied");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&sc);
+  /* a scene that names neither key takes the stencil path where it applies (auto); one that names
+   * a layout keeps it (off) */
+  T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, &sc));
+  T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
+  T_ASSERT(pdk_model_opts_get(pdk_sim_model(sim))->stencil == PDK_STENCIL_AUTO,
+           "scene default stencil %d, not auto",
+           (int)pdk_model_opts_get(pdk_sim_model(sim))->stencil);
+  T_ASSERT(pdk_model_stencil_active(pdk_sim_model(sim)), "scene default: no stencil on a lattice");
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&sc);
+  const char *csr[] = {"model.layout=csr"};
+  T_OK(ctx, pdk_scene_load(ctx, path, csr, 1, &sc));
+  T_OK(ctx, pdk_sim_create(ctx, sc, &sim));
+  T_ASSERT(!pdk_model_stencil_active(pdk_sim_model(sim)),
+           "model.layout=csr named, yet the stencil path was taken");
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&sc);
   const char *bad[] = {"model.stencil=yes"};

@@ -287,7 +287,8 @@ typedef struct pdk_model_opts {
    * with AVX-512). C or less: no sorting. */
   int sell_sigma;
   /* PMB, LPS and correspondence force passes on a regular lattice (see pdk_stencil_mode); default
-   * off. lps with lps_use_influence accepts off and auto (which then means off), refuses on. */
+   * off here (scenes default to auto unless they name model.layout). lps with lps_use_influence
+   * accepts off and auto (which then means off), refuses on. */
   pdk_stencil_mode stencil;
 } pdk_model_opts;
 
