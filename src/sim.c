@@ -447,14 +447,17 @@ static int update_von_mises(pdk_sim *sim) {
   double *vm = pdk_particles_field_data(p, "von_mises", 0);
   const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
   const double *Fc[9], *Ac[9], *Kc[9];
+  const int jc = mo->law == PDK_LAW_JC;
+  /* TL and semi-TL: P = A K from the pass's own A; UL keeps no K (A = tau_r M^-1 there), so the
+   * elastic laws are evaluated again at the total F, as its pass did */
+  const int from_law = !jc && mo->connectivity == PDK_CONNECTIVITY_UL;
   int ok = vm && flag;
   for (int t = 0; t < d * d; ++t) {
     Fc[t] = pdk_particles_field_data(p, "F", t);
     Ac[t] = pdk_particles_field_data(p, "A", t);
     Kc[t] = pdk_particles_field_data(p, "Kinv", t);
-    ok = ok && Fc[t] && Ac[t] && Kc[t];
+    ok = ok && Fc[t] && (jc || from_law || (Ac[t] && Kc[t]));
   }
-  const int jc = mo->law == PDK_LAW_JC;
   const double *cp[6] = {0}, *eps_p = NULL, *damage = NULL, *temp = NULL;
   const uint8_t *failed = NULL;
   if (jc) {
@@ -469,9 +472,16 @@ static int update_von_mises(pdk_sim *sim) {
     ok = ok && eps_p && damage && failed && (!mo->jc.thermal || temp);
   }
   PDK_CHECK(ok, sim->ctx, PDK_ERR_NOT_FOUND,
-            "von_mises needs the correspondence fields F, A, Kinv, flag%s; the model did not "
-            "declare them",
-            jc ? " and the Johnson-Cook history" : "");
+            "von_mises needs the correspondence fields F, flag%s; the model did not declare them",
+            jc         ? " and the Johnson-Cook history"
+            : from_law ? ""
+                       : ", A, Kinv");
+  pdk_corr_consts kc;
+  memset(&kc, 0, sizeof kc);
+  kc.dim = d;
+  kc.law = (int)mo->law;
+  kc.lambda = lambda0;
+  kc.mu = mu;
   for (pdk_index i = 0; i < n; ++i) {
     double F[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, S[3][3] = {{0}};
     vm[i] = 0.0;
@@ -493,25 +503,37 @@ static int update_von_mises(pdk_sim *sim) {
       if (!pdk_jc_update(&mo->jc, d, F, dt, &in, &scratch, P, &res)) vm[i] = res.sigma_vm;
       continue;
     }
-    /* P = A K, K = (K^-1)^-1 */
-    double Ki[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, K[3][3], P[3][3] = {{0}};
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        Ki[a][c] = Kc[a * d + c][i];
-    const double detK = Ki[0][0] * (Ki[1][1] * Ki[2][2] - Ki[1][2] * Ki[2][1]) -
-                        Ki[0][1] * (Ki[1][0] * Ki[2][2] - Ki[1][2] * Ki[2][0]) +
-                        Ki[0][2] * (Ki[1][0] * Ki[2][1] - Ki[1][1] * Ki[2][0]);
-    if (!(fabs(detK) > 0) || !isfinite(detK)) continue;
-    for (int a = 0; a < 3; ++a)
-      for (int c = 0; c < 3; ++c) {
-        /* cofactor / det, transposed */
-        const int a1 = (c + 1) % 3, a2 = (c + 2) % 3, c1 = (a + 1) % 3, c2 = (a + 2) % 3;
-        K[a][c] = (Ki[a1][c1] * Ki[a2][c2] - Ki[a1][c2] * Ki[a2][c1]) / detK;
+    double P[3][3] = {{0}};
+    if (from_law) {
+      pdk_corr_consts tmp = kc;
+      if (mat) {
+        const pdk_material *q = &mo->materials[mat[i]];
+        tmp.mu = q->shear_modulus;
+        tmp.lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
       }
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        for (int e = 0; e < d; ++e)
-          P[a][c] += Ac[a * d + e][i] * K[e][c];
+      double W;
+      if (!pdk_kernel_corr_law_ref(&tmp, F, P, &W)) continue;
+    } else {
+      /* P = A K, K = (K^-1)^-1 */
+      double Ki[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, K[3][3];
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c)
+          Ki[a][c] = Kc[a * d + c][i];
+      const double detK = Ki[0][0] * (Ki[1][1] * Ki[2][2] - Ki[1][2] * Ki[2][1]) -
+                          Ki[0][1] * (Ki[1][0] * Ki[2][2] - Ki[1][2] * Ki[2][0]) +
+                          Ki[0][2] * (Ki[1][0] * Ki[2][1] - Ki[1][1] * Ki[2][0]);
+      if (!(fabs(detK) > 0) || !isfinite(detK)) continue;
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) {
+          /* cofactor / det, transposed */
+          const int a1 = (c + 1) % 3, a2 = (c + 2) % 3, c1 = (a + 1) % 3, c2 = (a + 2) % 3;
+          K[a][c] = (Ki[a1][c1] * Ki[a2][c2] - Ki[a1][c2] * Ki[a2][c1]) / detK;
+        }
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c)
+          for (int e = 0; e < d; ++e)
+            P[a][c] += Ac[a * d + e][i] * K[e][c];
+    }
     const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
                      F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
                      F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
