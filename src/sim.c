@@ -19,7 +19,9 @@
  *                               returned stress is the one of the pass to round-off; failed
  *                               particles give 0;
  *                             elastic laws: sigma = P F^T / J with P = A K (A = P K^-1 and K^-1 are
- *                               fields of the model), P itself for linear_elastic (small strain:
+ *                               fields of the model; updated-Lagrangian connectivity keeps no K, so
+ *                               there P is the law evaluated again at the stored total F, as its
+ *                               pass did), P itself for linear_elastic (small strain:
  *                               P = sigma); in 2-D sigma_zz from the law at F33 = 1:
  *                               linear_elastic lambda tr(eps), svk lambda tr(E) / J,
  *                               neo_hooke lambda ln(J) / J;
