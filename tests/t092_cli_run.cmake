@@ -1,7 +1,7 @@
 # The pdk command end to end: `pdk run` writes the HDF5, XDMF, CSVs and checkpoint (no .part file
 # left; in 2-D the last field output as CSV), `pdk check` validates without writing, a restarted run ends bitwise where an uninterrupted
 # one ends, Ctrl-C stops cleanly with a checkpoint and exit 130, bad scenes and overrides exit 2
-# with file:line:key messages.
+# with file:line:key messages; progress lines go to a log when stderr is not a terminal.
 # labels: unit
 cmake_minimum_required(VERSION 3.25)
 set(scene ${PDK_SOURCE_DIR}/tests/scenes/t092_bar.yaml)
@@ -31,6 +31,26 @@ endif()
 file(GLOB written ${PDK_TEST_DIR}/*)
 if(written)
   message(FATAL_ERROR "pdk check wrote files: ${written}")
+endif()
+
+# progress when stderr is not a terminal (here: captured): whole lines at least every 10% of the
+# steps and PDK_PROGRESS_SECONDS (0: no wall-time floor), so between 5 and 10 of them, in order;
+# none with -q; none by default for a run this short (the floor is 10 s)
+set(ENV{PDK_PROGRESS_SECONDS} 0)
+run(0 ${PDK_CLI} run ${scene} -o progress)
+string(REGEX MATCHALL "\nstep [0-9]+/[0-9]+ [(][0-9]+%[)]  t [0-9.e+-]+  wall [^\n]*ETA [^\n]*broken [0-9]+  E [^\n]*" lines "${run_out}")
+list(LENGTH lines nlines)
+if(nlines LESS 5 OR nlines GREATER 10)
+  message(FATAL_ERROR "${nlines} progress lines, expected 5 to 10:\n${run_out}")
+endif()
+run(0 ${PDK_CLI} run ${scene} -o progress_q -q)
+if(run_out MATCHES "\nstep [0-9]+/")
+  message(FATAL_ERROR "progress lines with -q:\n${run_out}")
+endif()
+unset(ENV{PDK_PROGRESS_SECONDS})
+run(0 ${PDK_CLI} run ${scene} -o progress_default)
+if(run_out MATCHES "\nstep [0-9]+/")
+  message(FATAL_ERROR "progress lines in a short run at the default 10 s floor:\n${run_out}")
 endif()
 
 # run: all files, no .part left

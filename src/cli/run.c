@@ -41,6 +41,9 @@ const char *pdk_cli_usage_run =
     "  -q, --quiet          no progress line, only errors and the summary\n"
     "  -h, --help           show this help\n"
     "\n"
+    "progress: on a terminal one line updated in place; otherwise (a log) a line every 10% of the\n"
+    "steps, at most one per PDK_PROGRESS_SECONDS (default 10) seconds.\n"
+    "\n"
     "exit status: 0 done, 1 the run failed, 2 bad command line or scene, 130 interrupted (a\n"
     "checkpoint was written).\n";
 
@@ -453,7 +456,14 @@ int pdk_cli_run(int argc, char **argv) {
   const long field_every = so->field_interval;
   const long ckpt_every = so->checkpoint_interval;
   const int tty = !a.quiet && isatty(STDERR_FILENO);
-  double last_print = 0.0;
+  /* not a terminal (a log file, a batch job): a whole line at least every 10% of the steps and
+   * PDK_PROGRESS_SECONDS (default 10) of wall time, so a short run prints none and a long one
+   * about ten */
+  const int log_lines = !a.quiet && !tty;
+  const char *env_every = getenv("PDK_PROGRESS_SECONDS");
+  const double line_every = env_every && *env_every ? atof(env_every) : 10.0;
+  double last_print = 0.0, last_line = pdk_wtime();
+  long last_line_step = start;
   pdk_history h;
   int err = pdk_explicit_run(e, 0, &h);
   const pdk_history h0 = h;
@@ -503,6 +513,18 @@ int pdk_cli_run(int argc, char **argv) {
       fprintf(stderr, "\rstep %ld/%ld  t %.4g  wall %s  ETA %s  broken %lld  E %.4g   ", s, total,
               h.time, w, eta, (long long)h.broken, h.kinetic + h.strain);
       last_print = now;
+    }
+    if (log_lines && s < total && now - last_line >= line_every &&
+        10 * (s - last_line_step) >= total - start) {
+      double el = now - run0, frac = (double)(s - start) / (double)(total - start);
+      char w[32], eta[32];
+      fmt_duration(w, sizeof w, now - wall0);
+      fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
+      fprintf(stderr, "step %ld/%ld (%.0f%%)  t %.4g  wall %s  ETA %s  broken %lld  E %.4g\n", s,
+              total, 100.0 * (double)s / (double)total, h.time, w, eta, (long long)h.broken,
+              h.kinetic + h.strain);
+      last_line = now;
+      last_line_step = s;
     }
   }
   if (tty) fputc('\n', stderr);
