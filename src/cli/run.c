@@ -504,27 +504,20 @@ int pdk_cli_run(int argc, char **argv) {
     if (!err && ckpt_every > 0 && s % ckpt_every == 0 && s < total)
       err = pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene));
     double now = pdk_wtime();
-    if (tty && (now - last_print > 0.25 || s == total)) {
+    const int in_place = tty && (now - last_print > 0.25 || s == total);
+    const int line = log_lines && s < total && now - last_line >= line_every &&
+                     10 * (s - last_line_step) >= total - start;
+    if (in_place || line) {
       double el = now - run0,
              frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
       char w[32], eta[32];
       fmt_duration(w, sizeof w, now - wall0);
       fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
-      fprintf(stderr, "\rstep %ld/%ld  t %.4g  wall %s  ETA %s  broken %lld  E %.4g   ", s, total,
-              h.time, w, eta, (long long)h.broken, h.kinetic + h.strain);
+      fprintf(stderr, "%sstep %ld/%ld (%.0f%%)  t %.4g  wall %s  ETA %s  broken %lld  E %.4g%s",
+              in_place ? "\r" : "", s, total, 100.0 * (double)s / (double)total, h.time, w, eta,
+              (long long)h.broken, h.kinetic + h.strain, in_place ? "   " : "\n");
       last_print = now;
-    }
-    if (log_lines && s < total && now - last_line >= line_every &&
-        10 * (s - last_line_step) >= total - start) {
-      double el = now - run0, frac = (double)(s - start) / (double)(total - start);
-      char w[32], eta[32];
-      fmt_duration(w, sizeof w, now - wall0);
-      fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
-      fprintf(stderr, "step %ld/%ld (%.0f%%)  t %.4g  wall %s  ETA %s  broken %lld  E %.4g\n", s,
-              total, 100.0 * (double)s / (double)total, h.time, w, eta, (long long)h.broken,
-              h.kinetic + h.strain);
-      last_line = now;
-      last_line_step = s;
+      if (line) last_line = now, last_line_step = s;
     }
   }
   if (tty) fputc('\n', stderr);
