@@ -505,16 +505,17 @@ static int update_von_mises(pdk_sim *sim) {
       if (!pdk_jc_update(&mo->jc, d, F, dt, &in, &scratch, P, &res)) vm[i] = res.sigma_vm;
       continue;
     }
+    /* the particle's material's Lame constants (multi-material bodies) */
+    pdk_corr_consts ki = kc;
+    if (mat) {
+      const pdk_material *q = &mo->materials[mat[i]];
+      ki.mu = q->shear_modulus;
+      ki.lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
+    }
     double P[3][3] = {{0}};
     if (from_law) {
-      pdk_corr_consts tmp = kc;
-      if (mat) {
-        const pdk_material *q = &mo->materials[mat[i]];
-        tmp.mu = q->shear_modulus;
-        tmp.lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
-      }
       double W;
-      if (!pdk_kernel_corr_law_ref(&tmp, F, P, &W)) continue;
+      if (!pdk_kernel_corr_law_ref(&ki, F, P, &W)) continue;
     } else {
       /* P = A K, K = (K^-1)^-1 */
       double Ki[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, K[3][3];
@@ -554,11 +555,7 @@ static int update_von_mises(pdk_sim *sim) {
         }
     }
     if (d == 2) {
-      double lambda = lambda0; /* the particle's material's (multi-material bodies) */
-      if (mat) {
-        const pdk_material *q = &mo->materials[mat[i]];
-        lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
-      }
+      const double lambda = ki.lambda;
       switch (mo->law) {
       case PDK_LAW_LINEAR_ELASTIC: S[2][2] = lambda * (F[0][0] - 1.0 + F[1][1] - 1.0); break;
       case PDK_LAW_SVK: {
