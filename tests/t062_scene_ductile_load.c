@@ -267,6 +267,56 @@ static double law_von_mises(pdk_law law, const pdk_model_opts *mo, const double 
               3 * (S[0][1] * S[0][1] + S[1][2] * S[1][2] + S[0][2] * S[0][2]));
 }
 
+static const char *laws[] = {"linear_elastic", "svk", "neo_hooke", "jc"};
+static const pdk_law law_of[] = {PDK_LAW_LINEAR_ELASTIC, PDK_LAW_SVK, PDK_LAW_NEO_HOOKE,
+                                 PDK_LAW_JC};
+
+/* One case of check_von_mises: law k at amplitude e (shape a), TL or UL (ul). */
+static void von_mises_case(pdk_ctx *ctx, int ul, int k, int a, double e) {
+  char law[64];
+  snprintf(law, sizeof law, "model.law=%s", laws[k]);
+  const char *ov_jc[] = {"output.fields=[von_mises]", "model.connectivity=ul",
+                         "model.failed_keeps_bonds=true"};
+  const char *ov_el[] = {"output.fields=[von_mises]", law, "model.connectivity=ul"};
+  pdk_scene *s = NULL;
+  pdk_sim *sim = NULL;
+  if (law_of[k] == PDK_LAW_JC)
+    T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ov_jc, ul ? 3 : 1, &s));
+  else
+    T_OK(ctx, pdk_scene_load(ctx, "t062_el.yaml", ov_el, ul ? 3 : 2, &s));
+  T_ASSERT(s->model.connectivity == (ul ? PDK_CONNECTIVITY_UL : PDK_CONNECTIVITY_TL),
+           "connectivity override");
+  T_OK(ctx, pdk_sim_create(ctx, s, &sim));
+  pdk_particles *p = pdk_sim_particles(sim);
+  /* a = 0: stretch, shear and a volume change; a = 1: the same isochoric (J = 1), so that the
+   * yielding JC point keeps a low triaxiality and does not fail */
+  const double F22 = a == 0 ? 1 - 0.3 * e : (1 - 0.1 * e * e) / (1 + e);
+  const double F[3][3] = {{1 + e, 0.5 * e, 0}, {-0.2 * e, F22, 0}, {0, 0, 1}};
+  double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
+  const pdk_index n = pdk_particles_count(p);
+  for (pdk_index i = 0; i < n; ++i) {
+    const double X = pdk_particles_X(p, 0)[i], Y = pdk_particles_X(p, 1)[i];
+    x[i] = F[0][0] * X + F[0][1] * Y;
+    y[i] = F[1][0] * X + F[1][1] * Y;
+  }
+  pdk_model *m = pdk_sim_model(sim);
+  T_OK(ctx, pdk_model_force_trial(m, NULL));
+  T_OK(ctx, pdk_sim_update_output_fields(sim));
+  const double want = law_von_mises(law_of[k], pdk_model_opts_get(m), F);
+  T_ASSERT(want > 1e6, "%s: the test deformation makes a stress (%g)", laws[k], want);
+  const double *vm = pdk_particles_field_data(p, "von_mises", 0);
+  const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
+  for (pdk_index i = 0; i < n; ++i) {
+    if (flag[i]) continue;
+    /* F is exact to round-off for affine motion (t100); P = A K and the law add a few ulps per
+     * operation on stresses of order E e: 1e-9 relative is far above that */
+    T_NEAR(vm[i], want, 1e-9, 0, "%s%s (amplitude %g): von_mises of particle %d", laws[k],
+           ul ? ", ul" : "", e, (int)i);
+  }
+  pdk_sim_destroy(&sim);
+  pdk_scene_destroy(&s);
+}
+
 /* von_mises at an affine deformation x = F X: a trial force pass makes F and A, then
  * pdk_sim_update_output_fields; every particle whose family spans must give the law's value. */
 static void check_von_mises(pdk_ctx *ctx) {
@@ -278,8 +328,6 @@ static void check_von_mises(pdk_ctx *ctx) {
     write_file("t062_el.yaml", el);
     free(el);
   }
-  const char *laws[] = {"linear_elastic", "svk", "neo_hooke", "jc"};
-  const pdk_law law_of[] = {PDK_LAW_LINEAR_ELASTIC, PDK_LAW_SVK, PDK_LAW_NEO_HOOKE, PDK_LAW_JC};
   /* for JC 1e-3 stays elastic and 3e-2 yields */
   const double amp[] = {1e-3, 3e-2};
   /* ul == 1: updated-Lagrangian connectivity, whose model keeps no K (its A is tau_r M^-1), so
@@ -287,51 +335,8 @@ static void check_von_mises(pdk_ctx *ctx) {
    * 2026-11-27); its F is exact for affine motion as TL's is (docs/connectivity.md) */
   for (int ul = 0; ul < 2; ++ul)
     for (int k = 0; k < 4; ++k)
-      for (int a = 0; a < (law_of[k] == PDK_LAW_JC ? 2 : 1); ++a) {
-        char law[64];
-        snprintf(law, sizeof law, "model.law=%s", laws[k]);
-        const char *ov_jc[] = {"output.fields=[von_mises]", "model.connectivity=ul",
-                               "model.failed_keeps_bonds=true"};
-        const char *ov_el[] = {"output.fields=[von_mises]", law, "model.connectivity=ul"};
-        pdk_scene *s = NULL;
-        pdk_sim *sim = NULL;
-        if (law_of[k] == PDK_LAW_JC)
-          T_OK(ctx, pdk_scene_load(ctx, "t062_min.yaml", ov_jc, ul ? 3 : 1, &s));
-        else
-          T_OK(ctx, pdk_scene_load(ctx, "t062_el.yaml", ov_el, ul ? 3 : 2, &s));
-        T_ASSERT(s->model.connectivity == (ul ? PDK_CONNECTIVITY_UL : PDK_CONNECTIVITY_TL),
-                 "connectivity override");
-        T_OK(ctx, pdk_sim_create(ctx, s, &sim));
-        pdk_particles *p = pdk_sim_particles(sim);
-        const double e = amp[a];
-        /* a = 0: stretch, shear and a volume change; a = 1: the same isochoric (J = 1), so that
-         * the yielding JC point keeps a low triaxiality and does not fail */
-        const double F22 = a == 0 ? 1 - 0.3 * e : (1 - 0.1 * e * e) / (1 + e);
-        const double F[3][3] = {{1 + e, 0.5 * e, 0}, {-0.2 * e, F22, 0}, {0, 0, 1}};
-        double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
-        const pdk_index n = pdk_particles_count(p);
-        for (pdk_index i = 0; i < n; ++i) {
-          const double X = pdk_particles_X(p, 0)[i], Y = pdk_particles_X(p, 1)[i];
-          x[i] = F[0][0] * X + F[0][1] * Y;
-          y[i] = F[1][0] * X + F[1][1] * Y;
-        }
-        pdk_model *m = pdk_sim_model(sim);
-        T_OK(ctx, pdk_model_force_trial(m, NULL));
-        T_OK(ctx, pdk_sim_update_output_fields(sim));
-        const double want = law_von_mises(law_of[k], pdk_model_opts_get(m), F);
-        T_ASSERT(want > 1e6, "%s: the test deformation makes a stress (%g)", laws[k], want);
-        const double *vm = pdk_particles_field_data(p, "von_mises", 0);
-        const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
-        for (pdk_index i = 0; i < n; ++i) {
-          if (flag[i]) continue;
-          /* F is exact to round-off for affine motion (t100); P = A K and the law add a few ulps
-           * per operation on stresses of order E e: 1e-9 relative is far above that */
-          T_NEAR(vm[i], want, 1e-9, 0, "%s%s (amplitude %g): von_mises of particle %d", laws[k],
-                 ul ? ", ul" : "", e, (int)i);
-        }
-        pdk_sim_destroy(&sim);
-        pdk_scene_destroy(&s);
-      }
+      for (int a = 0; a < (law_of[k] == PDK_LAW_JC ? 2 : 1); ++a)
+        von_mises_case(ctx, ul, k, a, amp[a]);
   remove("t062_min.yaml");
   remove("t062_el.yaml");
 }
