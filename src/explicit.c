@@ -652,6 +652,8 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     hist->broken = pdk_model_num_broken(e->m);
     PDK_CALL(pdk_model_plastic_work(e->m, &hist->plastic_work, &hist->damage_work,
                                     &hist->breaking_work));
+    hist->failed = pdk_model_num_failed(e->m);
+    hist->damage_max = pdk_model_damage_max(e->m);
   }
   return PDK_SUCCESS;
 }

@@ -420,6 +420,16 @@ int pdk_model_stencil_active(const pdk_model *m) { return m && m->stencil != NUL
 const char *pdk_model_stencil_reason(const pdk_model *m) { return m ? m->stencil_why : ""; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
 
+double pdk_model_damage_max(const pdk_model *m) {
+  const double *D = pdk_particles_field_data(m->p, "damage", 0);
+  if (!D) return 0.0;
+  const pdk_index n = pdk_particles_count(m->p);
+  double dmax = 0.0;
+  for (pdk_index i = 0; i < n; ++i)
+    dmax = D[i] > dmax ? D[i] : dmax;
+  return dmax;
+}
+
 double pdk_model_padding_fraction(const pdk_model *m) {
   return m->ops == &pdk_model_ops_lps ? pdk_model_lps_padding_fraction(m)
                                       : pdk_model_pmb_padding_fraction(m);

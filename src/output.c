@@ -19,7 +19,8 @@
  * of OUT_HIST_CHUNK rows). Columns (o->col_name): step, time, kinetic, strain, external_work,
  * broken, then reaction_<set>_<c> for every reaction set and component, then disp_<set>_<c> for
  * every reaction set whose "set:<set>" field exists (mean of x - X over its members, in index
- * order), then plastic_work, damage_work, breaking_work and dt (the step size; 0 in static).
+ * order), then plastic_work, damage_work, breaking_work, dt (the step size; 0 in static), failed
+ * (particles whose Johnson-Cook damage reached D_c) and damage_max (the largest D).
  * col_absmax keeps each column's largest |value| so the plot can pick the component that carries
  * the load.
  */
@@ -46,7 +47,7 @@ enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_FCSV, OUT_FGP, OUT_FPN
  * uncompressed, for files 44% smaller; that is not cheap next to a force pass. */
 #define OUT_STATIC_DEFLATE 1
 #define OUT_MAX_REACTION 8 /* = the size of pdk_history.reaction */
-#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 4)
+#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 6)
 #define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
 #define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
 
@@ -541,6 +542,8 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
   add_column(o, "damage_work", o->unit_energy);
   add_column(o, "breaking_work", o->unit_energy);
   add_column(o, "dt", o->unit_time); /* the explicit step size (changes with dt_update) */
+  add_column(o, "failed", "particles");
+  add_column(o, "damage_max", "-");
   return PDK_SUCCESS;
 }
 
@@ -854,6 +857,8 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   row[o->work_col + 1] = h->damage_work;
   row[o->work_col + 2] = h->breaking_work;
   row[o->work_col + 3] = h->dt;
+  row[o->work_col + 4] = (double)h->failed;
+  row[o->work_col + 5] = h->damage_max;
 
   o->failed = 1; /* until the row is complete */
   hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};

@@ -418,6 +418,8 @@ int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
   h->external_work = ev->external_work;
   memcpy(h->reaction, ev->reaction, sizeof h->reaction);
   h->broken = pdk_model_num_broken(sim->m);
+  h->failed = pdk_model_num_failed(sim->m);
+  h->damage_max = pdk_model_damage_max(sim->m);
   return pdk_model_plastic_work(sim->m, &h->plastic_work, &h->damage_work, &h->breaking_work);
 }
 

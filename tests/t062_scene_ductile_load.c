@@ -341,7 +341,8 @@ static void check_von_mises(pdk_ctx *ctx) {
   remove("t062_el.yaml");
 }
 
-/* The history files end with plastic_work, damage_work, breaking_work, written as given. */
+/* The history files end with plastic_work, damage_work, breaking_work, dt, failed, damage_max,
+ * written as given. */
 static void check_history_columns(pdk_ctx *ctx) {
   write_file("t062_min.yaml", minimal_jc);
   pdk_scene *s = NULL;
@@ -362,29 +363,34 @@ static void check_history_columns(pdk_ctx *ctx) {
   h.damage_work = 0.5;
   h.breaking_work = 0.0625;
   h.dt = 3.5e-7;
+  h.failed = 7;
+  h.damage_max = 0.3125;
   T_OK(ctx, pdk_output_write_history(o, &h));
   T_OK(ctx, pdk_output_close(&o, 1));
   char *csv = slurp("t062_out/hist_history.csv");
   char *eol = strchr(csv, '\n');
   T_ASSERT(eol, "CSV has a header line");
   *eol = '\0';
-  const char *tail = "plastic_work [J],damage_work [J],breaking_work [J],dt [s]";
+  const char *tail = "plastic_work [J],damage_work [J],breaking_work [J],dt [s],"
+                     "failed [particles],damage_max [-]";
   T_ASSERT(strlen(csv) >= strlen(tail) && !strcmp(csv + strlen(csv) - strlen(tail), tail),
-           "CSV header ends with the work columns and dt: %s", csv);
+           "CSV header ends with the work columns, dt and the failure columns: %s", csv);
   const char *row = eol + 1;
-  /* last four numbers of the row */
-  double v[4];
+  /* last six numbers of the row */
+  double v[6];
   const char *q = row + strlen(row);
   while (q > row && (q[-1] == '\n'))
     --q;
   int found = 0;
-  for (const char *r = q; r > row && found < 4; --r)
+  for (const char *r = q; r > row && found < 6; --r)
     if (r[-1] == ',') {
-      v[3 - found] = strtod(r, NULL);
+      v[5 - found] = strtod(r, NULL);
       ++found;
     }
-  T_ASSERT(found == 4 && v[0] == 1.25 && v[1] == 0.5 && v[2] == 0.0625 && v[3] == 3.5e-7,
-           "work columns and dt written as given: %g %g %g %g", v[0], v[1], v[2], v[3]);
+  T_ASSERT(found == 6 && v[0] == 1.25 && v[1] == 0.5 && v[2] == 0.0625 && v[3] == 3.5e-7 &&
+               v[4] == 7.0 && v[5] == 0.3125,
+           "work columns, dt, failed and damage_max written as given: %g %g %g %g %g %g", v[0],
+           v[1], v[2], v[3], v[4], v[5]);
   free(csv);
   remove("t062_out/hist_history.csv");
   remove("t062_out/hist.h5");

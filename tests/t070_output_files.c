@@ -474,7 +474,8 @@ int main(void) {
         "step [-],time [s],kinetic [J],strain [J],external_work [J],broken [bonds],"
         "reaction_left_x [N],reaction_left_y [N],reaction_right_x [N],reaction_right_y [N],"
         "disp_left_x [m],disp_left_y [m],disp_right_x [m],disp_right_y [m],"
-        "plastic_work [J],damage_work [J],breaking_work [J],dt [s]\n";
+        "plastic_work [J],damage_work [J],breaking_work [J],dt [s],failed [particles],"
+        "damage_max [-]\n";
     T_ASSERT(!strncmp(csv, header, strlen(header)), "CSV header:\n%.300s", csv);
     int rows = 0;
     for (const char *q = strchr(csv, '\n') + 1; *q; q = strchr(q, '\n') + 1, ++rows) {

@@ -15,7 +15,11 @@
  *     piece, sum V_i f_i, is 0 to round-off (1e-10 of the peak reaction: internal pair forces
  *     cancel to about 1e-16 of their size);
  *   - bond state, positions and history bitwise identical on 1 and 2 threads (TL and semi-TL);
- *   - TL and semi-TL bitwise identical up to and including the step of the first break.
+ *   - TL and semi-TL bitwise identical up to and including the step of the first break;
+ *   - the history's failed count and largest damage (pdk_history failed, damage_max, the CSV's
+ *     columns) never decrease, are 0 before the first failure, and at the end equal the count
+ *     of the "failed" field and the largest value of the "damage" field exactly, with every
+ *     failed particle's damage at or above D_c (the model's own D_c, from its options).
  * labels: physics threads */
 #include "jc_corr_util.h"
 
@@ -89,10 +93,20 @@ static long run_to_separation(pdk_ctx *ctx, sim *s, const char *what) {
   double peak = 0.0;
   long steps = 0, sep_step = -1;
   pdk_history h;
+  pdk_index last_failed = 0;
+  double last_dmax = 0.0;
   while (steps < MAX_STEPS) {
     T_OK(ctx, pdk_explicit_run(s->e, CHUNK, &h));
     steps += CHUNK;
     peak = fmax(peak, fabs(h.reaction[1][0]));
+    /* the history's failure columns: never decreasing, failed 0 while no bond has broken */
+    T_ASSERT(h.failed >= last_failed && h.damage_max >= last_dmax,
+             "%s: step %ld: failed %d after %d, largest damage %g after %g", what, steps,
+             (int)h.failed, (int)last_failed, h.damage_max, last_dmax);
+    T_ASSERT(h.broken > 0 || h.failed == 0, "%s: step %ld: %d failed, no bond broken", what, steps,
+             (int)h.failed);
+    last_failed = h.failed;
+    last_dmax = h.damage_max;
     if (sep_step < 0 && separated(s, comp)) sep_step = steps;
     if (sep_step >= 0 && steps >= sep_step + EXTRA_STEPS) break;
   }
@@ -119,6 +133,18 @@ static long run_to_separation(pdk_ctx *ctx, sim *s, const char *what) {
   }
   T_ASSERT(num_failed > 0 && num_failed == pdk_model_num_failed(s->m), "%s: %d failed (model %d)",
            what, (int)num_failed, (int)pdk_model_num_failed(s->m));
+  /* the last history record: its failed count and largest damage are the fields' */
+  const double *damage = pdk_particles_field_data(s->p, "damage", 0);
+  const double D_c = pdk_model_opts_default().jc.D_c; /* build() keeps the default */
+  double dmax = 0.0;
+  for (pdk_index i = 0; i < n; ++i) {
+    dmax = fmax(dmax, damage[i]);
+    T_ASSERT(!failed[i] || damage[i] >= D_c, "%s: failed particle %d has damage %g < D_c %g", what,
+             (int)i, damage[i], D_c);
+  }
+  T_ASSERT(h.failed == num_failed && h.damage_max == dmax,
+           "%s: history failed %d, largest damage %.17g; fields %d, %.17g", what, (int)h.failed,
+           h.damage_max, (int)num_failed, dmax);
   jcu_check_bond_state(s->m, what);
 
   /* no force across the crack: internal force on the pulled piece */

@@ -106,6 +106,11 @@ typedef struct pdk_history {
   /* Size of the step that led to this record (it changes during a run only with dt_update);
    * 0 in static solves, which have no time step. */
   double dt;
+  /* Johnson-Cook damage (0 for models without it): particles failed so far (D reached D_c; they
+   * count whether or not their bonds break, so a run with failed_keeps_bonds shows its failures
+   * here and not in `broken`) and the largest damage D of any particle. */
+  pdk_index failed;
+  double damage_max;
 } pdk_history;
 
 typedef struct pdk_explicit pdk_explicit;

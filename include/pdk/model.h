@@ -342,6 +342,8 @@ int pdk_model_stencil_active(const pdk_model *m);
 const char *pdk_model_stencil_reason(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 pdk_index pdk_model_num_failed(const pdk_model *m);
+/* Largest Johnson-Cook damage D of any particle (the "damage" field); 0 without it. */
+double pdk_model_damage_max(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */
 long pdk_model_num_compactions(const pdk_model *m);
 /* UL: how many times the families were rebuilt in the current configuration (0 in TL, semi-TL). */

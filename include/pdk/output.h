@@ -27,6 +27,9 @@
  *                                                     particles, when "set:<set>" and "x" exist
  *                             plastic_work, damage_work, breaking_work   energy dissipated so far
  *                                                     (pdk_history; 0 for models without it)
+ *                             dt                      the step size (0 in static solves)
+ *                             failed, damage_max      particles failed so far and the largest
+ *                                                     Johnson-Cook damage (0 without it)
  * Dataset names are the field names with every character outside [A-Za-z0-9_-] replaced by '_'.
  *
  * <dir>/<name>.xmf: XDMF 2 (ParaView: "Xdmf Reader"), a temporal collection with one polyvertex
