@@ -921,7 +921,10 @@ static int write_plot_script(pdk_output *o) {
       0; /* sets that moved: plotting a fixed set against its zero displacement says nothing */
   for (int k = 0; k < o->num_reaction; ++k)
     num_disp += moved(o, k);
-  int panels = 1 + (o->num_reaction > 0) + (num_disp > 0);
+  /* a failure panel when any particle took Johnson-Cook damage */
+  const int fail_col = o->work_col + 4, dmax_col = o->work_col + 5;
+  const int damage_panel = o->col_absmax[dmax_col] > 0;
+  int panels = 1 + (o->num_reaction > 0) + (num_disp > 0) + damage_panel;
   fprintf(f, "# pdk history plot; rerun with: gnuplot %s_history.gp (in this directory)\n", stem);
   fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_history.png'\n", stem);
   fprintf(f,
@@ -977,6 +980,13 @@ static int write_plot_script(pdk_output *o) {
   else
     fprintf(f, "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n");
   fprintf(f, "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
+  if (damage_panel)
+    fprintf(f,
+            "set xlabel 'time [%s]'\nset ylabel 'failed particles'\nset y2label 'largest damage'\n"
+            "set y2tics\nset ytics nomirror\nset yrange [0:*]\nset y2range [0:*]\n"
+            "plot data skip 1 using 2:%d with lines title 'failed particles', \\\n"
+            "     data skip 1 using 2:%d axes x1y2 with lines title 'largest damage'\n",
+            o->unit_time, fail_col + 1, dmax_col + 1);
   fprintf(f, "unset multiplot\nset output\n");
   PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
                  o->part[OUT_GP], strerror(errno));

@@ -341,6 +341,56 @@ static void check_von_mises(pdk_ctx *ctx) {
   remove("t062_el.yaml");
 }
 
+/* The history plot has a panel of failed particles and largest damage (columns failed and
+ * damage_max, the last two) when some damage was recorded, and none otherwise. Needs gnuplot on
+ * the PATH (the Quick start installs it); says so and checks nothing without it. */
+static void check_failure_panel(pdk_ctx *ctx, pdk_particles *p, double damage_max) {
+  pdk_output_opts oo = pdk_output_opts_default();
+  oo.dir = "t062_out";
+  oo.name = "panel";
+  oo.units = "SI";
+  pdk_output *o = NULL;
+  T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
+  const int plots = pdk_output_will_plot(o);
+  pdk_history h;
+  memset(&h, 0, sizeof h);
+  for (int r = 0; r < 3; ++r) {
+    h.step = r;
+    h.time = 1e-6 * r;
+    h.external_work = h.kinetic = 0.5 * r;
+    h.failed = r == 2 && damage_max > 0.0 ? 4 : 0;
+    h.damage_max = damage_max * r / 2.0;
+    T_OK(ctx, pdk_output_write_history(o, &h));
+  }
+  T_OK(ctx, pdk_output_close(&o, 1));
+  if (!plots) {
+    printf("t062: no gnuplot on the PATH: the failure panel is not checked\n");
+  } else {
+    char *csv = slurp("t062_out/panel_history.csv");
+    int cols = 1;
+    for (const char *c = csv; *c && *c != '\n'; ++c)
+      cols += *c == ',';
+    free(csv);
+    char *gp = slurp("t062_out/panel_history.gp");
+    char want[96];
+    snprintf(want, sizeof want, "using 2:%d with lines title 'failed particles'", cols - 1);
+    const int has = strstr(gp, want) != NULL;
+    snprintf(want, sizeof want, "using 2:%d axes x1y2 with lines title 'largest damage'", cols);
+    const int has2 = strstr(gp, want) != NULL;
+    T_ASSERT(damage_max > 0.0 ? has && has2 : !has && !strstr(gp, "largest damage"),
+             "largest damage %g: failure panel %s / %s in the script:\n%s", damage_max,
+             has ? "drawn" : "absent", has2 ? "drawn" : "absent", gp);
+    free(gp);
+  }
+  const char *files[] = {"panel_history.csv", "panel.h5", "panel.xmf", "panel_history.gp",
+                         "panel_history.png"};
+  for (int k = 0; k < 5; ++k) {
+    char path[64];
+    snprintf(path, sizeof path, "t062_out/%s", files[k]);
+    remove(path);
+  }
+}
+
 /* The history files end with plastic_work, damage_work, breaking_work, dt, failed, damage_max,
  * written as given. */
 static void check_history_columns(pdk_ctx *ctx) {
@@ -395,6 +445,8 @@ static void check_history_columns(pdk_ctx *ctx) {
   remove("t062_out/hist_history.csv");
   remove("t062_out/hist.h5");
   remove("t062_out/hist.xmf");
+  check_failure_panel(ctx, pdk_sim_particles(sim), 0.0);
+  check_failure_panel(ctx, pdk_sim_particles(sim), 0.3125);
   remove("t062_out");
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&s);
