@@ -27,7 +27,10 @@
  * (Neo-Hooke) vs Johnson-Cook with failed particles breaking their bonds (bond state present,
  * nothing fails in the run) vs Johnson-Cook with failed_keeps_bonds (no bond state at all): if
  * the connectivity update stayed on the per-step path when nothing broke, the second would cost
- * more than the third. The grips pull the top rows at 2 m/s from the 1% stretched state.
+ * more than the third. The grips pull the top rows at 2 m/s from the 1% stretched state. The
+ * last rows run elastic, JC and JC with softened stabilization and family triaxiality (the
+ * shipped plate scenes' choices) on the lattice stencil path (model.stencil on, the scenes'
+ * default auto takes it for these models).
  * Printed: median process CPU time per step and thread over R runs of S steps each (CPU time,
  * not wall time: on a shared machine the wall time includes other processes' turns).
  */
@@ -433,6 +436,12 @@ int main(int argc, char **argv) {
   const double st_fam = time_steps(ctx, &s, &mo_fam, repeat, steps, 0, &br_x);
   const double st_both = time_steps(ctx, &s, &mo_both, repeat, steps, 0, &br_x);
   const double st_du = time_steps(ctx, &s, &mo_jc, repeat, steps, 10, &br_x);
+  /* the same steps on the lattice stencil path (model.stencil, the scenes' default) */
+  pdk_model_opts mo_el_st = mo_el, mo_jc_st = mo_jc, mo_both_st = mo_both;
+  mo_el_st.stencil = mo_jc_st.stencil = mo_both_st.stencil = PDK_STENCIL_ON;
+  const double st_el_st = time_steps(ctx, &s, &mo_el_st, repeat, steps, 0, &br_x);
+  const double st_jc_st = time_steps(ctx, &s, &mo_jc_st, repeat, steps, 0, &br_x);
+  const double st_both_st = time_steps(ctx, &s, &mo_both_st, repeat, steps, 0, &br_x);
   printf("\nPart 2: explicit steps, %d thread(s), %ld steps per run, medians of %d runs\n",
          pdk_ctx_num_threads(ctx), steps, repeat);
   printf("%-44s %10s %9s %9s\n", "step", "ms/step", "ns/bond", "vs elastic");
@@ -450,6 +459,13 @@ int main(int argc, char **argv) {
   printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC: one estimate costs %.1f JC steps)\n",
          "JC, stable step re-estimated every 10 steps", 1e3 * st_du, 1e9 * st_du / nbd,
          st_du / st_el, st_du / st_jc, 10.0 * (st_du / st_jc - 1.0));
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of general)\n", "stencil path: elastic", 1e3 * st_el_st,
+         1e9 * st_el_st / nbd, st_el_st / st_el, st_el_st / st_el);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of general; %.2f of stencil elastic)\n",
+         "stencil path: JC", 1e3 * st_jc_st, 1e9 * st_jc_st / nbd, st_jc_st / st_el,
+         st_jc_st / st_jc, st_jc_st / st_el_st);
+  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of general)\n", "stencil path: JC, softened + family",
+         1e3 * st_both_st, 1e9 * st_both_st / nbd, st_both_st / st_el, st_both_st / st_both);
   const long long broken_all = (long long)(br_el + br_jc + br_keep);
   printf("bonds broken in these runs: %lld%s; breaking on / off = %.3f\n", broken_all,
          broken_all ? " (some runs broke bonds: use fewer --steps to time the steps where nothing "
