@@ -218,6 +218,19 @@ static double flow_stress_step(const pdk_jc_params *p, double ep_n, double dg, d
   return sy;
 }
 
+/* The same sigma_y without its slope (one pow less): the same operations in the same order, so
+ * the same bits as flow_stress_step's return value. */
+static double flow_stress_only(const pdk_jc_params *p, double ep_n, double dg, double dt,
+                               double theta_factor) {
+  double sy = hardening(p, ep_n + dg);
+  if (p->C != 0.0) {
+    const double rs = dg / (dt * p->ref_rate);
+    if (rs > 1.0) sy = sy * (1.0 + p->C * log(rs));
+  }
+  if (p->thermal) sy = sy * theta_factor;
+  return sy;
+}
+
 double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star, double T_star) {
   double sy = hardening(p, eps_p);
   if (p->C != 0.0 && rate_star > 1.0) sy = sy * (1.0 + p->C * log(rate_star));
@@ -348,13 +361,12 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
 
     const double T_star = p->thermal ? homologous_temperature(p, in->temp_rise) : 0.0;
     const double theta_factor = p->thermal ? 1.0 - pow(T_star, p->m) : 1.0;
-    double slope;
-    const double sy_n = flow_stress_step(p, in->eps_p, 0.0, dt, theta_factor, &slope);
+    const double sy_n = flow_stress_only(p, in->eps_p, 0.0, dt, theta_factor);
 
     double factor = 1.0, dg = 0.0, sy = sy_n, q = q_tr;
     if (q_tr > sy_n) {
       dg = solve_increment(p, in->eps_p, q_tr, 3.0 * mu, sy_n, dt, theta_factor);
-      sy = flow_stress_step(p, in->eps_p, dg, dt, theta_factor, &slope);
+      sy = flow_stress_only(p, in->eps_p, dg, dt, theta_factor);
       factor = sy / q_tr;
       q = sy;
       r.plastic = 1;
