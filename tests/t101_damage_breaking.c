@@ -16,6 +16,10 @@
  *     cancel to about 1e-16 of their size);
  *   - bond state, positions and history bitwise identical on 1 and 2 threads (TL and semi-TL);
  *   - TL and semi-TL bitwise identical up to and including the step of the first break;
+ *   - with failed_keeps_bonds (TL): particles fail and no bond breaks (the model keeps no bond
+ *     state; the history's broken stays 0 while its failed count grows, which is why the count
+ *     is there), every failed particle carries no stress (A = 0) and has D >= D_c, and 1 and 2
+ *     threads give the same bits;
  *   - the history's failed count and largest damage (pdk_history failed, damage_max, the CSV's
  *     columns) never decrease, are 0 before the first failure, and at the end equal the count
  *     of the "failed" field and the largest value of the "damage" field exactly, with every
@@ -31,7 +35,7 @@ typedef jcu_sim sim;
 
 static const char *rsets[2] = {"set:left", "set:right"};
 
-static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
+static void build_keep(pdk_ctx *ctx, pdk_connectivity mode, int keeps_bonds, sim *s) {
   jcu_bar(ctx, 1, &s->p, &s->fam);
   pdk_model_opts mo = pdk_model_opts_default();
   mo.kind = PDK_MODEL_CORRESPONDENCE;
@@ -40,6 +44,7 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
   mo.jc.D2 = 0.0;
   mo.stabilization = PDK_STAB_SILLING;
   mo.connectivity = mode;
+  mo.failed_keeps_bonds = keeps_bonds;
   T_OK(ctx, pdk_model_create(s->p, s->fam, &mo, &s->m));
   jcu_bar_pull(s->bcs, 0, 10.0);
   pdk_explicit_opts eo = pdk_explicit_opts_default();
@@ -50,6 +55,8 @@ static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) {
   eo.dt = 1.5e-7; /* fixed so every run takes the same steps; stable step about 2e-7 s */
   T_OK(ctx, pdk_explicit_create(s->m, &eo, &s->e));
 }
+
+static void build(pdk_ctx *ctx, pdk_connectivity mode, sim *s) { build_keep(ctx, mode, 0, s); }
 
 /* First member of a set. */
 static pdk_index first_of(pdk_particles *p, const char *set) {
@@ -208,6 +215,66 @@ int main(void) {
       snprintf(what, sizeof what, "%s, %d thread%s", names[k], threads, threads > 1 ? "s" : "");
       if (threads == 1) {
         ref_steps = run_to_separation(ctx, &s, what);
+        ref = state_bytes(&s, &ref_bytes);
+      } else {
+        T_OK(ctx, pdk_explicit_run(s.e, ref_steps, NULL));
+        size_t bytes;
+        unsigned char *now = state_bytes(&s, &bytes);
+        T_ASSERT(bytes == ref_bytes && !memcmp(now, ref, bytes),
+                 "%s: state after %ld steps differs from 1 thread", what, ref_steps);
+        free(now);
+      }
+      jcu_sim_destroy(&s);
+    }
+    free(ref);
+    T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
+  }
+  /* 3. failed_keeps_bonds: failures without broken bonds, counted by the history. */
+  {
+    unsigned char *ref = NULL;
+    size_t ref_bytes = 0;
+    long ref_steps = 0;
+    for (int threads = 1; threads <= 2; ++threads) {
+      T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
+      sim s;
+      build_keep(ctx, PDK_CONNECTIVITY_TL, 1, &s);
+      const char *what = threads == 1 ? "keeps bonds, 1 thread" : "keeps bonds, 2 threads";
+      T_ASSERT(pdk_model_bond_alive(s.m) == NULL, "%s: the model keeps a bond state", what);
+      if (threads == 1) {
+        pdk_history h;
+        pdk_index last = 0;
+        /* until a band of failed particles has formed (the notch tip fails first) */
+        while (ref_steps < MAX_STEPS) {
+          T_OK(ctx, pdk_explicit_run(s.e, CHUNK, &h));
+          ref_steps += CHUNK;
+          T_ASSERT(h.broken == 0 && h.failed >= last,
+                   "%s: step %ld: %lld broken, %d failed after %d", what, ref_steps,
+                   (long long)h.broken, (int)h.failed, (int)last);
+          last = h.failed;
+          if (h.failed >= 10) break;
+        }
+        T_ASSERT(h.failed >= 10, "%s: %d failed in %d steps", what, (int)h.failed, MAX_STEPS);
+        const pdk_index n = pdk_particles_count(s.p);
+        const uint8_t *failed = pdk_particles_field_data(s.p, "failed", 0);
+        const double *damage = pdk_particles_field_data(s.p, "damage", 0);
+        const double D_c = pdk_model_opts_default().jc.D_c;
+        pdk_index count = 0;
+        for (pdk_index i = 0; i < n; ++i) {
+          if (!failed[i]) continue;
+          ++count;
+          T_ASSERT(damage[i] >= D_c, "%s: failed particle %d has D %g", what, (int)i, damage[i]);
+          for (int t = 0; t < 4; ++t) {
+            const double *A = pdk_particles_field_data(s.p, "A", t);
+            T_ASSERT(A[i] == 0.0, "%s: failed particle %d carries stress (A[%d] = %g)", what,
+                     (int)i, t, A[i]);
+          }
+        }
+        T_ASSERT(count == h.failed && pdk_model_num_broken(s.m) == 0,
+                 "%s: history %d failed, fields %d; %lld bonds broken", what, (int)h.failed,
+                 (int)count, (long long)pdk_model_num_broken(s.m));
+        if (getenv("PDK_TEST_VERBOSE"))
+          printf("%s: %d failed by step %ld, largest damage %g, no bond broken\n", what,
+                 (int)h.failed, ref_steps, h.damage_max);
         ref = state_bytes(&s, &ref_bytes);
       } else {
         T_OK(ctx, pdk_explicit_run(s.e, ref_steps, NULL));
