@@ -171,6 +171,85 @@ static long run_to_separation(pdk_ctx *ctx, sim *s, const char *what) {
   return steps;
 }
 
+/* The run of `s` on 2 threads to `steps` ends in the state `ref` of the 1-thread run, bit for
+ * bit. */
+static void same_on_two_threads(pdk_ctx *ctx, sim *s, long steps, const unsigned char *ref,
+                                size_t ref_bytes, const char *what) {
+  T_OK(ctx, pdk_explicit_run(s->e, steps, NULL));
+  size_t bytes;
+  unsigned char *now = state_bytes(s, &bytes);
+  T_ASSERT(bytes == ref_bytes && !memcmp(now, ref, bytes),
+           "%s: state after %ld steps differs from 1 thread", what, steps);
+  free(now);
+}
+
+/* failed_keeps_bonds (TL): runs until 10 particles have failed; checks that no bond broke, the
+ * history's counts, and that every failed particle has D >= D_c and no stress. Returns the steps.
+ */
+static long run_keeping_bonds(pdk_ctx *ctx, sim *s, const char *what) {
+  pdk_history h;
+  pdk_index last = 0;
+  long steps = 0;
+  /* until a band of failed particles has formed (the notch tip fails first) */
+  while (steps < MAX_STEPS) {
+    T_OK(ctx, pdk_explicit_run(s->e, CHUNK, &h));
+    steps += CHUNK;
+    T_ASSERT(h.broken == 0 && h.failed >= last, "%s: step %ld: %lld broken, %d failed after %d",
+             what, steps, (long long)h.broken, (int)h.failed, (int)last);
+    last = h.failed;
+    if (h.failed >= 10) break;
+  }
+  T_ASSERT(h.failed >= 10, "%s: %d failed in %d steps", what, (int)h.failed, MAX_STEPS);
+  const pdk_index n = pdk_particles_count(s->p);
+  const uint8_t *failed = pdk_particles_field_data(s->p, "failed", 0);
+  const double *damage = pdk_particles_field_data(s->p, "damage", 0);
+  const double D_c = pdk_model_opts_default().jc.D_c;
+  pdk_index count = 0;
+  for (pdk_index i = 0; i < n; ++i) {
+    if (!failed[i]) continue;
+    ++count;
+    T_ASSERT(damage[i] >= D_c, "%s: failed particle %d has D %g", what, (int)i, damage[i]);
+    for (int t = 0; t < 4; ++t) {
+      const double *A = pdk_particles_field_data(s->p, "A", t);
+      T_ASSERT(A[i] == 0.0, "%s: failed particle %d carries stress (A[%d] = %g)", what, (int)i, t,
+               A[i]);
+    }
+  }
+  T_ASSERT(count == h.failed && pdk_model_num_broken(s->m) == 0,
+           "%s: history %d failed, fields %d; %lld bonds broken", what, (int)h.failed, (int)count,
+           (long long)pdk_model_num_broken(s->m));
+  if (getenv("PDK_TEST_VERBOSE"))
+    printf("%s: %d failed by step %ld, largest damage %g, no bond broken\n", what, (int)h.failed,
+           steps, h.damage_max);
+  return steps;
+}
+
+/* `run` on 1 thread, then the same steps on 2 threads: the same bits. */
+static void one_and_two_threads(pdk_ctx *ctx, pdk_connectivity mode, int keeps_bonds,
+                                long (*run)(pdk_ctx *, sim *, const char *), const char *name) {
+  unsigned char *ref = NULL;
+  size_t ref_bytes = 0;
+  long ref_steps = 0;
+  for (int threads = 1; threads <= 2; ++threads) {
+    T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
+    sim s;
+    build_keep(ctx, mode, keeps_bonds, &s);
+    char what[64];
+    snprintf(what, sizeof what, "%s, %d thread%s", name, threads, threads > 1 ? "s" : "");
+    T_ASSERT(!keeps_bonds || pdk_model_bond_alive(s.m) == NULL, "%s: the model keeps a bond state",
+             what);
+    if (threads == 1) {
+      ref_steps = run(ctx, &s, what);
+      ref = state_bytes(&s, &ref_bytes);
+    } else {
+      same_on_two_threads(ctx, &s, ref_steps, ref, ref_bytes, what);
+    }
+    jcu_sim_destroy(&s);
+  }
+  free(ref);
+  T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
+}
+
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
   const pdk_connectivity modes[2] = {PDK_CONNECTIVITY_TL, PDK_CONNECTIVITY_SEMI_TL};
@@ -203,92 +282,11 @@ int main(void) {
   }
 
   /* 2. Each mode tears the bar; 2 threads give the same bits. */
-  for (int k = 0; k < 2; ++k) {
-    unsigned char *ref = NULL;
-    size_t ref_bytes = 0;
-    long ref_steps = 0;
-    for (int threads = 1; threads <= 2; ++threads) {
-      T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
-      sim s;
-      build(ctx, modes[k], &s);
-      char what[64];
-      snprintf(what, sizeof what, "%s, %d thread%s", names[k], threads, threads > 1 ? "s" : "");
-      if (threads == 1) {
-        ref_steps = run_to_separation(ctx, &s, what);
-        ref = state_bytes(&s, &ref_bytes);
-      } else {
-        T_OK(ctx, pdk_explicit_run(s.e, ref_steps, NULL));
-        size_t bytes;
-        unsigned char *now = state_bytes(&s, &bytes);
-        T_ASSERT(bytes == ref_bytes && !memcmp(now, ref, bytes),
-                 "%s: state after %ld steps differs from 1 thread", what, ref_steps);
-        free(now);
-      }
-      jcu_sim_destroy(&s);
-    }
-    free(ref);
-    T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
-  }
+  for (int k = 0; k < 2; ++k)
+    one_and_two_threads(ctx, modes[k], 0, run_to_separation, names[k]);
+
   /* 3. failed_keeps_bonds: failures without broken bonds, counted by the history. */
-  {
-    unsigned char *ref = NULL;
-    size_t ref_bytes = 0;
-    long ref_steps = 0;
-    for (int threads = 1; threads <= 2; ++threads) {
-      T_OK(ctx, pdk_ctx_set_num_threads(ctx, threads));
-      sim s;
-      build_keep(ctx, PDK_CONNECTIVITY_TL, 1, &s);
-      const char *what = threads == 1 ? "keeps bonds, 1 thread" : "keeps bonds, 2 threads";
-      T_ASSERT(pdk_model_bond_alive(s.m) == NULL, "%s: the model keeps a bond state", what);
-      if (threads == 1) {
-        pdk_history h;
-        pdk_index last = 0;
-        /* until a band of failed particles has formed (the notch tip fails first) */
-        while (ref_steps < MAX_STEPS) {
-          T_OK(ctx, pdk_explicit_run(s.e, CHUNK, &h));
-          ref_steps += CHUNK;
-          T_ASSERT(h.broken == 0 && h.failed >= last,
-                   "%s: step %ld: %lld broken, %d failed after %d", what, ref_steps,
-                   (long long)h.broken, (int)h.failed, (int)last);
-          last = h.failed;
-          if (h.failed >= 10) break;
-        }
-        T_ASSERT(h.failed >= 10, "%s: %d failed in %d steps", what, (int)h.failed, MAX_STEPS);
-        const pdk_index n = pdk_particles_count(s.p);
-        const uint8_t *failed = pdk_particles_field_data(s.p, "failed", 0);
-        const double *damage = pdk_particles_field_data(s.p, "damage", 0);
-        const double D_c = pdk_model_opts_default().jc.D_c;
-        pdk_index count = 0;
-        for (pdk_index i = 0; i < n; ++i) {
-          if (!failed[i]) continue;
-          ++count;
-          T_ASSERT(damage[i] >= D_c, "%s: failed particle %d has D %g", what, (int)i, damage[i]);
-          for (int t = 0; t < 4; ++t) {
-            const double *A = pdk_particles_field_data(s.p, "A", t);
-            T_ASSERT(A[i] == 0.0, "%s: failed particle %d carries stress (A[%d] = %g)", what,
-                     (int)i, t, A[i]);
-          }
-        }
-        T_ASSERT(count == h.failed && pdk_model_num_broken(s.m) == 0,
-                 "%s: history %d failed, fields %d; %lld bonds broken", what, (int)h.failed,
-                 (int)count, (long long)pdk_model_num_broken(s.m));
-        if (getenv("PDK_TEST_VERBOSE"))
-          printf("%s: %d failed by step %ld, largest damage %g, no bond broken\n", what,
-                 (int)h.failed, ref_steps, h.damage_max);
-        ref = state_bytes(&s, &ref_bytes);
-      } else {
-        T_OK(ctx, pdk_explicit_run(s.e, ref_steps, NULL));
-        size_t bytes;
-        unsigned char *now = state_bytes(&s, &bytes);
-        T_ASSERT(bytes == ref_bytes && !memcmp(now, ref, bytes),
-                 "%s: state after %ld steps differs from 1 thread", what, ref_steps);
-        free(now);
-      }
-      jcu_sim_destroy(&s);
-    }
-    free(ref);
-    T_OK(ctx, pdk_ctx_set_num_threads(ctx, 1));
-  }
+  one_and_two_threads(ctx, PDK_CONNECTIVITY_TL, 1, run_keeping_bonds, "keeps bonds");
   pdk_ctx_destroy(&ctx);
   return 0;
 }
