@@ -196,12 +196,13 @@ static double hardening_slope(const pdk_jc_params *p, double e) {
 }
 
 /* sigma_y at eps_p = ep_n + dg with plastic increment dg over dt; thermal factor theta_factor
- * (read only if p->thermal). *slope = d sigma_y / d dg. */
+ * (read only if p->thermal). *slope = d sigma_y / d dg, when slope is not NULL (NULL skips its pow;
+ * the value is the same bits either way). */
 static double flow_stress_step(const pdk_jc_params *p, double ep_n, double dg, double dt,
                                double theta_factor, double *slope) {
   const double e = ep_n + dg;
   double sy = hardening(p, e);
-  double dsy = hardening_slope(p, e);
+  double dsy = slope ? hardening_slope(p, e) : 0.0;
   if (p->C != 0.0) {
     const double rs = dg / (dt * p->ref_rate);
     if (rs > 1.0) {
@@ -214,20 +215,7 @@ static double flow_stress_step(const pdk_jc_params *p, double ep_n, double dg, d
     sy = sy * theta_factor;
     dsy = dsy * theta_factor;
   }
-  *slope = dsy;
-  return sy;
-}
-
-/* The same sigma_y without its slope (one pow less): the same operations in the same order, so
- * the same bits as flow_stress_step's return value. */
-static double flow_stress_only(const pdk_jc_params *p, double ep_n, double dg, double dt,
-                               double theta_factor) {
-  double sy = hardening(p, ep_n + dg);
-  if (p->C != 0.0) {
-    const double rs = dg / (dt * p->ref_rate);
-    if (rs > 1.0) sy = sy * (1.0 + p->C * log(rs));
-  }
-  if (p->thermal) sy = sy * theta_factor;
+  if (slope) *slope = dsy;
   return sy;
 }
 
@@ -361,12 +349,12 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
 
     const double T_star = p->thermal ? homologous_temperature(p, in->temp_rise) : 0.0;
     const double theta_factor = p->thermal ? 1.0 - pow(T_star, p->m) : 1.0;
-    const double sy_n = flow_stress_only(p, in->eps_p, 0.0, dt, theta_factor);
+    const double sy_n = flow_stress_step(p, in->eps_p, 0.0, dt, theta_factor, NULL);
 
     double factor = 1.0, dg = 0.0, sy = sy_n, q = q_tr;
     if (q_tr > sy_n) {
       dg = solve_increment(p, in->eps_p, q_tr, 3.0 * mu, sy_n, dt, theta_factor);
-      sy = flow_stress_only(p, in->eps_p, dg, dt, theta_factor);
+      sy = flow_stress_step(p, in->eps_p, dg, dt, theta_factor, NULL);
       factor = sy / q_tr;
       q = sy;
       r.plastic = 1;
