@@ -459,8 +459,8 @@ int main(int argc, char **argv) {
   printf("%-44s %10.3f %9.2f %9.2f  (%.3f of JC: one estimate costs %.1f JC steps)\n",
          "JC, stable step re-estimated every 10 steps", 1e3 * st_du, 1e9 * st_du / nbd,
          st_du / st_el, st_du / st_jc, 10.0 * (st_du / st_jc - 1.0));
-  printf("%-44s %10.3f %9.2f %9.2f  (%.3f of general)\n", "stencil path: elastic", 1e3 * st_el_st,
-         1e9 * st_el_st / nbd, st_el_st / st_el, st_el_st / st_el);
+  printf("%-44s %10.3f %9.2f %9.2f\n", "stencil path: elastic", 1e3 * st_el_st,
+         1e9 * st_el_st / nbd, st_el_st / st_el);
   printf("%-44s %10.3f %9.2f %9.2f  (%.3f of general; %.2f of stencil elastic)\n",
          "stencil path: JC", 1e3 * st_jc_st, 1e9 * st_jc_st / nbd, st_jc_st / st_el,
          st_jc_st / st_jc, st_jc_st / st_el_st);
