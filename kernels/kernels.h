@@ -394,6 +394,16 @@ pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
                                                    int64_t r1);
 
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
+/* The Johnson-Cook update of the model kernels (kernels/ref/jc.c): pdk_jc_update (sigma_m_avg
+ * NULL) or pdk_jc_update_avg (pdk/plasticity.h), except that res->sigma is left 0: the kernels
+ * read sigma_vm, W, the energies and sigma_m_eff, not the six Cauchy components. */
+struct pdk_jc_params;
+struct pdk_jc_state;
+struct pdk_jc_result;
+int pdk_jc_update_kernel(const struct pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                         const double *sigma_m_avg, const struct pdk_jc_state *in,
+                         struct pdk_jc_state *out, double P[3][3], struct pdk_jc_result *res);
+
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */
 #define PDK_CORR_FLAG_FAILED 4u   /* Johnson-Cook: the particle has failed (no stress) */

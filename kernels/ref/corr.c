@@ -232,9 +232,8 @@ static void jc_store(const pdk_corr_arrays *a, pdk_index i, const pdk_jc_state *
 static int jc_step(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i, const int d,
                    const double F[3][3], const pdk_jc_state *in, pdk_jc_state *out,
                    double P[3][3], pdk_jc_result *res) {
-  if (a->sigma_m_avg)
-    return pdk_jc_update_avg(k->jc, d, F, k->dt, a->sigma_m_avg[i], in, out, P, res);
-  return pdk_jc_update(k->jc, d, F, k->dt, in, out, P, res);
+  return pdk_jc_update_kernel(k->jc, d, F, k->dt, a->sigma_m_avg ? &a->sigma_m_avg[i] : NULL, in,
+                              out, P, res);
 }
 
 /* Softened stabilization, commit pass: particle i's new factor from the step's von Mises stress

@@ -186,7 +186,7 @@ static void pass1_jc(const int d, const pdk_corr_consts *k, const pdk_corr_array
   in.damage = a->damage[i];
   in.temp_rise = a->temp_rise ? a->temp_rise[i] : 0.0;
   in.failed = a->failed[i];
-  if (pdk_jc_update(k->jc, d, F, k->dt, &in, &out, P, &res)) {
+  if (pdk_jc_update_kernel(k->jc, d, F, k->dt, NULL, &in, &out, P, &res)) {
     mark_inverted(d, k, a, i);
     return;
   }
