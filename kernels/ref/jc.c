@@ -399,7 +399,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
     r.yield_stress = 0.0;
   } else {
     /* trial: b_tr = F C_p^-1 F^T = V diag(w) V^T, eps_a = ln(w_a)/2 */
-    double Cp[3][3], V[3][3], w[3], axes[2];
+    double Cp[3][3], V[3][3], w[3], axes[2] = {1.0, 0.0}; /* axes: set by trial_plane */
     voigt_to_mat(in->cp_inv, Cp);
     const int plane = dim == 2 && trial_plane(F, Cp, w, axes);
     if (!plane) {
