@@ -27,11 +27,12 @@
  *
  * Johnson-Cook law (law PDK_LAW_JC): setup also declares the history fields listed in
  * include/pdk/model.h ("cp_inv", "eps_p", "damage", ["temp_rise"], "failed", "eps_p_rate",
- * "w_plastic", "w_damage"); pass 1 calls pdk_jc_update per particle, advancing the history in
- * place in a commit pass and into a discarded copy in a trial pass (kernels/ref/corr.c). Memory:
- * 12 doubles + 1 byte per particle (13 with temperature). Cost: one exponential-map update per
- * particle per pass (a 3 x 3 Jacobi eigen-decomposition, logs and exps), against a family loop of
- * tens of bonds: see the report of the issue for the measured ratio.
+ * "w_plastic", "w_damage"); pass 1 calls pdk_jc_update_kernel (pdk_jc_update without the Cauchy
+ * components) per particle, advancing the history in place in a commit pass and into a discarded
+ * copy in a trial pass (kernels/ref/corr.c). Memory: 12 doubles + 1 byte per particle (13 with
+ * temperature). Cost: one exponential-map update per particle per pass (an eigen-decomposition:
+ * closed-form 2 x 2 in plane strain, cyclic Jacobi in 3-D; logs and exps), against a family loop
+ * of tens of bonds: bench/README.md ("Ductile step") has the measured ratios.
  *
  * Johnson-Cook options (pdk_model_opts, include/pdk/model.h). stab_softening: fields
  * "stab_factor", "w_stab", "w_silling" and two scratch arrays (stab_prev, w_law; 16 bytes per
