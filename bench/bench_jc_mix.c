@@ -13,9 +13,8 @@
  * not changed, so every repeat does the same work). The calls are the ones pass 1 of the next step
  * makes, in the store's order, without the family loop around them. Printed per snapshot: particles
  * updated, the share whose trial state is plastic, the median CPU time per call over R repeats (one
- * thread) and the same for the elastic and plastic calls alone (each set timed on its own; a set of
- * a few dozen calls times mostly the loop and the clock, so read the plastic column where the share
- * is above a percent).
+ * thread) and the same for the elastic and plastic calls alone (each set timed on its own; "nan" for
+ * a set of fewer than 100 calls, which would time mostly the clock).
  */
 #include <math.h>
 #include <stdio.h>
