@@ -380,19 +380,22 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
   double Finv[3][3];
   pdk_inv_d(3, F, J, Finv);
 
-  pdk_jc_state st = *in; /* the new history, written to *out at the end (in and out may alias) */
-  pdk_jc_result r;
-  memset(&r, 0, sizeof r);
-  r.J = J;
+  /* The new history and the result are kept in scalars and written field by field at the end
+   * (in and out may alias, so nothing is written before everything is read): copying whole
+   * structs through the stack made the loads wait on the stores of the scalars inside them. */
+  double cp_new[6], eps_p_new = in->eps_p, D = in->damage, temp_new = in->temp_rise;
+  int failed_new = in->failed, cp_changed = 0;
+  double W = 0.0, dW_plastic = 0.0, dW_damage = 0.0, tau_vm = 0.0, yield_stress = 0.0;
+  double d_eps_p = 0.0, eps_p_rate = 0.0, triaxiality = 0.0, sigma_m_eff = 0.0;
+  double failure_strain = 0.0;
+  int plastic = 0, failed_now = 0;
   double tau[3][3] = {{0}};
 
   if (in->failed) {
-    double tau_p, W;
+    double tau_p;
     failed_stress(p, K, J, &tau_p, &W);
     for (int i = 0; i < 3; ++i)
       tau[i][i] = tau_p;
-    r.W = W;
-    r.yield_stress = 0.0;
   } else {
     /* trial: b_tr = F C_p^-1 F^T = V diag(w) V^T, eps_a = ln(w_a)/2 */
     double Cp[3][3], V[3][3], w[3], axes[2] = {1.0, 0.0}; /* axes: set by trial_plane */
@@ -423,7 +426,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
       sy = flow_stress_step(p, in->eps_p, dg, dt, theta_factor, NULL);
       factor = sy / q_tr;
       q = sy;
-      r.plastic = 1;
+      plastic = 1;
     }
     double ed[3], s[3];
     for (int a = 0; a < 3; ++a) {
@@ -436,33 +439,31 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
 
     /* damage */
     const double D_n = in->damage;
-    double D = D_n;
     if (p->damage && dg > 0.0) {
       const double tm = sigma_m_avg ? *sigma_m_avg * J : tau_m;
       const double eta = q > 0.0 ? tm / q : 0.0;
       const double rate_star = p->D4 != 0.0 ? dg / (dt * p->ref_rate) : 1.0;
       const double ef = pdk_jc_failure_strain(p, eta, rate_star, T_star);
-      r.triaxiality = eta;
-      r.failure_strain = ef;
+      triaxiality = eta;
+      failure_strain = ef;
       D = ef > 0.0 ? D_n + dg / ef : (D_n > p->D_c ? D_n : p->D_c);
     }
     const int coupled = p->coupling == PDK_JC_COUPLING_EFFECTIVE;
     const double Dk_n = coupled ? D_n : 0.0, Dk = coupled ? D : 0.0;
     const double keep = 1.0 - Dk;
 
-    r.yield_stress = sy;
-    r.d_eps_p = dg;
-    r.eps_p_rate = dt > 0.0 ? dg / dt : 0.0;
+    yield_stress = sy;
+    d_eps_p = dg;
+    eps_p_rate = dt > 0.0 ? dg / dt : 0.0;
     /* (1 - D) at mid-step: D grows with eps_p inside the step; D_n+1 would be a first-order rule
      * (1e-3 of the work in t080's coupled run) */
-    r.dW_plastic =
-        (1.0 - 0.5 * (Dk_n + Dk)) * plastic_work_step(p, in->eps_p, dg, dt, theta_factor);
-    r.W = keep * W_eff;
-    r.sigma_m_eff = tau_m / J;
-    r.dW_damage = W_eff * (Dk - Dk_n);
+    dW_plastic = (1.0 - 0.5 * (Dk_n + Dk)) * plastic_work_step(p, in->eps_p, dg, dt, theta_factor);
+    W = keep * W_eff;
+    sigma_m_eff = tau_m / J;
+    dW_damage = W_eff * (Dk - Dk_n);
 
     /* new history */
-    if (r.plastic) {
+    if (plastic) {
       double ee[3], be[3][3], Cp_new[3][3];
       for (int a = 0; a < 3; ++a)
         ee[a] = exp(2.0 * (ed[a] + theta / 3.0));
@@ -483,24 +484,24 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           Cp_new[i][j] *= scale;
-      mat_to_voigt(Cp_new, st.cp_inv);
-      if (dim == 2) st.cp_inv[3] = st.cp_inv[4] = 0.0;
+      mat_to_voigt(Cp_new, cp_new);
+      if (dim == 2) cp_new[3] = cp_new[4] = 0.0;
+      cp_changed = 1;
     }
-    st.eps_p = in->eps_p + dg;
-    st.damage = D;
+    eps_p_new = in->eps_p + dg;
     if (p->thermal)
-      st.temp_rise = in->temp_rise + p->beta * r.dW_plastic / (p->density * p->heat_capacity);
+      temp_new = in->temp_rise + p->beta * dW_plastic / (p->density * p->heat_capacity);
 
     if (p->damage && D >= p->D_c) {
-      st.failed = 1;
-      r.failed_now = 1;
-      double tau_p, W;
-      failed_stress(p, K, J, &tau_p, &W);
+      failed_new = 1;
+      failed_now = 1;
+      double tau_p, W_failed;
+      failed_stress(p, K, J, &tau_p, &W_failed);
       for (int i = 0; i < 3; ++i)
         tau[i][i] = tau_p;
-      r.dW_damage += r.W - W;
-      r.W = W;
-      r.sigma_m_eff = 0.0;
+      dW_damage += W - W_failed;
+      W = W_failed;
+      sigma_m_eff = 0.0;
     } else {
       double ta[3];
       for (int a = 0; a < 3; ++a)
@@ -509,27 +510,49 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
         spectral_plane(axes, ta, tau);
       else
         spectral3(V, ta, tau);
-      r.tau_vm = keep * q;
+      tau_vm = keep * q;
     }
   }
 
-  /* P = tau F^-T, sigma = tau / J */
-  double P[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      P[i][j] = tau[i][0] * Finv[j][0] + tau[i][1] * Finv[j][1] + tau[i][2] * Finv[j][2];
+  /* P = tau F^-T (its d x d block), sigma = tau / J */
   for (int i = 0; i < dim; ++i)
     for (int j = 0; j < dim; ++j)
-      P_out[i][j] = P[i][j];
-  if (with_sigma) {
-    double tv[6];
-    mat_to_voigt(tau, tv);
+      P_out[i][j] = tau[i][0] * Finv[j][0] + tau[i][1] * Finv[j][1] + tau[i][2] * Finv[j][2];
+  if (cp_changed)
     for (int c = 0; c < 6; ++c)
-      r.sigma[c] = tv[c] / J;
+      out->cp_inv[c] = cp_new[c];
+  else if (out != in)
+    for (int c = 0; c < 6; ++c)
+      out->cp_inv[c] = in->cp_inv[c];
+  out->eps_p = eps_p_new;
+  out->damage = D;
+  out->temp_rise = temp_new;
+  out->failed = failed_new;
+  if (res) {
+    res->W = W;
+    res->dW_plastic = dW_plastic;
+    res->dW_damage = dW_damage;
+    res->tau_vm = tau_vm;
+    res->sigma_vm = tau_vm / J;
+    if (with_sigma) {
+      double tv[6];
+      mat_to_voigt(tau, tv);
+      for (int c = 0; c < 6; ++c)
+        res->sigma[c] = tv[c] / J;
+    } else {
+      for (int c = 0; c < 6; ++c)
+        res->sigma[c] = 0.0;
+    }
+    res->J = J;
+    res->yield_stress = yield_stress;
+    res->d_eps_p = d_eps_p;
+    res->eps_p_rate = eps_p_rate;
+    res->triaxiality = triaxiality;
+    res->sigma_m_eff = sigma_m_eff;
+    res->failure_strain = failure_strain;
+    res->plastic = plastic;
+    res->failed_now = failed_now;
   }
-  r.sigma_vm = r.tau_vm / J;
-  *out = st;
-  if (res) *res = r;
   return 0;
 }
 
