@@ -91,7 +91,6 @@
  */
 #include <float.h>
 #include <math.h>
-#include <string.h>
 
 #include "kernels.h" /* pdk_jc_update_kernel */
 #include "pdk/plasticity.h"
