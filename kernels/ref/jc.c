@@ -383,7 +383,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
    * (in and out may alias, so nothing is written before everything is read): copying whole
    * structs through the stack made the loads wait on the stores of the scalars inside them. */
   double cp_new[6], eps_p_new = in->eps_p, D = in->damage, temp_new = in->temp_rise;
-  int failed_new = in->failed, cp_changed = 0;
+  int failed_new = in->failed;
   double W = 0.0, dW_plastic = 0.0, dW_damage = 0.0, tau_vm = 0.0, yield_stress = 0.0;
   double d_eps_p = 0.0, eps_p_rate = 0.0, triaxiality = 0.0, sigma_m_eff = 0.0;
   double failure_strain = 0.0;
@@ -485,7 +485,6 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
           Cp_new[i][j] *= scale;
       mat_to_voigt(Cp_new, cp_new);
       if (dim == 2) cp_new[3] = cp_new[4] = 0.0;
-      cp_changed = 1;
     }
     eps_p_new = in->eps_p + dg;
     if (p->thermal)
@@ -517,7 +516,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
   for (int i = 0; i < dim; ++i)
     for (int j = 0; j < dim; ++j)
       P_out[i][j] = tau[i][0] * Finv[j][0] + tau[i][1] * Finv[j][1] + tau[i][2] * Finv[j][2];
-  if (cp_changed)
+  if (plastic) /* cp_new is set exactly on a plastic step */
     for (int c = 0; c < 6; ++c)
       out->cp_inv[c] = cp_new[c];
   else if (out != in)
