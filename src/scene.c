@@ -5,8 +5,11 @@
  * Steps of pdk_scene_load:
  *   1. read the file; parse it with libyaml, apply the overrides, record the line of every key
  *      path, emit the final YAML text (src/scene_yaml.c);
- *   2. load that text with libcyaml against the schema below, which depends on the dimension only
- *      through the number of entries of a point ([x, y] or [x, y, z]); libcyaml's own errors come
+ *   2. check every single value against the type the schema gives its key (scalars_check: a
+ *      number is the whole value, a boolean is true or false) and every list's length against its
+ *      cap, then load that text with libcyaml against the schema below, which depends on the
+ *      dimension only through the number of entries of a point ([x, y] or [x, y, z]); libcyaml's
+ *      own errors come
  *      through the log callback as a message plus a backtrace of mapping fields and sequence
  *      entries, turned here into a key path and from it into "<file>:<line>: <key.path>: ...";
  *   3. fill defaults for absent keys (a key is absent when step 1 did not record it), check
@@ -15,7 +18,9 @@
  *
  * Numbers that must be integers (dimension, steps, threads, intervals, seed) are loaded as floats
  * and checked here, because libcyaml 1.3.1 reads "1.5" as the integer 1 without complaint, and so
- * that 1e5 is accepted as a step count.
+ * that 1e5 is accepted as a step count. libcyaml 1.3.1 also reads the longest number at the start
+ * of a value ("7850kg" as 7850, "0,29" as 0) and any word but false, no, off, disable and 0 as
+ * true; scalars_check refuses such values before libcyaml sees them.
  */
 #include <ctype.h>
 #include <math.h>
@@ -410,7 +415,7 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(solver, CYAML_FIELD_FLOAT("threads", OPT, sc_solver, threads));
   ADD(solver, CYAML_FIELD_FLOAT("load_steps", OPT, sc_solver, load_steps));
   ADD(solver,
-      CYAML_FIELD_SEQUENCE("load_levels", OPT_PTR, sc_solver, load_levels, &sc->num, 1, 1000000));
+      CYAML_FIELD_SEQUENCE("load_levels", OPT_PTR, sc_solver, load_levels, &sc->num, 1, 100000));
   ADD(solver, CYAML_FIELD_FLOAT("tolerance", OPT, sc_solver, tolerance));
   ADD(solver, CYAML_FIELD_FLOAT("absolute_tolerance", OPT, sc_solver, absolute_tolerance));
   ADD(solver, CYAML_FIELD_FLOAT("max_iterations", OPT, sc_solver, max_iterations));
@@ -650,9 +655,6 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
                            "must be a number, got '%s'; write for "
                            "example 0.5, 2e-3 or 200e9",
                            got ? got : arg);
-  if (!strncmp(msg, "Invalid BOOL value", 18))
-    return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "must be true or false, got '%s'",
-                           got ? got : arg);
   if (!strncmp(msg, "Expecting ", 10)) {
     const cyaml_schema_value_t *v = schema_at(&sc->top, path);
     char hint[600];
@@ -683,11 +685,7 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
     else
       sscanf(msg, "Insufficient entries (%u of %u min)", &have, &want);
     /* libcyaml stops at the first entry too many; the document says how many there are. */
-    char entry[KEY_MAX + 16];
-    unsigned count = 0;
-    do
-      snprintf(entry, sizeof entry, "%s[%u]", path, count);
-    while (pdk_scene_key_get(s, entry) && ++count < 1000000);
+    unsigned count = key && key->count >= 0 ? (unsigned)key->count : want + 1;
     if (!excess) count = have;
     if (is_point)
       return pdk_scene_error(s, ctx, PDK_ERR_ARG, path,
@@ -705,6 +703,92 @@ static int cy_translate(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc
   if (!strncmp(msg, "String length", 13) || strstr(msg, "string length"))
     return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "%s; names are 1 to 255 characters", msg);
   return pdk_scene_error(s, ctx, PDK_ERR_ARG, path, "%s; see docs/scenes.md", msg);
+}
+
+/* A YAML decimal number, whole: [+-] digits [. digits] [e [+-] digits], or [+-] . digits [e ...];
+ * `integer`: digits only. No hexadecimal, inf, nan, '_' or ','. */
+static int is_number_text(const char *v, int integer) {
+  const char *c = v;
+  if (*c == '+' || *c == '-') ++c;
+  int digits = 0;
+  while (isdigit((unsigned char)*c)) {
+    ++c;
+    ++digits;
+  }
+  if (integer) return digits > 0 && !*c;
+  if (*c == '.') {
+    ++c;
+    while (isdigit((unsigned char)*c)) {
+      ++c;
+      ++digits;
+    }
+  }
+  if (!digits) return 0;
+  if (*c == 'e' || *c == 'E') {
+    ++c;
+    if (*c == '+' || *c == '-') ++c;
+    if (!isdigit((unsigned char)*c)) return 0;
+    while (isdigit((unsigned char)*c))
+      ++c;
+  }
+  return *c == '\0';
+}
+
+/* Step 2, before libcyaml: every single value whose key the schema types as a number or a boolean,
+ * and every list against its cap. libcyaml would read "0,29" as 0 and "flase" as true; counting a
+ * list first keeps a long one from costing more than reading it. */
+static int scalars_check(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc) {
+  for (int k = 0; k < s->num_keys; ++k) {
+    const pdk_scene_key *key = &s->keys[k];
+    const cyaml_schema_value_t *v = schema_at(&sc->top, key->path);
+    if (!v) continue; /* an unknown key: libcyaml names it */
+    if (key->count >= 0) {
+      if (v->type == CYAML_SEQUENCE && v->sequence.max != CYAML_UNLIMITED &&
+          key->count > (long)v->sequence.max)
+        return pdk_scene_error(s, ctx, PDK_ERR_ARG, key->path,
+                               "must have at most %u entries, got %ld", v->sequence.max,
+                               key->count);
+      continue;
+    }
+    if (!key->value) continue; /* a mapping */
+    char shown[128];
+    pdk_scene_quote(key->value, shown, sizeof shown);
+    switch (v->type) {
+    case CYAML_FLOAT:
+    case CYAML_INT:
+    case CYAML_UINT: {
+      const int integer = v->type != CYAML_FLOAT;
+      if (!key->value[0])
+        return pdk_scene_error(s, ctx, PDK_ERR_ARG, key->path,
+                               "must be %s, got nothing; write for example %s", type_words(v),
+                               integer ? "0, 10 or 250" : "0.5, 2e-3 or 200e9");
+      if (!is_number_text(key->value, integer))
+        return pdk_scene_error(s, ctx, PDK_ERR_ARG, key->path,
+                               "must be %s, got '%s'; write for example %s (the whole value is "
+                               "the number: no unit, '_' or ',')",
+                               type_words(v), shown,
+                               integer ? "0, 10 or 250" : "0.5, 2e-3 or 200e9");
+      if (!isfinite(strtod(key->value, NULL)))
+        return pdk_scene_error(s, ctx, PDK_ERR_ARG, key->path,
+                               "must be a finite number, got '%s', beyond the largest double "
+                               "(1.8e308)",
+                               shown);
+      break;
+    }
+    case CYAML_BOOL: {
+      static const char *const words[] = {"true", "True", "TRUE", "false", "False", "FALSE"};
+      int ok = 0;
+      for (int w = 0; w < 6; ++w)
+        ok |= !strcmp(key->value, words[w]);
+      if (!ok)
+        return pdk_scene_error(s, ctx, PDK_ERR_ARG, key->path, "must be true or false, got '%s'",
+                               shown);
+      break;
+    }
+    default: break;
+    }
+  }
+  return PDK_SUCCESS;
 }
 
 static int scene_schema_load(pdk_ctx *ctx, const pdk_scene *s, const scene_schema *sc,
@@ -791,6 +875,18 @@ static int valid_name(const char *n) {
   if (!n || !n[0] || strlen(n) > SC_NAME_MAX) return 0;
   for (const char *c = n; *c; ++c)
     if (!isalnum((unsigned char)*c) && *c != '_' && *c != '-' && *c != '.') return 0;
+  return 1;
+}
+
+/* The scene's name names its output files (<name>.h5, <name>_history.csv, ...) and appears in
+ * the plot scripts: letters, digits and . _ + - only, not starting with '-' (an option to a
+ * command) or '.' (a hidden file, ".."). */
+static int valid_scene_name(const char *n) {
+  if (!n || !n[0] || strlen(n) > SC_NAME_MAX || n[0] == '-' || n[0] == '.') return 0;
+  for (const char *c = n; *c; ++c)
+    if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ||
+          strchr("._+-", *c)))
+      return 0;
   return 1;
 }
 
@@ -1950,14 +2046,21 @@ static int scene_resolve(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   REQUIRE(ld, d->dimension == 2 || d->dimension == 3, "dimension", "must be 2 or 3, got %g",
           d->dimension);
+  char shown[128];
   if (has(ld, "name")) {
-    REQUIRE(ld, valid_name(d->name), "name",
-            "'%s' is not a valid name (it names the output "
-            "files); use 1 to %d letters, digits, '_', '-' or '.'",
-            d->name, SC_NAME_MAX);
+    REQUIRE(ld, valid_scene_name(d->name), "name",
+            "'%s' is not a valid name (it names the output files and the plots); use 1 to %d "
+            "letters, digits, '_', '-', '.' or '+', not starting with '-' or '.'",
+            pdk_scene_quote(d->name, shown, sizeof shown), SC_NAME_MAX);
     free(s->name);
     s->name = strdup(d->name);
     if (!s->name) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  } else {
+    REQUIRE(ld, valid_scene_name(s->name), "name",
+            "the scene has no name: key, and its file name's stem '%s' cannot be the name (it "
+            "names the output files and the plots); set name: in the scene (or --set name=...) to "
+            "1 to %d letters, digits, '_', '-', '.' or '+', not starting with '-' or '.'",
+            pdk_scene_quote(s->name, shown, sizeof shown), SC_NAME_MAX);
   }
   s->solver = pdk_explicit_opts_default();
   PDK_CALL(resolve_geometry(ld, &d->geometry));
@@ -2032,8 +2135,9 @@ int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
   PDK_CALL_GOTO(pdk_scene_yaml_prepare(ctx, s, file_text, file_len, &yaml, &yaml_len, &dim));
   s->dim = dim;
 
-  /* 2. schema load */
+  /* 2. value types and list lengths, then the schema load */
   schema_build(&sc, dim);
+  PDK_CALL_GOTO(scalars_check(ctx, s, &sc));
   PDK_CALL_GOTO(scene_schema_load(ctx, s, &sc, &cfg, yaml, yaml_len, &data));
   if (!data) {
     err = pdk_ctx_error_set(ctx, PDK_ERR_ARG, NULL,
@@ -2105,6 +2209,7 @@ void pdk_scene_destroy(pdk_scene **sp) {
   free(s->name);
   free(s->text);
   pdk_scene_keys_free(s->keys, s->num_keys);
+  free(s->key_slots);
   strings_free(s->overrides, s->num_overrides);
   regions_free(s->holes, s->num_holes);
   regions_free(s->notches, s->num_notches);

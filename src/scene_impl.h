@@ -18,11 +18,17 @@
 #include "pdk/scene.h"
 #include "pdk_impl.h"
 
+/* Limits checked before the work they bound (docs/scenes.md, "Limits"). */
+#define PDK_SCENE_MAX_FILE_BYTES (8L << 20) /* a scene file: 8 MiB, checked before reading it */
+#define PDK_SCENE_MAX_DEPTH 64              /* nesting levels, checked while parsing */
+#define PDK_SCENE_MAX_VALUES 1000000L       /* values (nodes) with every alias expanded */
+
 typedef struct pdk_scene_key {
   char *path;  /* "geometry.holes[0].disk.center" */
   int line;    /* 1-based line of the key (of the entry, for sequence entries) in the file */
   int origin;  /* -1: from the file; k >= 0: set by override k */
   char *value; /* the scalar value as written, NULL for lists and mappings */
+  long count;  /* entries of a list, -1 for scalars and mappings */
 } pdk_scene_key;
 
 /* A region used as a hole, a notch or a named set. */
@@ -42,6 +48,9 @@ struct pdk_scene {
 
   pdk_scene_key *keys; /* [num_keys] */
   int num_keys;
+  int *key_slots; /* [num_key_slots] hash index of keys by path (the last record of a path): a
+                     key index or -1; see pdk_scene_key_get */
+  size_t num_key_slots;
   char **overrides; /* [num_overrides] copies of the "key.path=value" strings */
   int num_overrides;
 
@@ -77,7 +86,9 @@ struct pdk_scene {
   char **reaction_names; /* [output.num_reaction_sets] */
 };
 
-/* src/scene_yaml.c: reads a file into a NUL-terminated malloc'ed buffer. */
+/* src/scene_yaml.c: reads a file into a NUL-terminated malloc'ed buffer; a file larger than
+ * PDK_SCENE_MAX_FILE_BYTES is refused before it is read (a regular file) or once that many bytes
+ * were read (a device, a pipe). */
 int pdk_scene_read_file(pdk_ctx *ctx, const char *path, char **text, size_t *len);
 /* src/scene_yaml.c: parses the file text, applies s->overrides, records s->keys, and returns the
  * final document as YAML text (malloc'ed) and the top-level dimension (2 unless it says 3; it
@@ -85,10 +96,14 @@ int pdk_scene_read_file(pdk_ctx *ctx, const char *path, char **text, size_t *len
 int pdk_scene_yaml_prepare(pdk_ctx *ctx, pdk_scene *s, const char *file_text, size_t file_len,
                            char **yaml_out, size_t *yaml_len, int *dim_out);
 void pdk_scene_keys_free(pdk_scene_key *keys, int num);
-/* The record of a key path present in the document, or NULL. */
+/* The record of a key path present in the document (the last one of a path given twice), or
+ * NULL; constant time. */
 const pdk_scene_key *pdk_scene_key_get(const pdk_scene *s, const char *path);
 /* Prefixes the context's current message (from a lower-level call that failed with err) with
  * "<location>: <key>: " and returns err. */
 int pdk_scene_blame(const pdk_scene *s, pdk_ctx *ctx, int err, const char *key);
+/* Writes `text` into buf for a message: printable ASCII as is, other bytes escaped (\n, \t,
+ * \xNN), at most about 60 characters (then "..."). Returns buf. */
+const char *pdk_scene_quote(const char *text, char *buf, size_t len);
 
 #endif

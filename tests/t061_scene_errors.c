@@ -155,6 +155,67 @@ static const error_case cases[] = {
      "out of range"},
     {"override value not YAML", NULL, NULL, "geometry.box.lo=[0, 0", AT_LOAD, PDK_ERR_ARG, NULL,
      "not valid YAML"},
+    /* numbers: the whole value is the number (no unit, digit separator or decimal comma) */
+    {"number with a unit", "  density: 7850", "  density: 7850kg #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.density", "must be a number, got '7850kg'"},
+    {"decimal comma", "  poisson_ratio: 0.3", "  poisson_ratio: 0,3 #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.poisson_ratio", "must be a number, got '0,3'"},
+    {"digit separator", "  density: 7850", "  density: 7_850 #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.density", "must be a number, got '7_850'"},
+    {"trailing text in a point", "hi: [0.01, 0.02]}", "hi: [0.01, 0.02m]} #<", NULL, AT_LOAD,
+     PDK_ERR_ARG, "geometry.box.hi[1]", "must be a number, got '0.02m'"},
+    {"hexadecimal number", "  density: 7850", "  density: 0x1EA2 #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.density", "got '0x1EA2'"},
+    {"infinity", "  density: 7850", "  density: inf #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.density", "must be a number, got 'inf'"},
+    {"number beyond double range", "  spacing: 1.0e-3", "  spacing: 1e999 #<", NULL, AT_LOAD,
+     PDK_ERR_ARG, "geometry.spacing", "must be a finite number"},
+    {"empty number", "  density: 7850", "  density: #<", NULL, AT_LOAD, PDK_ERR_ARG,
+     "material.density", "must be a number, got nothing"},
+    {"override number with a decimal comma", NULL, NULL, "material.poisson_ratio=0,29", AT_LOAD,
+     PDK_ERR_ARG, "material.poisson_ratio", "must be a number, got '0,29'"},
+    /* booleans: true or false */
+    {"misspelt boolean", NULL, NULL, "solver.force_dt=flase", AT_LOAD, PDK_ERR_ARG,
+     "solver.force_dt", "must be true or false, got 'flase'"},
+    {"yes for a boolean", "solver:\n", "model: {partial_volume: yes} #<\nsolver:\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "model.partial_volume", "must be true or false, got 'yes'"},
+    /* the scene name names files and plot scripts */
+    {"name starting with '-'", NULL, NULL, "name=-rf", AT_LOAD, PDK_ERR_ARG, "name",
+     "not a valid name"},
+    {"name starting with '.'", "dimension: 2\n", "name: ..bar #<\ndimension: 2\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "name", "not starting with '-' or '.'"},
+    {"name with a newline", "dimension: 2\n", "name: \"m\\nsystem('touch X')\" #<\ndimension: 2\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "name", "'m\\nsystem('touch X')' is not a valid name"},
+    /* limits and YAML features a scene has no use for */
+    {"alias bomb", "solver:\n",
+     "description:\n"
+     "  - &a [x, x, x, x, x, x, x, x, x, x]\n"
+     "  - &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+     "  - &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n"
+     "  - &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
+     "  - &e [*d, *d, *d, *d, *d, *d, *d, *d, *d, *d]\n"
+     "  - &f [*e, *e, *e, *e, *e, *e, *e, *e, *e, *e] #<\n"
+     "  - &g [*f, *f, *f, *f, *f, *f, *f, *f, *f, *f]\n"
+     "  - &h [*g, *g, *g, *g, *g, *g, *g, *g, *g, *g]\n"
+     "  - &i [*h, *h, *h, *h, *h, *h, *h, *h, *h, *h]\n"
+     "solver:\n",
+     NULL, AT_LOAD, PDK_ERR_ARG, "description[5]", "more than 1000000 values"},
+    {"recursive alias", "solver:\n", "description: &a [1, *a] #<\nsolver:\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "description", "recursive alias"},
+    {"recursive alias in an override", NULL, NULL, "description=&a [*a]", AT_LOAD, PDK_ERR_ARG,
+     "description", "recursive alias"},
+    {"undefined alias", "solver:\n", "description: *nowhere #<\nsolver:\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "description", "no anchor"},
+    {"second document in an override", NULL, NULL, "description=a\n---\nb", AT_LOAD, PDK_ERR_ARG,
+     "description", "second YAML document"},
+    {"second document in the file", NULL, "dimension: 2\n--- #<\ndimension: 3\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "(scene)", "second YAML document"},
+    {"list as a key", "solver:\n", "? [a, b] #<\n: 1\nsolver:\n", NULL, AT_LOAD, PDK_ERR_ARG,
+     "(scene)", "a list is used as a key"},
+    {"mapping as a key", "  spacing: 1.0e-3\n", "  spacing: 1.0e-3\n  {a: 1}: 2 #<\n", NULL,
+     AT_LOAD, PDK_ERR_ARG, "geometry", "a mapping is used as a key"},
+    {"NUL in a value", "solver:\n", "description: \"a\\0b\" #<\nsolver:\n", NULL, AT_LOAD,
+     PDK_ERR_ARG, "description", "NUL"},
 };
 
 /* Replaces the first `find` in `text` with `repl` (malloc'ed result). */
@@ -243,6 +304,50 @@ int main(void) {
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&s);
   remove("t061_base.yaml");
+
+  /* Nesting 100 000 levels deep is refused at the documented depth, naming it (the parse stops
+   * there; reading the whole nest took a minute). */
+  {
+    const int depth = 100000;
+    const char *head = "dimension: 2\ndescription: ";
+    char *text = malloc(strlen(head) + (size_t)depth + 2);
+    strcpy(text, head);
+    memset(text + strlen(head), '[', (size_t)depth);
+    strcpy(text + strlen(head) + depth, "\n");
+    f = fopen("t061_deep.yaml", "wb");
+    T_ASSERT(f && fputs(text, f) >= 0 && !fclose(f), "writing t061_deep.yaml");
+    T_FAILS(ctx, pdk_scene_load(ctx, "t061_deep.yaml", NULL, 0, &s), PDK_ERR_ARG,
+            "t061_deep.yaml:2: description[0][0]");
+    T_ASSERT(strstr(pdk_ctx_error_message(ctx), "nested deeper than 64 levels"),
+             "deep nesting names the limit: %s", pdk_ctx_error_message(ctx));
+    T_ASSERT(s == NULL, "no scene for deep nesting");
+    free(text);
+    remove("t061_deep.yaml");
+  }
+
+  /* The default name is the file's stem; one that cannot name files and plot scripts is an error
+   * that asks for `name:`, and `name:` (here an override) fixes it. */
+  {
+    const char *stems[] = {"t061_bad\nsystem(\"touch X\")\n#.yaml", "-t061.yaml", ".t061.yaml",
+                           "t061 space.yaml"};
+    for (int k = 0; k < 4; ++k) {
+      f = fopen(stems[k], "wb");
+      T_ASSERT(f && fputs(base_scene, f) >= 0 && !fclose(f), "writing a scene named '%s'",
+               stems[k]);
+      T_FAILS(ctx, pdk_scene_load(ctx, stems[k], NULL, 0, &s), PDK_ERR_ARG, ":1: name: ");
+      const char *msg = pdk_ctx_error_message(ctx);
+      T_ASSERT(strstr(msg, "set name:") && strstr(msg, "file name"),
+               "the message asks for name: %s", msg);
+      T_ASSERT(!strchr(strstr(msg, ":1: name: "), '\n'),
+               "the message shows the stem without raw newlines: %s", msg);
+      T_ASSERT(s == NULL, "no scene for a bad stem");
+      const char *named[] = {"name=t061_ok"};
+      T_OK(ctx, pdk_scene_load(ctx, stems[k], named, 1, &s));
+      T_ASSERT(!strcmp(pdk_scene_name(s), "t061_ok"), "name: replaces the stem");
+      pdk_scene_destroy(&s);
+      remove(stems[k]);
+    }
+  }
 
   /* A missing file. */
   T_FAILS(ctx, pdk_scene_load(ctx, "t061_no_such_file.yaml", NULL, 0, &s), PDK_ERR_IO,
