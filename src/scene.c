@@ -28,6 +28,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "ext.h"
 #include "scene_impl.h"
@@ -138,6 +139,10 @@ typedef struct sc_output {
   char **reactions;
   unsigned reactions_count;
 } sc_output;
+/* limits: what the run may use */
+typedef struct sc_limits {
+  double memory;
+} sc_limits;
 typedef struct sc_scene {
   char *name, *description;
   double dimension;
@@ -153,6 +158,7 @@ typedef struct sc_scene {
   sc_initial initial_conditions;
   sc_solver solver;
   sc_output output;
+  sc_limits limits;
 } sc_scene;
 
 /* ---- the schema --------------------------------------------------------------------------------
@@ -229,9 +235,9 @@ typedef struct scene_schema {
   cyaml_schema_field_t box[SC_MAX_FIELDS], ball[SC_MAX_FIELDS], halfspace[SC_MAX_FIELDS],
       polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
       precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
-      material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS],
-      model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS], initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS],
-      output[SC_MAX_FIELDS], scene[SC_MAX_FIELDS];
+      material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS], model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS],
+      initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS], output[SC_MAX_FIELDS], limits[SC_MAX_FIELDS],
+      scene[SC_MAX_FIELDS];
 } scene_schema;
 
 static void field_add(cyaml_schema_field_t *fields, cyaml_schema_field_t f) {
@@ -460,6 +466,8 @@ static void schema_build(scene_schema *sc, int dim) {
       CYAML_FIELD_MAPPING("initial_conditions", OPT, sc_scene, initial_conditions, sc->initial));
   ADD(scene, CYAML_FIELD_MAPPING("solver", 0, sc_scene, solver, sc->solver));
   ADD(scene, CYAML_FIELD_MAPPING("output", OPT, sc_scene, output, sc->output));
+  ADD(limits, CYAML_FIELD_FLOAT("memory", OPT, sc_limits, memory));
+  ADD(scene, CYAML_FIELD_MAPPING("limits", OPT, sc_scene, limits, sc->limits));
   sc->top = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_POINTER, sc_scene, sc->scene)};
 }
 
@@ -1066,6 +1074,7 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
   memcpy(lo->hi, g->box.hi, sizeof lo->hi);
   pdk_index count = 0;
   int err = pdk_lattice_count(ld->ctx, lo, &count);
+  s->num_points = count;
   if (err) {
     /* Too many points: the spacing is the usual culprit; too few: the box. */
     double cells = 1;
@@ -2041,6 +2050,94 @@ static int resolve_output(loader *ld, const sc_scene *d) {
   return PDK_SUCCESS;
 }
 
+/* Memory available to this process now, in bytes: MemAvailable of /proc/meminfo (what the kernel
+ * can hand out without swapping), else the free pages; 0 when neither is known. */
+static double memory_available(const char **source) {
+  FILE *f = fopen("/proc/meminfo", "r");
+  if (f) {
+    char line[256];
+    double kb = -1;
+    while (fgets(line, sizeof line, f))
+      if (sscanf(line, "MemAvailable: %lf kB", &kb) == 1) break;
+    fclose(f);
+    if (kb > 0) {
+      *source = "available (MemAvailable in /proc/meminfo)";
+      return kb * 1024.0;
+    }
+  }
+#if defined(_SC_AVPHYS_PAGES) && defined(_SC_PAGESIZE)
+  long pages = sysconf(_SC_AVPHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && page > 0) {
+    *source = "free (sysconf _SC_AVPHYS_PAGES)";
+    return (double)pages * (double)page;
+  }
+#endif
+  return 0;
+}
+
+/* The memory a run of the scene needs, estimated before anything is allocated: a base, bytes per
+ * lattice point (positions, velocities, forces, model state, cells) and bytes per bond (neighbour
+ * lists, bond state; a Newton solve also its tangent and factor), the bonds per point from the
+ * horizon's area or volume over a lattice cell. Measured with pdk check and pdk run (peak resident
+ * set) on the shipped scenes refined to 1e5 to 5e5 points: PMB and LPS 380 to 540 B per point and
+ * 4 B per bond (float: 8), correspondence 640 to 730 B and 12 to 14 B, Newton about 700 B per bond
+ * (correspondence, 2-D) and 270 B (PMB); the figures below are those rounded up. */
+static double memory_estimate(const pdk_scene *s, double *per_point, double *per_bond,
+                              double *bonds) {
+  const double m = s->horizon_factor, pi = 3.14159265358979323846;
+  double nb = s->dim == 3 ? 4.0 / 3.0 * pi * m * m * m : pi * m * m;
+  if (s->lattice.type == PDK_LATTICE_HEX) nb *= 2.0 / sqrt(3.0);
+  const double n = (double)s->num_points;
+  if (nb > n - 1) nb = n - 1;
+  const int corr = s->model.kind == PDK_MODEL_CORRESPONDENCE;
+  const int single = s->model.precision == PDK_PRECISION_FLOAT;
+  *per_point = corr ? 1024 : 640;
+  *per_bond = corr ? 16 : single ? 12 : 8;
+  if (s->solver_type == PDK_SOLVER_NEWTON) *per_bond += (corr ? 250 : 100) * s->dim * s->dim;
+  *bonds = n * nb;
+  return 32.0 * 1024 * 1024 + n * *per_point + *bonds * *per_bond;
+}
+
+static void fmt_bytes(char *buf, size_t len, double bytes) {
+  if (bytes >= 1e12)
+    snprintf(buf, len, "%.3g TB", bytes / 1e12);
+  else if (bytes >= 1e9)
+    snprintf(buf, len, "%.3g GB", bytes / 1e9);
+  else
+    snprintf(buf, len, "%.3g MB", bytes / 1e6);
+}
+
+/* limits.memory: the estimate against the memory the run may use, before pdk_sim_create
+ * allocates anything. */
+static int resolve_limits(loader *ld, const sc_scene *d) {
+  const pdk_scene *s = ld->s;
+  const char *source = NULL;
+  double limit;
+  if (has(ld, "limits.memory")) {
+    limit = d->limits.memory;
+    REQUIRE(ld, isfinite(limit) && limit > 0, "limits.memory",
+            "must be > 0, got %g (bytes the run may use, for example 64e9)", limit);
+    source = "that limits.memory allows";
+  } else {
+    limit = memory_available(&source);
+    if (limit <= 0) return PDK_SUCCESS; /* unknown: nothing to compare with */
+  }
+  double per_point, per_bond, bonds;
+  const double need = memory_estimate(s, &per_point, &per_bond, &bonds);
+  const int given = has(ld, "limits.memory");
+  char need_s[32], limit_s[32];
+  fmt_bytes(need_s, sizeof need_s, need);
+  fmt_bytes(limit_s, sizeof limit_s, limit);
+  REQUIRE(ld, need <= limit, given ? "limits.memory" : "geometry.spacing",
+          "the run needs about %s by pdk's estimate (%.4g particles x %.0f B + %.4g bonds x "
+          "%.0f B), more than the %s of memory %s; increase geometry.spacing or shrink "
+          "geometry.box, or %s limits.memory (bytes, for example limits.memory: %.0fe9) to run "
+          "it anyway",
+          need_s, (double)s->num_points, per_point, bonds, per_bond, limit_s, source,
+          given ? "raise" : "set", ceil(need / 1e9));
+  return PDK_SUCCESS;
+}
+
 /* Step 3: defaults, checks, conversions. */
 static int scene_resolve(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
@@ -2070,6 +2167,7 @@ static int scene_resolve(loader *ld, const sc_scene *d) {
   PDK_CALL(resolve_bcs(ld, d));
   PDK_CALL(resolve_solver(ld, d));
   PDK_CALL(resolve_output(ld, d));
+  PDK_CALL(resolve_limits(ld, d));
   return PDK_SUCCESS;
 }
 

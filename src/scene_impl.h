@@ -55,6 +55,7 @@ struct pdk_scene {
   int num_overrides;
 
   pdk_lattice_opts lattice;
+  pdk_index num_points; /* lattice points before holes and notches */
   double horizon_factor;
   double horizon; /* horizon_factor * spacing */
   pdk_scene_region *holes, *notches, *sets;
