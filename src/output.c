@@ -432,8 +432,7 @@ static int flush_files(pdk_output *o) {
             o->part[OUT_XMF], strerror(errno));
   PDK_CHECK(fflush(o->csv) == 0 && !ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s",
             o->part[OUT_CSV], strerror(errno));
-  PDK_H5_CALL(ctx, H5Fflush(o->file, H5F_SCOPE_LOCAL));
-  return PDK_SUCCESS;
+  return pdk_h5_file_flush(ctx, o->file, o->part[OUT_H5]);
 }
 
 /* ---- open -------------------------------------------------------------------------------------
@@ -688,8 +687,7 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   o->will_plot = opts.plot && gnuplot_on_path();
   PDK_CALL_GOTO(pdk_dir_create(ctx, dir));
 
-  PDK_H5_CALL_GOTO(ctx, o->file,
-                   H5Fcreate(o->part[OUT_H5], H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_file_create(ctx, o->part[OUT_H5], &o->file));
   PDK_CALL_GOTO(write_static(o, opts.scene_text));
   PDK_CALL_GOTO(create_history(o));
   {
@@ -803,6 +801,8 @@ int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double t
 cleanup:
   if (g >= 0) H5Gclose(g);
   free(dname);
+  if (err && pdk_h5_file_error(o->file)) /* the disk's error, not what HDF5 made of it */
+    err = pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]);
   return err;
 }
 
@@ -880,11 +880,14 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   fprintf(o->csv, "\n");
   PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV],
                  strerror(errno));
+  PDK_CALL_GOTO(pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]));
   o->rows++;
   o->failed = 0;
 cleanup:
   if (fspace >= 0) H5Sclose(fspace);
   if (mspace >= 0) H5Sclose(mspace);
+  if (err && pdk_h5_file_error(o->file)) /* the disk's error, not what HDF5 made of it */
+    err = pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]);
   return err;
 }
 
@@ -1077,7 +1080,7 @@ static void close_handles(pdk_output *o) {
       o->col_dset[k] = -1;
     }
   if (o->history >= 0) H5Gclose(o->history);
-  if (o->file >= 0) H5Fclose(o->file);
+  if (o->file >= 0) pdk_h5_file_close(NULL, o->file, o->part[OUT_H5]);
   o->history = o->file = -1;
 }
 
@@ -1447,12 +1450,14 @@ static int finish(pdk_output *o) {
   st = H5Gclose(o->history);
   o->history = -1;
   PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
+  /* everything written so far reached the disk before anything is read back from it */
+  PDK_CALL(pdk_h5_file_flush(ctx, o->file, o->part[OUT_H5]));
   out_snapshot snap = {0};
   const int snapshot = o->num_steps > 0;
   if (snapshot) PDK_CALL(write_snapshot_csv(o, &snap));
   hid_t file = o->file;
   o->file = -1;
-  PDK_H5_CALL(ctx, H5Fclose(file));
+  PDK_CALL(pdk_h5_file_close(ctx, file, o->part[OUT_H5]));
 
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_H5], o->final[OUT_H5]));
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_CSV], o->final[OUT_CSV]));
