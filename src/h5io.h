@@ -69,7 +69,8 @@ int pdk_file_remove(const char *path);
 int pdk_file_exists(const char *path);
 
 /* Creates (truncates) the HDF5 file `path` through pdk's driver. A file that cannot be created is
- * a PDK_ERR_IO naming it and the reason ("Read-only file system", "Permission denied"). */
+ * a PDK_ERR_IO naming it and the reason ("Read-only file system", "Permission denied"). Close it
+ * with pdk_h5_file_close (not H5Fclose). */
 int pdk_h5_file_create(pdk_ctx *ctx, const char *path, hid_t *file);
 /* PDK_ERR_IO "cannot write '<path>': <reason>" when a write to `file` has failed, else success. */
 int pdk_h5_file_check(pdk_ctx *ctx, hid_t file, const char *path);
