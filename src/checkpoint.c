@@ -97,7 +97,7 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
   part = pdk_str_printf("%s.part", path);
   PDK_CHECK(part, ctx, PDK_ERR_MEMORY, "out of memory");
-  PDK_H5_CALL_GOTO(ctx, file, H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_file_create(ctx, part, &file));
   PDK_CALL_GOTO(pdk_h5_write_provenance(ctx, file, CKPT_KIND));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "format", CKPT_FORMAT));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "dimension", pdk_particles_dim(p)));
@@ -153,14 +153,14 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   g = -1;
   {
     hid_t closing = file;
-    herr_t st;
     file = -1;
-    PDK_H5_CALL_GOTO(ctx, st, H5Fclose(closing));
+    PDK_CALL_GOTO(pdk_h5_file_close(ctx, closing, part)); /* a failed write is reported here */
   }
   PDK_CALL_GOTO(pdk_file_commit(ctx, part, path));
 cleanup:
   if (g >= 0) H5Gclose(g);
-  if (file >= 0) H5Fclose(file);
+  if (file >= 0 && err && pdk_h5_file_error(file)) err = pdk_h5_file_check(ctx, file, part);
+  if (file >= 0) pdk_h5_file_close(NULL, file, part);
   if (err && part) pdk_file_remove(part);
   free(part);
   return err;

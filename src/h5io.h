@@ -1,9 +1,19 @@
-/* Private: HDF5 attribute helpers and crash-safe file commits, shared by src/output.c and
- * src/checkpoint.c.
+/* Private: HDF5 attribute helpers, pdk's HDF5 file driver and crash-safe file commits, shared by
+ * src/output.c and src/checkpoint.c.
  *
  * Every file pdk writes goes through the same life: it is created as <final>.part, written and
  * flushed, then pdk_file_commit syncs it to disk, renames it to <final> and syncs the directory,
  * so a file under its final name is always complete. Every HDF5 call goes through PDK_H5_CALL*.
+ *
+ * HDF5 files pdk writes are created with pdk_h5_file_create and closed with pdk_h5_file_close.
+ * They go through pdk's own HDF5 file driver (POSIX pread/pwrite, as HDF5's default driver): a
+ * write that fails (a full disk, an I/O error) is recorded in the file and not passed on to
+ * HDF5, which would otherwise be left unable to close the file (HDF5 1.10: H5Fclose fails after a
+ * failed metadata write and the half-closed file crashes the library's exit handler). After a
+ * failed write the driver drops further writes and fails reads, and pdk_h5_file_check,
+ * pdk_h5_file_flush and pdk_h5_file_close report the error ("cannot write '<file>': No space left
+ * on device"); the file is then discarded. The file format is HDF5's own: any HDF5 reader opens
+ * the files.
  */
 #ifndef PDK_H5IO_H
 #define PDK_H5IO_H
@@ -51,9 +61,34 @@ int pdk_dir_create(pdk_ctx *ctx, const char *dir);
 int pdk_file_sync(pdk_ctx *ctx, const char *path);
 /* Syncs `part`, renames it to `final` (replacing any older file) and syncs the directory. */
 int pdk_file_commit(pdk_ctx *ctx, const char *part, const char *final);
+/* Removes `path` (a missing file is fine), reporting a failure: how a final name is taken away. */
+int pdk_file_discard(pdk_ctx *ctx, const char *path);
 /* Removes a file; a missing file is fine. Returns 0 or an errno value (no context message:
  * used on cleanup paths). */
 int pdk_file_remove(const char *path);
 int pdk_file_exists(const char *path);
+
+/* Creates (truncates) the HDF5 file `path` through pdk's driver. A file that cannot be created is
+ * a PDK_ERR_IO naming it and the reason ("Read-only file system", "Permission denied"). Close it
+ * with pdk_h5_file_close (not H5Fclose). */
+int pdk_h5_file_create(pdk_ctx *ctx, const char *path, hid_t *file);
+/* PDK_ERR_IO "cannot write '<path>': <reason>" when a write to `file` has failed, else success. */
+int pdk_h5_file_check(pdk_ctx *ctx, hid_t file, const char *path);
+/* The errno of the first failed write to `file`, 0 when none failed (or another driver). */
+int pdk_h5_file_error(hid_t file);
+/* H5Fflush, then pdk_h5_file_check. */
+int pdk_h5_file_flush(pdk_ctx *ctx, hid_t file, const char *path);
+/* Closes `file` (a file made by pdk_h5_file_create never fails to close) and reports a write that
+ * failed at any time: PDK_ERR_IO naming `path`. ctx NULL: no message (cleanup paths). */
+int pdk_h5_file_close(pdk_ctx *ctx, hid_t file, const char *path);
+
+/* Test hooks, for the tests of the failure paths only (both off, 0, unless a test sets them).
+ * pdk_h5_fault_write(k): the k-th write through pdk's HDF5 driver from now on fails as on a full
+ * disk (ENOSPC); returns the number of writes counted since the previous call (the writes are
+ * counted while k > 0). pdk_fault_kill_at_step(k): the process kills itself (SIGKILL) just before
+ * the k-th rename or removal of a final file name from now on (pdk_file_commit, pdk_file_discard).
+ */
+long pdk_h5_fault_write(long k);
+void pdk_fault_kill_at_step(long k);
 
 #endif

@@ -12,8 +12,11 @@
  *                                  written at close from the .h5 (so it is that output's data)
  *   OUT_FGP  <name>_fields.gp      gnuplot script drawing it, written at close
  *   OUT_FPNG <name>_fields.png     made by gnuplot at close, when it is on the PATH
- * Field outputs flush the HDF5 file, the XDMF and the CSV (H5Fflush, fflush); close syncs every
- * file (fsync) before its rename, and renames the .xmf last.
+ * Field outputs flush the HDF5 file, the XDMF and the CSV (H5Fflush, fflush). Close completes
+ * every new file as .part (gnuplot reads and writes .part files), syncs them, removes the previous
+ * run's files of this name (its .xmf first), then renames the new ones (the .xmf last): see
+ * finish(). The name must be printable (no control character): it reaches the gnuplot scripts
+ * as single-quoted strings, where only ' is special.
  *
  * Histories: one f64 dataset per column under /history, extended by one row per record (chunks
  * of OUT_HIST_CHUNK rows). Columns (o->col_name): step, time, kinetic, strain, external_work,
@@ -432,8 +435,7 @@ static int flush_files(pdk_output *o) {
             o->part[OUT_XMF], strerror(errno));
   PDK_CHECK(fflush(o->csv) == 0 && !ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s",
             o->part[OUT_CSV], strerror(errno));
-  PDK_H5_CALL(ctx, H5Fflush(o->file, H5F_SCOPE_LOCAL));
-  return PDK_SUCCESS;
+  return pdk_h5_file_flush(ctx, o->file, o->part[OUT_H5]);
 }
 
 /* ---- open -------------------------------------------------------------------------------------
@@ -649,6 +651,11 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
             "output name '%s' must be a non-empty file stem without '/' or ':' (put "
             "directories in opts.dir)",
             opts.name ? opts.name : "(null)");
+  for (const char *q = opts.name; *q; ++q)
+    PDK_CHECK((unsigned char)*q >= 0x20 && *q != 0x7f, ctx, PDK_ERR_ARG,
+              "output name has a control character (byte 0x%02x at position %d); a file stem "
+              "must be printable text: choose another name",
+              (unsigned)(unsigned char)*q, (int)(q - opts.name));
   PDK_CHECK(opts.compression >= 0 && opts.compression <= 9, ctx, PDK_ERR_ARG,
             "output compression must be a deflate level 0..9, got %d", opts.compression);
   PDK_CHECK(opts.num_reaction_sets >= 0 && opts.num_reaction_sets <= OUT_MAX_REACTION &&
@@ -688,8 +695,7 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   o->will_plot = opts.plot && gnuplot_on_path();
   PDK_CALL_GOTO(pdk_dir_create(ctx, dir));
 
-  PDK_H5_CALL_GOTO(ctx, o->file,
-                   H5Fcreate(o->part[OUT_H5], H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  PDK_CALL_GOTO(pdk_h5_file_create(ctx, o->part[OUT_H5], &o->file));
   PDK_CALL_GOTO(write_static(o, opts.scene_text));
   PDK_CALL_GOTO(create_history(o));
   {
@@ -803,6 +809,8 @@ int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double t
 cleanup:
   if (g >= 0) H5Gclose(g);
   free(dname);
+  if (err && pdk_h5_file_error(o->file)) /* the disk's error, not what HDF5 made of it */
+    err = pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]);
   return err;
 }
 
@@ -880,11 +888,14 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   fprintf(o->csv, "\n");
   PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV],
                  strerror(errno));
+  PDK_CALL_GOTO(pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]));
   o->rows++;
   o->failed = 0;
 cleanup:
   if (fspace >= 0) H5Sclose(fspace);
   if (mspace >= 0) H5Sclose(mspace);
+  if (err && pdk_h5_file_error(o->file)) /* the disk's error, not what HDF5 made of it */
+    err = pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]);
   return err;
 }
 
@@ -925,7 +936,8 @@ static int write_plot_script(pdk_output *o) {
   const int fail_col = o->work_col + 4, dmax_col = o->work_col + 5;
   const int damage_panel = o->col_absmax[dmax_col] > 0;
   int panels = 1 + (o->num_reaction > 0) + (num_disp > 0) + damage_panel;
-  fprintf(f, "# pdk history plot; rerun with: gnuplot %s_history.gp (in this directory)\n", stem);
+  fprintf(f, "# pdk history plot; rerun with: gnuplot %s%s_history.gp (in this directory)\n",
+          o->name[0] == '-' ? "./" : "", o->name);
   fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_history.png'\n", stem);
   fprintf(f,
           "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
@@ -934,7 +946,7 @@ static int write_plot_script(pdk_output *o) {
           500 * panels, 500 * panels);
   fprintf(f, "set output outfile\nset datafile separator ','\nset grid\nset key top left\n"
              "set format x '%%g'\nset format y '%%g'\nset xtics rotate by 30 right\n");
-  fprintf(f, "data = '%s_history.csv'\n", stem);
+  fprintf(f, "if (!exists(\"data\")) data = '%s_history.csv'\n", stem);
   fprintf(f, "set multiplot layout 1,%d title '%s'\n", panels, stem);
   if (o->num_reaction > 0) {
     fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'reaction [%s]'\nplot ", o->unit_time,
@@ -996,19 +1008,27 @@ cleanup:
   return err;
 }
 
-/* Runs gnuplot on the committed script <name><stem>.gp, in o->dir, writing the PNG's .part
- * (file png), and commits the PNG; when gnuplot fails, its stderr goes into the error message and
- * no PNG is left. */
-static int run_gnuplot(pdk_output *o, const char *stem, int gp, int png) {
+/* File name of o->part[f] or o->final[f] without the directory. */
+static const char *base_name(const pdk_output *o, const char *path) {
+  return path + strlen(o->dir) + 1;
+}
+
+/* Runs gnuplot in o->dir on the script o->part[gp], reading the data o->part[data] and writing
+ * the PNG o->part[png]: the new files keep their temporary names until every one is complete.
+ * No shell is involved: gnuplot gets an argument vector, the script as "./<file>" (a name
+ * starting with '-' is not an option) and the two file names as single-quoted gnuplot strings
+ * ('' for ', the only character special there; the output name has no control character). When
+ * gnuplot fails its stderr goes into the error message and no PNG is left. */
+static int run_gnuplot(pdk_output *o, int gp, int png, int data) {
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
   int pipefd[2] = {-1, -1};
   char msg[1024] = "";
   size_t msg_len = 0;
-  char *script = pdk_str_printf("%s%s.gp", o->name, stem);
-  char *outfile = pdk_str_printf("%s%s.png.part", o->name, stem);
-  char *quoted = outfile ? gnuplot_quote(outfile) : NULL;
-  char *expr = quoted ? pdk_str_printf("outfile='%s'", quoted) : NULL;
+  char *script = pdk_str_printf("./%s", base_name(o, o->part[gp]));
+  char *q_png = gnuplot_quote(base_name(o, o->part[png]));
+  char *q_data = gnuplot_quote(base_name(o, o->part[data]));
+  char *expr = q_png && q_data ? pdk_str_printf("outfile='%s'; data='%s'", q_png, q_data) : NULL;
   PDK_CHECK_GOTO(script && expr, ctx, PDK_ERR_MEMORY, "out of memory");
   PDK_CHECK_GOTO(pipe(pipefd) == 0, ctx, PDK_ERR_EXTERNAL, "pipe() for gnuplot failed: %s",
                  strerror(errno));
@@ -1047,18 +1067,17 @@ static int run_gnuplot(pdk_output *o, const char *stem, int gp, int png) {
   PDK_CHECK_GOTO(WIFEXITED(status) && WEXITSTATUS(status) == 0 && pdk_file_exists(o->part[png]),
                  ctx, PDK_ERR_EXTERNAL,
                  "gnuplot failed on '%s' (%s %d)%s%s; the data files are complete, only the plot "
-                 "is missing: rerun 'gnuplot %s' in '%s'",
+                 "is missing: rerun 'gnuplot %s%s' in '%s'",
                  o->final[gp], WIFEXITED(status) ? "exit status" : "signal",
                  WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status), msg_len ? ": " : "",
-                 msg, script, o->dir);
-  err = pdk_file_commit(ctx, o->part[png], o->final[png]);
+                 msg, o->name[0] == '-' ? "./" : "", base_name(o, o->final[gp]), o->dir);
 cleanup:
   if (err) pdk_file_remove(o->part[png]);
   if (pipefd[0] >= 0) close(pipefd[0]);
   if (pipefd[1] >= 0) close(pipefd[1]);
   free(script);
-  free(outfile);
-  free(quoted);
+  free(q_png);
+  free(q_data);
   free(expr);
   return err;
 }
@@ -1077,7 +1096,7 @@ static void close_handles(pdk_output *o) {
       o->col_dset[k] = -1;
     }
   if (o->history >= 0) H5Gclose(o->history);
-  if (o->file >= 0) H5Fclose(o->file);
+  if (o->file >= 0) pdk_h5_file_close(NULL, o->file, o->part[OUT_H5]);
   o->history = o->file = -1;
 }
 
@@ -1336,8 +1355,8 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
   ps = ps < 0.05 ? 0.05 : ps > 3.0 ? 3.0 : ps;
   fprintf(f,
           "# pdk field plot of the last field output (step %ld, t = %.6g); rerun with: gnuplot "
-          "%s_fields.gp (in this directory)\n",
-          o->last_step, o->last_time, stem);
+          "%s%s_fields.gp (in this directory)\n",
+          o->last_step, o->last_time, o->name[0] == '-' ? "./" : "", o->name);
   fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_fields.png'\n", stem);
   fprintf(f,
           "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
@@ -1351,7 +1370,7 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
           o->unit_length);
   fprintf(f, "set palette defined (0 '#440154', 1 '#3b528b', 2 '#21918c', 3 '#5ec962', "
              "4 '#fde725')\n");
-  fprintf(f, "data = '%s_fields.csv'\ntitle = '%s'\n", stem, title);
+  fprintf(f, "if (!exists(\"data\")) data = '%s_fields.csv'\ntitle = '%s'\n", stem, title);
   char view[256] = "set autoscale xy\n";
   if (have_box) {
     const double m = 0.03 * fmax(bw, bh);
@@ -1420,11 +1439,17 @@ cleanup:
   return err;
 }
 
-/* Completes every file and renames it: .h5 and .csv, then the plot, then the .xmf. Returns the
- * plot's error, if any, after everything else succeeded. */
+/* The closing phase. Every new file is completed under its temporary name first (the plots are
+ * made from the temporary data files); then the previous run's files of this name are removed,
+ * its .xmf first; then the new files get their final names, the .xmf last. A kill at any point
+ * leaves files of one run only: until the first removal the previous run's set is whole (beside
+ * the new .part files), after it only new files or none get final names, and a <name>.xmf is
+ * there only when its whole set is. Returns the plot's error, if any, after everything else
+ * succeeded (that PNG is then missing; no older PNG is left in its place). */
 static int finish(pdk_output *o) {
   pdk_ctx *ctx = o->ctx;
   herr_t st;
+  int made[OUT_NUM_FILES] = {0}; /* new files complete under their temporary names */
   if (o->num_steps == 0) { /* no field output: the reference configuration, so the .xmf opens */
     PDK_CALL(xmf_grid_open(o, 0, 0.0, "/static/X", NULL, 0));
     fprintf(o->xmf, "    </Grid>\n");
@@ -1447,27 +1472,40 @@ static int finish(pdk_output *o) {
   st = H5Gclose(o->history);
   o->history = -1;
   PDK_CHECK(st >= 0, ctx, PDK_ERR_EXTERNAL, "H5Gclose of /history failed");
+  /* everything written so far reached the disk before anything is read back from it */
+  PDK_CALL(pdk_h5_file_flush(ctx, o->file, o->part[OUT_H5]));
   out_snapshot snap = {0};
   const int snapshot = o->num_steps > 0;
   if (snapshot) PDK_CALL(write_snapshot_csv(o, &snap));
   hid_t file = o->file;
   o->file = -1;
-  PDK_H5_CALL(ctx, H5Fclose(file));
+  PDK_CALL(pdk_h5_file_close(ctx, file, o->part[OUT_H5]));
+  made[OUT_H5] = made[OUT_XMF] = made[OUT_CSV] = 1;
+  made[OUT_FCSV] = snapshot;
 
-  PDK_CALL(pdk_file_commit(ctx, o->part[OUT_H5], o->final[OUT_H5]));
-  PDK_CALL(pdk_file_commit(ctx, o->part[OUT_CSV], o->final[OUT_CSV]));
-  if (snapshot) PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FCSV], o->final[OUT_FCSV]));
   int plot_err = PDK_SUCCESS;
   if (o->will_plot && o->rows > 0) {
     PDK_CALL(write_plot_script(o));
-    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_GP], o->final[OUT_GP]));
-    plot_err = run_gnuplot(o, "_history", OUT_GP, OUT_PNG);
+    made[OUT_GP] = 1;
+    plot_err = run_gnuplot(o, OUT_GP, OUT_PNG, OUT_CSV);
+    made[OUT_PNG] = !plot_err;
   }
   if (snap.num_panels > 0 && o->will_plot && !plot_err) {
     PDK_CALL(write_snapshot_script(o, &snap));
-    PDK_CALL(pdk_file_commit(ctx, o->part[OUT_FGP], o->final[OUT_FGP]));
-    plot_err = run_gnuplot(o, "_fields", OUT_FGP, OUT_FPNG);
+    made[OUT_FGP] = 1;
+    plot_err = run_gnuplot(o, OUT_FGP, OUT_FPNG, OUT_FCSV);
+    made[OUT_FPNG] = !plot_err;
   }
+  for (int f = 0; f < OUT_NUM_FILES; ++f)
+    if (made[f]) PDK_CALL(pdk_file_sync(ctx, o->part[f]));
+
+  /* the previous run's files, the .xmf first: from here on its set is incomplete */
+  PDK_CALL(pdk_file_discard(ctx, o->final[OUT_XMF]));
+  for (int f = 0; f < OUT_NUM_FILES; ++f)
+    if (f != OUT_XMF) PDK_CALL(pdk_file_discard(ctx, o->final[f]));
+  /* the new files, the .xmf last */
+  for (int f = 0; f < OUT_NUM_FILES; ++f)
+    if (f != OUT_XMF && made[f]) PDK_CALL(pdk_file_commit(ctx, o->part[f], o->final[f]));
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_XMF], o->final[OUT_XMF]));
   return plot_err;
 }

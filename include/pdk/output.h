@@ -57,10 +57,12 @@
  *   gnuplot from <dir>/<name>_fields.gp when the history PNG is made.
  *
  * Crash safety: every file is written under a temporary name (<file>.part) and flushed as it
- * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its
- * final name (the .xmf last, so an .xmf always points at a complete .h5). A killed run leaves
- * only .part files, never a file that looks complete. Files from an earlier run with the same
- * names are replaced only at that final rename.
+ * grows; pdk_output_close(..., success = 1) completes every file (the PNGs from the .part data),
+ * syncs them to disk, removes an earlier run's files of the same names (its .xmf first) and then
+ * renames the new ones to their final names (the .xmf last). A killed run leaves only .part
+ * files, never a file that looks complete, and never final files of two runs side by side: a
+ * <name>.xmf is there only with its whole set. A write that fails (a full disk) is an error
+ * (PDK_ERR_IO) naming the file and the reason.
  */
 #ifndef PDK_OUTPUT_H
 #define PDK_OUTPUT_H
@@ -75,7 +77,7 @@ typedef struct pdk_output pdk_output;
 
 typedef struct pdk_output_opts {
   const char *dir;        /* created if missing (with its parents); NULL: "." */
-  const char *name;       /* file stem: not empty, no '/' or ':' */
+  const char *name;       /* file stem: not empty, no '/', ':' or control character */
   const char *scene_text; /* stored as an attribute (may be NULL) */
   /* Reaction sets, in the order of pdk_explicit_opts.reaction_sets (history.reaction[k]): set
    * names, with or without the "set:" prefix; they name the history columns. At most 8. */
@@ -94,7 +96,8 @@ typedef struct pdk_output_opts {
 pdk_output_opts pdk_output_opts_default(void);
 
 /* Creates <name>.h5.part, <name>.xmf.part and <name>_history.csv.part in dir and writes the
- * static data. The store p is borrowed: it must outlive the output and keep its particle order. */
+ * static data. The name must be printable: a control character is an error (PDK_ERR_ARG); any
+ * other character is safe in the plot scripts. The store p is borrowed: it must outlive the output and keep its particle order. */
 int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts, pdk_particles *p, pdk_output **out);
 /* Writes the listed particle fields at this step. A name that is not a registered field is an
  * error naming it and listing the fields that exist; so is a name listed twice. */
