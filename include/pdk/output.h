@@ -119,25 +119,31 @@ int pdk_output_close(pdk_output **o, int success);
  * <path>.part, synced, then renamed). Restoring into a simulation built from the same scene
  * continues bitwise as if never interrupted.
  *
- * Layout: / attributes kind = "pdk checkpoint", format (int), pdk_version, build_flags,
+ * Layout: / attributes kind = "pdk checkpoint", format (int, 2), pdk_version, build_flags,
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
- * dataset /scene); /solver attributes time, step, dt, strain, external_work, and the dt_update
- * state dt_stable, dt_step0, dt_time0, est_step, est_broken, num_estimates, num_dt_changes (a
- * file without them restores as if no estimate had been made since creation);
+ * dataset /scene), checksum ("fnv1a64x:" and 16 hex digits: a 64-bit hash of every other
+ * attribute and dataset of the file, their names, types and shapes; src/checkpoint.c);
+ * /solver attributes time, step, dt, dt_created (the step the run was created with), strain,
+ * external_work, and the dt_update state dt_stable, dt_step0, dt_time0, est_step, est_broken,
+ * num_estimates, num_dt_changes;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
  * s0 f64 [n] when the model can break bonds; with ul connectivity also attributes ul_rebuilt,
  * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and
  * ul_bond_j i32; /fields/<name> [num_comp][n] in the field's type, attributes type (pdk_type)
  * and components. */
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text);
-/* Checks the checkpoint against the simulation first (dimension, particle count, bond count,
- * model kind, bond state, every field's type and shape, ids, reference positions and volumes)
- * and changes nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in
- * the checkpoint that the simulation lacks are added. */
+/* Verifies the checkpoint first: a file that is missing, not HDF5, not a pdk checkpoint, of
+ * another format (format 1, without a checksum, included) or that does not match its checksum
+ * (damaged) is refused (PDK_ERR_IO, PDK_ERR_UNSUPPORTED for the format) with one line naming the
+ * file. Then checks it against the simulation (dimension, particle count, bond count, model kind,
+ * bond state, every field's type and shape, ids, reference positions and volumes) and changes
+ * nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in the checkpoint
+ * that the simulation lacks are added. The checkpoint's dt is restored as it was; a scene-level
+ * restart that reconciles it with the scene's step and end is pdk_sim_restart (pdk/scene.h). */
 int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
 /* What a checkpoint holds before anything is built from it: its step and time, and the scene
  * text it was written with (malloc'd, free() it; NULL when none was stored). Any output pointer
- * may be NULL. */
+ * may be NULL. The file is verified as by pdk_checkpoint_read. */
 int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
                         char **scene_text);
 
