@@ -60,7 +60,8 @@
  * grows; pdk_output_close(..., success = 1) completes it, syncs it to disk and renames it to its
  * final name (the .xmf last, so an .xmf always points at a complete .h5). A killed run leaves
  * only .part files, never a file that looks complete. Files from an earlier run with the same
- * names are replaced only at that final rename.
+ * names are replaced only at that final rename. A restart (opts.append) starts its .part files
+ * from the earlier run's records up to the checkpoint and appends to them.
  */
 #ifndef PDK_OUTPUT_H
 #define PDK_OUTPUT_H
@@ -88,6 +89,20 @@ typedef struct pdk_output_opts {
   /* Unit labels in the CSV header: NULL: dimensions ("time [time]", "kinetic [energy]");
    * "SI": s, J, N, m; "mm-N-s-tonne": s, mJ, N, mm. Anything else is an error. */
   const char *units;
+  /* Restart (append = 1): continue the output of an earlier run in dir instead of starting
+   * afresh. When <name>.h5, <name>.xmf and <name>_history.csv are there, the new files start with
+   * their history rows and field outputs up to and including step append_step (the checkpoint's)
+   * and the run's records are appended; later records (written after the checkpoint by the run
+   * that stopped) are dropped, so the files equal those of a run that never stopped (the CSV and
+   * the XDMF byte for byte, the HDF5 dataset for dataset). The earlier files are replaced only
+   * at the final rename, like any output. When none of the three is there the output starts
+   * afresh (pdk_output_num_history_rows and pdk_output_num_field_steps tell: 0). Earlier files
+   * that do not fit (one of the three missing, other particles or sets, other history columns,
+   * another scene than append_scene, files that disagree with one another, or a history that
+   * starts after append_step) are an error naming what differs. */
+  int append;
+  long append_step;
+  const char *append_scene; /* the checkpoint's scene text (pdk_checkpoint_info); NULL: any */
 } pdk_output_opts;
 
 /* dir ".", name "pdk", plot 1, compression 0, the rest zero/NULL. */
@@ -108,6 +123,10 @@ int pdk_output_will_plot(const pdk_output *o);
 /* Number of field outputs and history records written so far. */
 int pdk_output_num_field_steps(const pdk_output *o);
 long pdk_output_num_history_rows(const pdk_output *o);
+/* The step of the last history record and of the last field output so far (also those kept by
+ * opts.append); -1 when there is none. */
+long pdk_output_last_history_step(const pdk_output *o);
+long pdk_output_last_field_step(const pdk_output *o);
 /* success = 1: finish the XDMF, CSVs and PNGs and rename every file to its final name;
  * success = 0: remove the temporary files. Always frees (accepts NULL). If gnuplot runs but
  * fails, the data files are still completed and renamed, that PNG is not left, and the error
