@@ -570,6 +570,7 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
                    opts.dt, e->dt_stable, opts.dt / e->dt_stable, e->dt_stable, opts.safety);
     e->dt = opts.dt;
   }
+  e->dt_created = e->dt;
   PDK_CALL_GOTO(pdk_model_set_dt(m, e->dt)); /* history updates (rate terms) use the step */
   apply_kinematic_bcs(e, 0.0, 0);
   PDK_CALL_GOTO(pdk_model_force(m, &e->strain));

@@ -17,6 +17,9 @@ struct pdk_explicit {
   int dim;
   pdk_index n;
   double dt, dt_stable;
+  /* the step the solver was created with (opts.dt, or safety x the first estimate): checkpointed,
+   * so a restart can tell whether its scene asks for the step the checkpoint's run started with */
+  double dt_created;
   double time;
   long step;
   /* dt_update bookkeeping (checkpointed): the last estimate's step and broken-bond count, the

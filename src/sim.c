@@ -34,12 +34,23 @@
  *
  * The simulation owns copies of everything its objects borrow (boundary-condition set names,
  * reaction set names), so it may outlive the scene.
+ *
+ * Restart (pdk_sim_restart): the checkpoint's time, step and time step are the run's. The scene
+ * says where the run ends (solver.end_time, or solver.steps) and which step it asks for; when that
+ * step is the one the checkpoint's run was created with (it stores it, "dt_created"), the run goes
+ * on with the checkpoint's dt (which a dt_update may have lowered), exactly as if it had never
+ * stopped. When the scene asks for another step (solver.dt, solver.safety or the material
+ * changed), that step takes over at the checkpoint, like a dt_update change, and with
+ * solver.end_time the run still ends at end_time; with solver.steps it is refused, since the same
+ * step count at another step would end the run at another time.
  */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "kernels.h" /* PDK_CORR_FLAG_* */
+#include "checkpoint_impl.h"
+#include "explicit_impl.h" /* the restart sets dt where the checkpoint's run left off */
+#include "kernels.h"       /* PDK_CORR_FLAG_* */
 #include "model_stencil.h" /* pdk_stencil_corr_refusal */
 #include "scene_impl.h"
 
@@ -394,14 +405,111 @@ pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim->p; }
 pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
 pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
 pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
-long pdk_sim_num_steps(const pdk_sim *sim) {
-  long step0;
-  double time0;
+/* The last step of the run when dt took its current value at (step0, time0). */
+static long end_step(const pdk_sim *sim, long step0, double time0, double dt) {
   if (!sim->e || sim->end_time <= 0) return sim->num_steps;
-  pdk_explicit_dt_start(sim->e, &step0, &time0);
   if (step0 == 0) return sim->num_steps; /* dt as at creation */
-  /* a dt_update lowered dt at step0: the rest of the run at the new step */
-  return step0 + steps_to_cover(sim->end_time - time0, pdk_explicit_dt(sim->e));
+  /* dt changed at step0 (a dt_update, or a restart at another step): the rest of the run at it */
+  return step0 + steps_to_cover(sim->end_time - time0, dt);
+}
+
+long pdk_sim_num_steps(const pdk_sim *sim) {
+  long step0 = 0;
+  double time0 = 0.0;
+  if (sim->e) pdk_explicit_dt_start(sim->e, &step0, &time0);
+  return end_step(sim, step0, time0, sim->e ? pdk_explicit_dt(sim->e) : 0.0);
+}
+
+/* pdk_sim_restart's decision, once the checkpoint is known to fit: the step and the end. */
+typedef struct restart_decision {
+  pdk_sim *sim;
+  const pdk_scene *s;
+  const char *path;
+  pdk_checkpoint_solver cs;
+  int changed;
+} restart_decision;
+
+static int decide_restart(void *arg, const pdk_checkpoint_solver *cs) {
+  restart_decision *rd = arg;
+  pdk_sim *sim = rd->sim;
+  const pdk_scene *s = rd->s;
+  pdk_ctx *ctx = sim->ctx;
+  const double dt_scene = sim->e->dt_created; /* what the scene asks for */
+  rd->cs = *cs;
+  rd->changed = dt_scene != cs->dt_created;
+  char how[160] = "";
+  if (s->solver.dt == 0)
+    snprintf(how, sizeof how, " (solver.dt 0: solver.safety %g x the stable estimate %g)",
+             s->solver.safety, sim->e->dt_stable);
+  if (rd->changed && sim->end_time <= 0)
+    return pdk_scene_error(
+        s, ctx, PDK_ERR_ARG, "solver.dt",
+        "the scene steps at %.6g%s, the run of checkpoint '%s' at %.6g (it is at step %ld, t = "
+        "%.6g); with solver.steps the step count is fixed, so another step would end the run at "
+        "another time: give solver.end_time to say where the run ends, or restart with the "
+        "checkpoint's step (solver.dt: %.17g)",
+        dt_scene, how, rd->path, cs->dt_created, cs->step, cs->time, cs->dt_created);
+  if (rd->changed && dt_scene > cs->dt_stable && !s->solver.force_dt)
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, "solver.dt",
+                           "%.6g%s exceeds the stable step %.6g estimated at checkpoint '%s' "
+                           "(step %ld, t = %.6g); use dt <= %.6g, or solver.force_dt: true if "
+                           "you know better",
+                           dt_scene, how, cs->dt_stable, rd->path, cs->step, cs->time,
+                           cs->dt_stable);
+  /* the end, from where dt takes its value */
+  const long end = rd->changed ? end_step(sim, cs->step, cs->time, dt_scene)
+                               : end_step(sim, cs->dt_step0, cs->dt_time0, cs->dt);
+  /* (by the time too: with another step the count starts at the checkpoint; 1e-12 is the
+   * round-off of a time summed over the steps, which may end a hair past end_time) */
+  if ((end < cs->step || sim->end_time < cs->time * (1.0 - 1e-12)) && sim->end_time > 0)
+    return pdk_scene_error(
+        s, ctx, PDK_ERR_ARG, "solver.end_time",
+        "%.6g ends before the time of checkpoint '%s' (step %ld, t = %.6g): a restart runs on "
+        "from the checkpoint to the scene's end; give a later end_time, or restart from an "
+        "earlier checkpoint",
+        sim->end_time, rd->path, cs->step, cs->time);
+  if (end < cs->step)
+    return pdk_scene_error(s, ctx, PDK_ERR_ARG, "solver.steps",
+                           "%ld ends before the step of checkpoint '%s' (step %ld, t = %.6g): a "
+                           "restart runs on from the checkpoint to the scene's end; give more "
+                           "steps, or restart from an earlier checkpoint",
+                           sim->num_steps, rd->path, cs->step, cs->time);
+  return PDK_SUCCESS;
+}
+
+int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path,
+                    pdk_sim_restart_info *info) {
+  if (!sim || !s || !info) return PDK_ERR_ARG;
+  pdk_ctx *ctx = sim->ctx;
+  pdk_explicit *e = sim->e;
+  memset(info, 0, sizeof *info);
+  PDK_CHECK(e, ctx, PDK_ERR_ARG,
+            "a restart continues explicit runs only; this scene's solver is %s, which writes no "
+            "checkpoints",
+            pdk_solver_type_name(sim->type));
+  PDK_CHECK(e->step == 0, ctx, PDK_ERR_ARG,
+            "pdk_sim_restart: the simulation has run %ld steps; restart a freshly built one",
+            e->step);
+  restart_decision rd;
+  memset(&rd, 0, sizeof rd);
+  rd.sim = sim;
+  rd.s = s;
+  rd.path = path;
+  const double dt_scene = e->dt_created;
+  PDK_CALL(pdk_checkpoint_restore(ctx, path, e, decide_restart, &rd));
+  if (rd.changed) { /* the scene's step from the checkpoint on */
+    e->dt = dt_scene;
+    e->dt_step0 = rd.cs.step;
+    e->dt_time0 = rd.cs.time;
+  }
+  info->step = e->step;
+  info->time = e->time;
+  info->end_step = pdk_sim_num_steps(sim);
+  info->dt = e->dt;
+  info->dt_changed = rd.changed;
+  info->dt_before = rd.cs.dt;
+  info->dt_created_before = rd.cs.dt_created;
+  return PDK_SUCCESS;
 }
 pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
 pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }

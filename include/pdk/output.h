@@ -62,7 +62,8 @@
  * renames the new ones to their final names (the .xmf last). A killed run leaves only .part
  * files, never a file that looks complete, and never final files of two runs side by side: a
  * <name>.xmf is there only with its whole set. A write that fails (a full disk) is an error
- * (PDK_ERR_IO) naming the file and the reason.
+ * (PDK_ERR_IO) naming the file and the reason. A restart (opts.append) starts its .part files
+ * from the earlier run's records up to the checkpoint and appends to them.
  */
 #ifndef PDK_OUTPUT_H
 #define PDK_OUTPUT_H
@@ -90,6 +91,20 @@ typedef struct pdk_output_opts {
   /* Unit labels in the CSV header: NULL: dimensions ("time [time]", "kinetic [energy]");
    * "SI": s, J, N, m; "mm-N-s-tonne": s, mJ, N, mm. Anything else is an error. */
   const char *units;
+  /* Restart (append = 1): continue the output of an earlier run in dir instead of starting
+   * afresh. When <name>.h5, <name>.xmf and <name>_history.csv are there, the new files start with
+   * their history rows and field outputs up to and including step append_step (the checkpoint's)
+   * and the run's records are appended; later records (written after the checkpoint by the run
+   * that stopped) are dropped, so the files equal those of a run that never stopped (the CSV and
+   * the XDMF byte for byte, the HDF5 dataset for dataset). The earlier files are replaced only
+   * at the final rename, like any output. When none of the three is there the output starts
+   * afresh (pdk_output_num_history_rows and pdk_output_num_field_steps tell: 0). Earlier files
+   * that do not fit (one of the three missing, other particles or sets, other history columns,
+   * another scene than append_scene, files that disagree with one another, or a history that
+   * starts after append_step) are an error naming what differs. */
+  int append;
+  long append_step;
+  const char *append_scene; /* the checkpoint's scene text (pdk_checkpoint_info); NULL: any */
 } pdk_output_opts;
 
 /* dir ".", name "pdk", plot 1, compression 0, the rest zero/NULL. */
@@ -111,6 +126,10 @@ int pdk_output_will_plot(const pdk_output *o);
 /* Number of field outputs and history records written so far. */
 int pdk_output_num_field_steps(const pdk_output *o);
 long pdk_output_num_history_rows(const pdk_output *o);
+/* The step of the last history record and of the last field output so far (also those kept by
+ * opts.append); -1 when there is none. */
+long pdk_output_last_history_step(const pdk_output *o);
+long pdk_output_last_field_step(const pdk_output *o);
 /* success = 1: finish the XDMF, CSVs and PNGs and rename every file to its final name;
  * success = 0: remove the temporary files. Always frees (accepts NULL). If gnuplot runs but
  * fails, the data files are still completed and renamed, that PNG is not left, and the error
@@ -122,25 +141,31 @@ int pdk_output_close(pdk_output **o, int success);
  * <path>.part, synced, then renamed). Restoring into a simulation built from the same scene
  * continues bitwise as if never interrupted.
  *
- * Layout: / attributes kind = "pdk checkpoint", format (int), pdk_version, build_flags,
+ * Layout: / attributes kind = "pdk checkpoint", format (int, 2), pdk_version, build_flags,
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
- * dataset /scene); /solver attributes time, step, dt, strain, external_work, and the dt_update
- * state dt_stable, dt_step0, dt_time0, est_step, est_broken, num_estimates, num_dt_changes (a
- * file without them restores as if no estimate had been made since creation);
+ * dataset /scene), checksum ("fnv1a64x:" and 16 hex digits: a 64-bit hash of every other
+ * attribute and dataset of the file, their names, types and shapes; src/checkpoint.c);
+ * /solver attributes time, step, dt, dt_created (the step the run was created with), strain,
+ * external_work, and the dt_update state dt_stable, dt_step0, dt_time0, est_step, est_broken,
+ * num_estimates, num_dt_changes;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
  * s0 f64 [n] when the model can break bonds; with ul connectivity also attributes ul_rebuilt,
  * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and
  * ul_bond_j i32; /fields/<name> [num_comp][n] in the field's type, attributes type (pdk_type)
  * and components. */
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text);
-/* Checks the checkpoint against the simulation first (dimension, particle count, bond count,
- * model kind, bond state, every field's type and shape, ids, reference positions and volumes)
- * and changes nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in
- * the checkpoint that the simulation lacks are added. */
+/* Verifies the checkpoint first: a file that is missing, not HDF5, not a pdk checkpoint, of
+ * another format (format 1, without a checksum, included) or that does not match its checksum
+ * (damaged) is refused (PDK_ERR_IO, PDK_ERR_UNSUPPORTED for the format) with one line naming the
+ * file. Then checks it against the simulation (dimension, particle count, bond count, model kind,
+ * bond state, every field's type and shape, ids, reference positions and volumes) and changes
+ * nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in the checkpoint
+ * that the simulation lacks are added. The checkpoint's dt is restored as it was; a scene-level
+ * restart that reconciles it with the scene's step and end is pdk_sim_restart (pdk/scene.h). */
 int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
 /* What a checkpoint holds before anything is built from it: its step and time, and the scene
  * text it was written with (malloc'd, free() it; NULL when none was stored). Any output pointer
- * may be NULL. */
+ * may be NULL. The file is verified as by pdk_checkpoint_read. */
 int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
                         char **scene_text);
 

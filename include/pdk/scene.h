@@ -85,6 +85,29 @@ pdk_explicit *pdk_sim_explicit(pdk_sim *sim); /* NULL for a static solver */
  * number of load steps */
 long pdk_sim_num_steps(const pdk_sim *sim);
 
+/* Restart of an explicit run from the checkpoint at `path` (pdk/output.h), into a simulation
+ * freshly built from the scene s. The checkpoint is verified and checked against the simulation
+ * (pdk_checkpoint_read), and its time, step and time step become the run's. The run ends where the
+ * scene says: at solver.end_time, or after solver.steps steps; info->end_step == info->step means
+ * the checkpoint is at that end already (nothing to do), and an end before the checkpoint is
+ * refused naming solver.end_time or solver.steps. The step: when the scene asks for the step the
+ * checkpoint's run was created with, the run continues with the checkpoint's dt (also when a
+ * solver.dt_update had lowered it), bit for bit as if it had never stopped. When it asks for
+ * another (solver.dt, solver.safety or the material changed), the new step takes over at the
+ * checkpoint (info->dt_changed) and the run still ends at solver.end_time; with solver.steps that
+ * is refused naming solver.dt (the step count would end the run at another time), as is a step
+ * above the stable estimate stored in the checkpoint (unless solver.force_dt). */
+typedef struct pdk_sim_restart_info {
+  long step;                /* the checkpoint's step and time: where the run goes on */
+  double time;              /* (its time) */
+  long end_step;            /* the run's last step (pdk_sim_num_steps) */
+  double dt;                /* the step it goes on with */
+  int dt_changed;           /* 1: the scene's step replaced the checkpoint's at the checkpoint */
+  double dt_before;         /* the checkpoint's dt */
+  double dt_created_before; /* the step the checkpoint's run was created with */
+} pdk_sim_restart_info;
+int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path, pdk_sim_restart_info *info);
+
 /* Static solvers (solver.type adr or newton). A static run is a sequence of load steps; each is
  * solved to equilibrium (with its re-solves while bonds break) and gives one history record:
  *   step            load steps solved (0: the unloaded state)

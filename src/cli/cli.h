@@ -2,8 +2,9 @@
 #ifndef PDK_CLI_H
 #define PDK_CLI_H
 
-int pdk_cli_run(int argc, char **argv);
-int pdk_cli_check(int argc, char **argv);
+/* prog: how pdk was invoked (argv[0]), for commands the output suggests */
+int pdk_cli_run(const char *prog, int argc, char **argv);
+int pdk_cli_check(const char *prog, int argc, char **argv);
 extern const char *pdk_cli_usage_run;
 extern const char *pdk_cli_usage_check;
 

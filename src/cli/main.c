@@ -86,8 +86,8 @@ int main(int argc, char **argv) {
     return 0;
   }
   if (!strcmp(cmd, "info")) return cmd_info(argc - 2, argv + 2);
-  if (!strcmp(cmd, "run")) return pdk_cli_run(argc - 2, argv + 2);
-  if (!strcmp(cmd, "check")) return pdk_cli_check(argc - 2, argv + 2);
+  if (!strcmp(cmd, "run")) return pdk_cli_run(argv[0], argc - 2, argv + 2);
+  if (!strcmp(cmd, "check")) return pdk_cli_check(argv[0], argc - 2, argv + 2);
   fprintf(stderr, "pdk: unknown command '%s'\n\n%s", cmd, usage_main);
   return 2;
 }

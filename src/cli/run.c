@@ -1,6 +1,7 @@
 /* `pdk run` and `pdk check`: load a scene, build the simulation, run it with progress, write the
  * output files, checkpoint on request and on Ctrl-C. */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -12,6 +13,12 @@
 #include "cli.h"
 #include "pdk/output.h"
 #include "pdk/scene.h"
+
+#ifndef PATH_MAX
+#define PATH_MAX 4096
+#endif
+/* The longest file name pdk puts into the output folder, after "<dir>/<name>". */
+#define LONGEST_SUFFIX "_checkpoint.h5.part"
 
 static volatile sig_atomic_t interrupted = 0;
 static void on_sigint(int sig) {
@@ -37,7 +44,10 @@ const char *pdk_cli_usage_run =
     "  --threads N          threads (default: solver.threads, PDK_NUM_THREADS, one per core)\n"
     "  --set KEY=VALUE      override a scene key, e.g. --set geometry.spacing=1e-3 (repeatable);\n"
     "                       overrides are validated like the file\n"
-    "  --restart FILE       continue from a checkpoint of the same scene\n"
+    "  --restart FILE       continue from a checkpoint of the same scene: from its time, step\n"
+    "                       and dt to the scene's end (solver.end_time or solver.steps); into\n"
+    "                       the same folder, the output written up to the checkpoint is kept\n"
+    "                       and continued\n"
     "  -q, --quiet          no progress line, only errors and the summary\n"
     "  -h, --help           show this help\n"
     "\n"
@@ -55,18 +65,31 @@ const char *pdk_cli_usage_check =
     "exit status: 0 valid, 2 invalid (the message names file, line and key).\n";
 
 typedef struct run_args {
+  const char *prog; /* how pdk was invoked (argv[0]), for the "continue with" command */
   const char *scene;
   const char *outdir;
   const char *restart;
   const char *overrides[65];
   int num_overrides;
+  int num_user_overrides; /* the --set options; --threads adds one more after them */
   char threads_override[64];
   int threads;
   int quiet;
 } run_args;
 
-static int parse_args(int argc, char **argv, run_args *a, const char *usage, int allow_run_opts) {
+/* A path with "..." in the middle when it is long, for messages. */
+static const char *shorten(const char *path, char *buf, size_t len) {
+  const size_t n = strlen(path);
+  if (n < len) return path;
+  const size_t half = (len - 4) / 2;
+  snprintf(buf, len, "%.*s...%s", (int)half, path, path + n - half);
+  return buf;
+}
+
+static int parse_args(const char *prog, int argc, char **argv, run_args *a, const char *usage,
+                      int allow_run_opts) {
   memset(a, 0, sizeof *a);
+  a->prog = prog;
   for (int k = 0; k < argc; ++k) {
     const char *s = argv[k];
     int has_next = k + 1 < argc;
@@ -109,6 +132,25 @@ static int parse_args(int argc, char **argv, run_args *a, const char *usage, int
     fprintf(stderr, "pdk: no scene file given\n\n%s", usage);
     return 2;
   }
+  if (a->outdir && !a->outdir[0]) {
+    fprintf(stderr, "pdk: -o: the output folder is empty (''); give a folder, e.g. -o out/run1, "
+                    "or leave -o out for out/<scene name>\n");
+    return 2;
+  }
+  if (a->outdir && strlen(a->outdir) + 1 + sizeof LONGEST_SUFFIX >= PATH_MAX) {
+    char buf[80];
+    fprintf(stderr,
+            "pdk: -o: the output folder '%s' is %zu bytes long; with the file names in it that "
+            "passes this system's limit of %d bytes for a path (PATH_MAX): give a shorter "
+            "folder\n",
+            shorten(a->outdir, buf, sizeof buf), strlen(a->outdir), PATH_MAX - 1);
+    return 2;
+  }
+  if (a->restart && !a->restart[0]) {
+    fprintf(stderr, "pdk: --restart: the checkpoint file name is empty ('')\n");
+    return 2;
+  }
+  a->num_user_overrides = a->num_overrides;
   if (a->threads) { /* --threads wins over the scene: pass it as the override solver.threads */
     snprintf(a->threads_override, sizeof a->threads_override, "solver.threads=%d", a->threads);
     a->overrides[a->num_overrides++] = a->threads_override;
@@ -117,9 +159,12 @@ static int parse_args(int argc, char **argv, run_args *a, const char *usage, int
 }
 
 static int mkdir_p(const char *path) {
-  char buf[4096];
+  char buf[PATH_MAX];
   size_t len = strlen(path);
-  if (len == 0 || len >= sizeof buf) return -1;
+  if (len == 0 || len >= sizeof buf) {
+    errno = len ? ENAMETOOLONG : ENOENT;
+    return -1;
+  }
   memcpy(buf, path, len + 1);
   for (char *q = buf + 1; *q; ++q) {
     if (*q != '/') continue;
@@ -171,9 +216,10 @@ static void print_outputs(const char *dir, const char *name) {
   static const char *const extra[] = {"_history.csv", "_history.png", "_fields.csv", "_fields.png"};
   fprintf(stderr, "output: %s/%s.xmf (ParaView)", dir, name);
   for (size_t k = 0; k < sizeof extra / sizeof extra[0]; ++k) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s%s", dir, name, extra[k]);
-    if (access(path, F_OK) == 0) fprintf(stderr, ", %s%s", name, extra[k]);
+    char path[PATH_MAX];
+    const int w = snprintf(path, sizeof path, "%s/%s%s", dir, name, extra[k]);
+    if (w > 0 && (size_t)w < sizeof path && access(path, F_OK) == 0)
+      fprintf(stderr, ", %s%s", name, extra[k]);
   }
   fputc('\n', stderr);
 }
@@ -225,9 +271,9 @@ static void describe(FILE *out, pdk_ctx *ctx, pdk_scene *scene, pdk_sim *sim) {
   }
 }
 
-int pdk_cli_check(int argc, char **argv) {
+int pdk_cli_check(const char *prog, int argc, char **argv) {
   run_args a;
-  int rc = parse_args(argc, argv, &a, pdk_cli_usage_check, 0);
+  int rc = parse_args(prog, argc, argv, &a, pdk_cli_usage_check, 0);
   if (rc) return rc < 0 ? 0 : rc;
   pdk_ctx *ctx = NULL;
   pdk_scene *scene = NULL;
@@ -384,42 +430,129 @@ static int run_static(pdk_ctx *ctx, const run_args *a, pdk_scene *scene, pdk_sim
   return 0;
 }
 
-int pdk_cli_run(int argc, char **argv) {
+/* Writes s to f quoted for a POSIX shell: as it is when it holds only characters no shell
+ * treats specially, else in single quotes (a ' inside as '\''). */
+static void shell_quote(FILE *f, const char *s) {
+  static const char safe[] =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./:=,+@%";
+  int plain = s[0] != '\0';
+  for (const char *q = s; *q && plain; ++q)
+    plain = strchr(safe, *q) != NULL;
+  if (plain) {
+    fputs(s, f);
+    return;
+  }
+  fputc('\'', f);
+  for (const char *q = s; *q; ++q)
+    if (*q == '\'')
+      fputs("'\\''", f);
+    else
+      fputc(*q, f);
+  fputc('\'', f);
+}
+
+/* The command that continues this run from its checkpoint: the same program, scene, output
+ * folder, overrides, threads and -q, then --restart, each argument shell-quoted, so it can be
+ * pasted. */
+static void print_continue(FILE *f, const run_args *a, const char *dir, const char *ckpt) {
+  fputs("  ", f);
+  shell_quote(f, a->prog && a->prog[0] ? a->prog : "pdk");
+  fputs(" run ", f);
+  shell_quote(f, a->scene);
+  fputs(" -o ", f);
+  shell_quote(f, dir);
+  for (int k = 0; k < a->num_user_overrides; ++k) {
+    fputs(" --set ", f);
+    shell_quote(f, a->overrides[k]);
+  }
+  if (a->threads) fprintf(f, " --threads %d", a->threads);
+  if (a->quiet) fputs(" -q", f);
+  fputs(" --restart ", f);
+  shell_quote(f, ckpt);
+  fputc('\n', f);
+}
+
+int pdk_cli_run(const char *prog, int argc, char **argv) {
   run_args a;
-  int rc = parse_args(argc, argv, &a, pdk_cli_usage_run, 1);
+  int rc = parse_args(prog, argc, argv, &a, pdk_cli_usage_run, 1);
   if (rc) return rc < 0 ? 0 : rc;
   pdk_ctx *ctx = NULL;
   pdk_scene *scene = NULL;
   pdk_sim *sim = NULL;
   pdk_output *out = NULL;
-  char dir[4096], ckpt[4200];
+  char *ckpt_scene = NULL; /* the scene text stored in the --restart checkpoint */
+  char dir[PATH_MAX], ckpt[PATH_MAX], sbuf[80];
   double wall0 = pdk_wtime();
+  pdk_sim_restart_info ri;
+  memset(&ri, 0, sizeof ri);
   if ((rc = make_ctx(a.threads, &ctx))) return rc;
-  if ((rc = load_and_build(ctx, &a, &scene, &sim))) goto done;
-  pdk_explicit *e = pdk_sim_explicit(sim);
-  pdk_particles *p = pdk_sim_particles(sim);
-  if (!e && a.restart) {
+  if (pdk_scene_load(ctx, a.scene, a.overrides, a.num_overrides, &scene)) {
+    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
+    rc = 2;
+    goto done;
+  }
+  if (a.restart && pdk_scene_solver_type(scene) != PDK_SOLVER_EXPLICIT) {
     fprintf(stderr,
             "pdk: --restart continues explicit runs only; %s is a static run (solver.type %s), "
             "which writes no checkpoints: run it again\n",
-            a.scene, pdk_solver_type_name(pdk_sim_solver_type(sim)));
+            a.scene, pdk_solver_type_name(pdk_scene_solver_type(scene)));
     rc = 2;
     goto done;
   }
-  const pdk_scene_output *so = pdk_scene_output_get(scene);
-  if (a.outdir)
-    snprintf(dir, sizeof dir, "%s", a.outdir);
-  else
-    snprintf(dir, sizeof dir, "out/%s", pdk_scene_name(scene));
-  snprintf(ckpt, sizeof ckpt, "%s/%s_checkpoint.h5", dir, pdk_scene_name(scene));
-  if (mkdir_p(dir)) {
-    fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n", dir, strerror(errno));
-    rc = 1;
+  /* the checkpoint before the build: a file that is not one is refused at once */
+  if (a.restart && pdk_checkpoint_info(ctx, a.restart, NULL, NULL, &ckpt_scene)) {
+    fprintf(stderr, "pdk: --restart: %s\n", pdk_ctx_error_message(ctx));
+    rc = 2;
     goto done;
   }
-  if (a.restart && pdk_checkpoint_read(ctx, a.restart, e)) {
+  if (pdk_sim_create(ctx, scene, &sim)) {
     fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
     rc = 2;
+    goto done;
+  }
+  pdk_explicit *e = pdk_sim_explicit(sim);
+  pdk_particles *p = pdk_sim_particles(sim);
+  const pdk_scene_output *so = pdk_scene_output_get(scene);
+  const char *name = pdk_scene_name(scene);
+  int len = a.outdir ? snprintf(dir, sizeof dir, "%s", a.outdir)
+                     : snprintf(dir, sizeof dir, "out/%s", name);
+  if (len > 0 && (size_t)len < sizeof dir)
+    len = snprintf(ckpt, sizeof ckpt, "%s/%s%s", dir, name, "_checkpoint.h5");
+  if (len < 0 || (size_t)len + strlen(".part") >= sizeof ckpt) {
+    fprintf(stderr,
+            "pdk: the output files '%s' would pass this system's limit of %d bytes for a path "
+            "(PATH_MAX): give a shorter folder with -o%s\n",
+            shorten(len > 0 && (size_t)len < sizeof ckpt ? ckpt : dir, sbuf, sizeof sbuf),
+            PATH_MAX - 1, a.outdir ? "" : " (or a shorter scene name)");
+    rc = 2;
+    goto done;
+  }
+  if (a.restart) {
+    if (pdk_sim_restart(sim, scene, a.restart, &ri)) {
+      fprintf(stderr, "pdk: --restart: %s\n", pdk_ctx_error_message(ctx));
+      rc = 2;
+      goto done;
+    }
+    if (ri.end_step == ri.step) {
+      fprintf(stderr,
+              "pdk: checkpoint '%s' is at the end of the run (step %ld, t = %.6g): nothing to do, "
+              "the output is left as it is; to run on, give a later solver.end_time (or more "
+              "solver.steps)\n",
+              a.restart, ri.step, ri.time);
+      rc = 0;
+      goto done;
+    }
+    if (ri.dt_changed)
+      fprintf(stderr,
+              "pdk: solver.dt: the restart steps at %.6g from the checkpoint (step %ld, t = "
+              "%.6g) on, where its run stepped at %.6g (created with %.6g): this scene asks for "
+              "another step; %ld steps in all to its end\n",
+              ri.dt, ri.step, ri.time, ri.dt_before, ri.dt_created_before, ri.end_step);
+  }
+  if (mkdir_p(dir)) {
+    fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n",
+            shorten(dir, sbuf, sizeof sbuf), strerror(errno));
+    rc = 1;
     goto done;
   }
   if (!a.quiet) describe(stderr, ctx, scene, sim);
@@ -433,11 +566,39 @@ int pdk_cli_run(int argc, char **argv) {
     oo.num_reaction_sets = so->num_reaction_sets;
     oo.units = so->units;
     oo.plot = 1;
+    oo.append = a.restart != NULL;
+    oo.append_step = ri.step;
+    oo.append_scene = ckpt_scene;
     if (pdk_output_open(ctx, &oo, p, &out)) {
       fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-      rc = 1;
+      rc = a.restart ? 2 : 1;
       goto done;
     }
+  }
+  /* a restart into the folder of its run continues that output: it must reach the checkpoint */
+  const int appended = pdk_output_num_history_rows(out) > 0 || pdk_output_num_field_steps(out) > 0;
+  if (appended) {
+    const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
+    const long need_h = ri.step / hist_every * hist_every;
+    const long need_f =
+        so->field_interval > 0 ? ri.step / so->field_interval * so->field_interval : 0;
+    const long last_h = pdk_output_last_history_step(out), last_f = pdk_output_last_field_step(out);
+    if (last_h < need_h || last_f < need_f) {
+      fprintf(stderr,
+              "pdk: the output in '%s' ends at step %ld (history) and %ld (fields), before the "
+              "checkpoint's step %ld (records due at %ld and %ld): it is not the output of the "
+              "run that wrote the checkpoint (that run may have been killed before its output "
+              "was complete); restart into another folder (-o), or move %s.h5, %s.xmf and "
+              "%s_history.csv out of '%s'\n",
+              dir, last_h, last_f, ri.step, need_h, need_f, name, name, name, dir);
+      rc = 2;
+      goto done;
+    }
+    if (!a.quiet)
+      fprintf(stderr,
+              "continuing the output in %s: %ld history rows and %d field outputs up to step %ld "
+              "kept\n",
+              dir, pdk_output_num_history_rows(out), pdk_output_num_field_steps(out), ri.step);
   }
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -467,9 +628,11 @@ int pdk_cli_run(int argc, char **argv) {
   pdk_history h;
   int err = pdk_explicit_run(e, 0, &h);
   const pdk_history h0 = h;
-  if (!err) err = pdk_output_write_history(out, &h);
-  if (!err) err = pdk_sim_update_output_fields(sim);
-  if (!err) err = pdk_output_write_fields(out, p, h.step, h.time, so->fields, so->num_fields);
+  if (!appended) { /* a continued output has the records up to the checkpoint already */
+    if (!err) err = pdk_output_write_history(out, &h);
+    if (!err) err = pdk_sim_update_output_fields(sim);
+    if (!err) err = pdk_output_write_fields(out, p, h.step, h.time, so->fields, so->num_fields);
+  }
   double run0 = pdk_wtime();
   while (!err && pdk_explicit_step(e) < total && !interrupted) {
     long s = pdk_explicit_step(e);
@@ -537,9 +700,9 @@ int pdk_cli_run(int argc, char **argv) {
     }
     /* The output holds every step written so far; a checkpoint continues it. */
     pdk_output_close(&out, 1);
-    fprintf(stderr,
-            "pdk: interrupted at step %ld of %ld; continue with\n  pdk run %s --restart %s\n",
-            pdk_explicit_step(e), total, a.scene, ckpt);
+    fprintf(stderr, "pdk: interrupted at step %ld of %ld; continue with\n", pdk_explicit_step(e),
+            total);
+    print_continue(stderr, &a, dir, ckpt);
     rc = 130;
     goto done;
   }
@@ -571,6 +734,7 @@ int pdk_cli_run(int argc, char **argv) {
   }
 done:
   pdk_output_close(&out, 0);
+  free(ckpt_scene);
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&scene);
   pdk_ctx_destroy(&ctx);
