@@ -404,20 +404,60 @@ int pdk_static_converged(const pdk_static *s) {
 }
 
 int pdk_static_nonfinite(pdk_static *s, const char *method, long iteration, const char *hint) {
-  pdk_index bad = -1;
-  int bad_c = 0;
+  /* What went non-finite: the first particle (index order) with a non-finite position, else the
+   * first with a non-finite residual force; when both are finite everywhere, the norms overflowed
+   * (squares beyond the double range): the particle with the largest residual force. */
+  const int64_t *ids = pdk_particles_id(s->p);
+  pdk_index bad = -1, big = -1, far = -1;
+  int bad_c = 0, big_c = 0, far_c = 0, bad_what = 0; /* 1 position, 2 force */
+  double bad_v = 0.0, rmax = -1.0, umax = -1.0;
   for (pdk_index i = 0; i < s->n && bad < 0; ++i)
-    for (int c = 0; c < s->dim; ++c)
-      if (!isfinite(s->r[c][i]) || !isfinite(field(s->p, "x", c)[i])) {
-        bad = i;
-        bad_c = c;
+    for (int c = 0; c < s->dim; ++c) {
+      const double x = field(s->p, "x", c)[i], ri = s->r[c][i];
+      if (!isfinite(x) || !isfinite(ri)) {
+        bad = i, bad_c = c, bad_what = isfinite(x) ? 2 : 1, bad_v = isfinite(x) ? ri : x;
         break;
       }
-  long long id = bad >= 0 ? (long long)pdk_particles_id(s->p)[bad] : -1;
+      const double u = fabs(x - pdk_particles_X(s->p, c)[i]);
+      if (fabs(ri) > rmax) rmax = fabs(ri), big = i, big_c = c;
+      if (u > umax) umax = u, far = i, far_c = c;
+    }
+  char what[320];
+  if (bad_what == 1)
+    snprintf(what, sizeof what, "particle %d (id %lld) has a non-finite position along %c (%g)",
+             (int)bad, (long long)ids[bad], "xyz"[bad_c], bad_v);
+  else if (bad_what == 2)
+    snprintf(what, sizeof what, "the residual force on particle %d (id %lld) along %c is %g",
+             (int)bad, (long long)ids[bad], "xyz"[bad_c], bad_v);
+  else if (big >= 0)
+    snprintf(what, sizeof what,
+             "every force and position is finite, but the %s norm overflowed: the largest "
+             "residual force is %.3g on particle %d (id %lld) along %c, the largest displacement "
+             "%.3g on particle %d (id %lld) along %c",
+             isfinite(s->rnorm) ? "load" : "residual", rmax, (int)big, (long long)ids[big],
+             "xyz"[big_c], umax, (int)far, (long long)ids[far], "xyz"[far_c]);
+  else
+    snprintf(what, sizeof what, "the body has no particle");
+  /* the largest prescribed displacement of the level, and its condition's set */
+  double umax_bc = 0.0;
+  int bc = -1;
+  for (int c = 0; c < s->dim; ++c)
+    for (pdk_index i = 0; i < s->n; ++i)
+      if (s->fixed[c][i] && !(fabs(s->u_level[c][i]) <= umax_bc))
+        umax_bc = fabs(s->u_level[c][i]), bc = s->owner[c][i];
+  char bcs[200] = "";
+  if (bc >= 0 && bc < s->opts.num_bcs) {
+    const char *set = s->bcs[bc].set ? s->bcs[bc].set : "(every particle)";
+    snprintf(bcs, sizeof bcs,
+             " (the largest prescribed displacement of this level is %g, %.3g horizons, boundary "
+             "condition %d on set '%s')",
+             umax_bc, umax_bc / s->horizon, bc, strncmp(set, "set:", 4) ? set : set + 4);
+  }
   return pdk_ctx_error_set(s->ctx, PDK_ERR_NUMERIC, method,
                            "the residual became non-finite at load level %d (load factor %g), "
-                           "round %d, iteration %ld: particle %d (id %lld), component %d; %s",
-                           s->level, s->lambda, s->round, iteration, (int)bad, id, bad_c, hint);
+                           "round %d, iteration %ld: %s; check the boundary conditions' values%s "
+                           "and the load steps; %s",
+                           s->level, s->lambda, s->round, iteration, what, bcs, hint);
 }
 
 /* Coloring of the coupling graph for difference tangents.
