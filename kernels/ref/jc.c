@@ -75,6 +75,9 @@
  *   (COUPLING_EFFECTIVE, strain equivalence; the stress then drops to 1 - D_c = 70% before the
  *   point fails). From the step on which D >= D_c the point carries no stress (FAILED_ZERO) or
  *   only a compressive pressure K ln J for J < 1 (FAILED_COMPRESSION); its history is frozen.
+ *   D is capped at 1 (Johnson-Cook's fracture) on the step that fails the point: one step can
+ *   carry D_n + d_eps_p / eps_f far past D_c (the shipped two-hole plate reached 1.57), and with
+ *   coupling a D above 1 would give a negative (1 - D) and a negative plastic dissipation.
  *
  * Energies (per reference volume): W = (1 - D) W~ (D = 0 without coupling);
  *   dW_plastic = (1 - (D_n + D)/2) int sigma_y d eps_p over the step (tau~ : d eps_p = q d eps_p
@@ -446,6 +449,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
       triaxiality = eta;
       failure_strain = ef;
       D = ef > 0.0 ? D_n + dg / ef : (D_n > p->D_c ? D_n : p->D_c);
+      if (D > 1.0) D = 1.0; /* D in [0, 1]: a step past failure does not damage beyond it */
     }
     const int coupled = p->coupling == PDK_JC_COUPLING_EFFECTIVE;
     const double Dk_n = coupled ? D_n : 0.0, Dk = coupled ? D : 0.0;
