@@ -609,6 +609,14 @@ int pdk_explicit_num_dt_changes(const pdk_explicit *e) { return e->num_dt_change
 const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e) { return &e->opts; }
 long pdk_explicit_step(const pdk_explicit *e) { return e->step; }
 
+/* A force pass of the step ending at t1 failed: its message, prefixed with the step and time. */
+static int step_failed(pdk_explicit *e, int err, double t1) {
+  if (!err) return PDK_SUCCESS;
+  char msg[PDK_ERRMSG_MAX];
+  snprintf(msg, sizeof msg, "%s", pdk_ctx_error_message(e->ctx));
+  return pdk_ctx_error_set(e->ctx, err, NULL, "step %ld (time %g): %s", e->step + 1, t1, msg);
+}
+
 int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
   PDK_CHECK(num_steps >= 0, e->ctx, PDK_ERR_ARG, "number of steps must be >= 0, got %ld", num_steps);
   PDK_CALL(pdk_model_set_dt(e->m, e->dt)); /* a restore may have changed e->dt */
@@ -621,7 +629,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     half_kick(e, t0);
     drift(e);
     apply_kinematic_bcs(e, t1, 1);
-    PDK_CALL(pdk_model_force(e->m, &e->strain));
+    PDK_CALL(step_failed(e, pdk_model_force(e->m, &e->strain), t1));
     half_kick(e, t1);
     apply_kinematic_bcs(e, t1, 0);
     e->time = t1;
