@@ -207,6 +207,7 @@ static int create_static(pdk_sim *sim, const pdk_scene *s) {
 int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   int err = PDK_SUCCESS;
   pdk_sim *sim = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(out && s, ctx, PDK_ERR_ARG, "pdk_sim_create: scene or out is NULL");
   *out = NULL;
   sim = calloc(1, sizeof *sim);
@@ -390,23 +391,28 @@ void pdk_sim_destroy(pdk_sim **simp) {
   *simp = NULL;
 }
 
-pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim->p; }
-pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
-pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
-pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
+pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim ? sim->p : NULL; }
+pdk_families *pdk_sim_families(pdk_sim *sim) { return sim ? sim->fam : NULL; }
+pdk_model *pdk_sim_model(pdk_sim *sim) { return sim ? sim->m : NULL; }
+pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim ? sim->e : NULL; }
 long pdk_sim_num_steps(const pdk_sim *sim) {
   long step0;
   double time0;
+  if (!sim) return 0;
   if (!sim->e || sim->end_time <= 0) return sim->num_steps;
   pdk_explicit_dt_start(sim->e, &step0, &time0);
   if (step0 == 0) return sim->num_steps; /* dt as at creation */
   /* a dt_update lowered dt at step0: the rest of the run at the new step */
   return step0 + steps_to_cover(sim->end_time - time0, pdk_explicit_dt(sim->e));
 }
-pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
-pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }
+pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) {
+  return sim ? sim->type : PDK_SOLVER_EXPLICIT;
+}
+pdk_static *pdk_sim_static(pdk_sim *sim) { return sim ? sim->st : NULL; }
 
 int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK_ARG(sim, NULL);
+  PDK_CHECK_ARG(h, sim->ctx);
   PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
             "pdk_sim_static_history: the scene's solver is explicit, not static");
   const pdk_static_event *ev = pdk_static_last_event(sim->st);
@@ -424,6 +430,7 @@ int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
 }
 
 int pdk_sim_static_step(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK_ARG(sim, NULL);
   PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
             "pdk_sim_static_step: the scene's solver is explicit, not static");
   PDK_CALL(pdk_static_solve_level(sim->st));
@@ -577,6 +584,7 @@ static int update_von_mises(pdk_sim *sim) {
 }
 
 int pdk_sim_update_output_fields(pdk_sim *sim) {
+  PDK_CHECK_ARG(sim, NULL);
   if (sim->has_von_mises) PDK_CALL(update_von_mises(sim));
   if (!sim->has_u) return PDK_SUCCESS;
   const int dim = pdk_particles_dim(sim->p);

@@ -190,6 +190,7 @@ static int setup_conditions(pdk_static *s) {
 
 /* Pseudo-time of level k (time mode) or its load factor (scale mode); 0 before the first. */
 double pdk_static_level_time(const pdk_static *s, int k) {
+  if (!s) return NAN;
   if (k < 0) return 0.0;
   return s->time_mode ? s->levels[k] * s->opts.total_time : s->levels[k];
 }
@@ -234,7 +235,9 @@ static void set_level_values(pdk_static *s, int k) {
 }
 
 int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static **out) {
+  PDK_CHECK_ARG(m, NULL);
   pdk_ctx *ctx = m->ctx;
+  PDK_CHECK_ARG(out, ctx);
   int err = PDK_SUCCESS;
   pdk_static *s = NULL;
   *out = NULL;
@@ -338,7 +341,7 @@ void pdk_static_destroy(pdk_static **sp) {
   *sp = NULL;
 }
 
-const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return &s->stats; }
+const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return s ? &s->stats : NULL; }
 
 void pdk_static_apply_prescribed(pdk_static *s) {
   for (int c = 0; c < s->dim; ++c) {
@@ -706,12 +709,13 @@ static void scale_free(pdk_static *s, double factor) {
   }
 }
 
-int pdk_static_num_levels(const pdk_static *s) { return s->num_levels; }
-double pdk_static_total_time(const pdk_static *s) { return s->opts.total_time; }
-int pdk_static_levels_solved(const pdk_static *s) { return s->stats.levels_done; }
-const pdk_static_event *pdk_static_last_event(const pdk_static *s) { return &s->last; }
+int pdk_static_num_levels(const pdk_static *s) { return s ? s->num_levels : 0; }
+double pdk_static_total_time(const pdk_static *s) { return s ? s->opts.total_time : NAN; }
+int pdk_static_levels_solved(const pdk_static *s) { return s ? s->stats.levels_done : 0; }
+const pdk_static_event *pdk_static_last_event(const pdk_static *s) { return s ? &s->last : NULL; }
 
 int pdk_static_solve_level(pdk_static *s) {
+  PDK_CHECK_ARG(s, NULL);
   pdk_ctx *ctx = s->ctx;
   const int k = s->stats.levels_done;
   PDK_CHECK(k < s->num_levels, ctx, PDK_ERR_ARG, "%s: all %d load levels are solved already",
@@ -769,12 +773,14 @@ cleanup:
 }
 
 int pdk_static_solve(pdk_static *s) {
+  PDK_CHECK_ARG(s, NULL);
   while (s->stats.levels_done < s->num_levels)
     PDK_CALL(pdk_static_solve_level(s));
   return PDK_SUCCESS;
 }
 
 void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
+  if (!st || !out) return;
   const double mib = 1.0 / (1024.0 * 1024.0);
   fprintf(out, "levels %d, iterations %ld, force passes %ld (+%ld commits), re-solves %d\n",
           st->levels_done, st->iterations, st->force_passes, st->commit_passes, st->break_rounds);
