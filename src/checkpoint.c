@@ -347,6 +347,7 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   int err = PDK_SUCCESS;
   hid_t file = -1, g = -1;
   char *part = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to checkpoint");
   pdk_model *m = e->m;
@@ -538,6 +539,7 @@ int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time
   int err = PDK_SUCCESS;
   hid_t file = -1, g = -1;
   if (scene_text) *scene_text = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CALL(open_checkpoint(ctx, path, &file));
   PDK_H5_CALL_GOTO(ctx, g, H5Gopen2(file, "solver", H5P_DEFAULT));
   if (step) {
@@ -710,6 +712,7 @@ int pdk_checkpoint_restore(pdk_ctx *ctx, const char *path, pdk_explicit *e,
   char *model_kind = NULL;
   char(*extra)[PDK_FIELD_NAME_MAX] = NULL; /* checkpoint fields the simulation lacks */
   int num_extra = 0;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to restore into");
   pdk_model *m = e->m;
   pdk_particles *p = e->p;

@@ -104,6 +104,7 @@ static int fail_early(char *buf, size_t len, const char *fmt, const char *arg) {
 
 int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, size_t err_len) {
   pdk_ctx_opts opts = opts_in ? *opts_in : pdk_ctx_opts_default();
+  if (!out) return fail_early(err_buf, err_len, "%s", "pdk_ctx_create: argument 'out' is NULL");
   *out = NULL;
   if (err_buf && err_len) err_buf[0] = '\0';
 
@@ -181,9 +182,10 @@ void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid) {
   }
 }
 
-int pdk_ctx_num_threads(const pdk_ctx *ctx) { return ctx->num_threads; }
+int pdk_ctx_num_threads(const pdk_ctx *ctx) { return ctx ? ctx->num_threads : 0; }
 
 int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads) {
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(num_threads >= 1 && num_threads <= 4096, ctx, PDK_ERR_ARG,
             "thread count %d is out of range; use 1 to 4096", num_threads);
   ctx->num_threads = num_threads;
@@ -194,9 +196,9 @@ int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads) {
   return PDK_SUCCESS;
 }
 
-pdk_bind pdk_ctx_bind_policy(const pdk_ctx *ctx) { return ctx->bind; }
-unsigned pdk_ctx_isa(const pdk_ctx *ctx) { return ctx->isa; }
-const char *pdk_ctx_kernels_name(const pdk_ctx *ctx) { return ctx->kernels.name; }
+pdk_bind pdk_ctx_bind_policy(const pdk_ctx *ctx) { return ctx ? ctx->bind : PDK_BIND_NONE; }
+unsigned pdk_ctx_isa(const pdk_ctx *ctx) { return ctx ? ctx->isa : 0u; }
+const char *pdk_ctx_kernels_name(const pdk_ctx *ctx) { return ctx ? ctx->kernels.name : ""; }
 
 size_t pdk_peak_memory_bytes(void) {
   struct rusage ru;
@@ -230,6 +232,8 @@ static void print_caches(FILE *out, hwloc_topology_t topo) {
 }
 
 int pdk_ctx_print_info(pdk_ctx *ctx, FILE *out) {
+  PDK_CHECK_ARG(ctx, NULL);
+  PDK_CHECK_ARG(out, ctx);
   hwloc_topology_t topo = ctx->topology;
   unsigned maj, min, rel;
   fprintf(out, "pdk %s\n", PDK_VERSION_STRING);

@@ -19,6 +19,7 @@ pdk_tfun pdk_tfun_constant(double a) {
 }
 
 double pdk_tfun_value(const pdk_tfun *f, double t) {
+  if (!f) return NAN;
   switch (f->kind) {
   case PDK_TFUN_CONSTANT: return f->a;
   case PDK_TFUN_LINEAR: return f->a + f->b * t;
@@ -33,6 +34,7 @@ double pdk_tfun_value(const pdk_tfun *f, double t) {
 }
 
 double pdk_tfun_rate(const pdk_tfun *f, double t) {
+  if (!f) return NAN;
   switch (f->kind) {
   case PDK_TFUN_CONSTANT: return 0.0;
   case PDK_TFUN_LINEAR: return f->b;
@@ -59,6 +61,7 @@ static double *field(pdk_particles *p, const char *name, int c) {
 }
 
 double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1) {
+  if (!f) return NAN;
   const double a = f->a, b = f->b;
   switch (f->kind) {
   case PDK_TFUN_CONSTANT: return a * (t1 - t0);
@@ -467,7 +470,9 @@ cleanup:
 }
 
 int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_explicit **out) {
+  PDK_CHECK_ARG(m, NULL);
   pdk_ctx *ctx = m->ctx;
+  PDK_CHECK_ARG(out, ctx);
   int err = PDK_SUCCESS;
   pdk_explicit_opts opts = opts_in ? *opts_in : pdk_explicit_opts_default();
   pdk_explicit *e = NULL;
@@ -598,19 +603,30 @@ void pdk_explicit_destroy(pdk_explicit **ep) {
   *ep = NULL;
 }
 
-double pdk_explicit_stable_dt(const pdk_explicit *e) { return e->dt_stable; }
-double pdk_explicit_dt(const pdk_explicit *e) { return e->dt; }
-double pdk_explicit_time(const pdk_explicit *e) { return e->time; }
+double pdk_explicit_stable_dt(const pdk_explicit *e) { return e ? e->dt_stable : NAN; }
+double pdk_explicit_dt(const pdk_explicit *e) { return e ? e->dt : NAN; }
+double pdk_explicit_time(const pdk_explicit *e) { return e ? e->time : NAN; }
 void pdk_explicit_dt_start(const pdk_explicit *e, long *step0, double *time0) {
-  if (step0) *step0 = e->dt_step0;
-  if (time0) *time0 = e->dt_time0;
+  if (step0) *step0 = e ? e->dt_step0 : 0;
+  if (time0) *time0 = e ? e->dt_time0 : NAN;
 }
-int pdk_explicit_num_estimates(const pdk_explicit *e) { return e->num_estimates; }
-int pdk_explicit_num_dt_changes(const pdk_explicit *e) { return e->num_dt_changes; }
-const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e) { return &e->opts; }
-long pdk_explicit_step(const pdk_explicit *e) { return e->step; }
+int pdk_explicit_num_estimates(const pdk_explicit *e) { return e ? e->num_estimates : 0; }
+int pdk_explicit_num_dt_changes(const pdk_explicit *e) { return e ? e->num_dt_changes : 0; }
+const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e) {
+  return e ? &e->opts : NULL;
+}
+long pdk_explicit_step(const pdk_explicit *e) { return e ? e->step : 0; }
+
+/* A force pass of the step ending at t1 failed: its message, prefixed with the step and time. */
+static int step_failed(pdk_explicit *e, int err, double t1) {
+  if (!err) return PDK_SUCCESS;
+  char msg[PDK_ERRMSG_MAX];
+  snprintf(msg, sizeof msg, "%s", pdk_ctx_error_message(e->ctx));
+  return pdk_ctx_error_set(e->ctx, err, NULL, "step %ld (time %g): %s", e->step + 1, t1, msg);
+}
 
 int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
+  PDK_CHECK_ARG(e, NULL);
   PDK_CHECK(num_steps >= 0, e->ctx, PDK_ERR_ARG, "number of steps must be >= 0, got %ld", num_steps);
   PDK_CALL(pdk_model_set_dt(e->m, e->dt)); /* a restore may have changed e->dt */
   /* The power and the prescribed kinetic energy at a step's start are those at the previous
@@ -622,7 +638,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     half_kick(e, t0);
     drift(e);
     apply_kinematic_bcs(e, t1, 1);
-    PDK_CALL(pdk_model_force(e->m, &e->strain));
+    PDK_CALL(step_failed(e, pdk_model_force(e->m, &e->strain), t1));
     half_kick(e, t1);
     apply_kinematic_bcs(e, t1, 0);
     e->time = t1;

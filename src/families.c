@@ -907,7 +907,9 @@ int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts_in, pdk_f
   int64_t *cells = NULL, *block_start = NULL;
   pdk_index *count = NULL;
   pdk_families *f = NULL;
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(p, NULL);
 
   PDK_CHECK(!opts.horizon_field, ctx, PDK_ERR_UNSUPPORTED,
             "opts.horizon_field = '%s': per-particle horizons are not supported yet; leave "
@@ -1024,16 +1026,20 @@ void pdk_families_destroy(pdk_families **f) {
 
 double pdk_families_cell_edge(pdk_particles *p, double horizon) {
   double edge = 0;
+  if (!p) return 0.0;
   if (pdk_cells_edge(p, horizon, &edge)) return 0.0;
   return edge;
 }
 
-pdk_index pdk_families_num_particles(const pdk_families *f) { return f->n; }
-pdk_bond_index pdk_families_num_bonds(const pdk_families *f) { return f->num_bonds; }
-const pdk_bond_index *pdk_families_bond_start(const pdk_families *f) { return f->bond_start; }
-const pdk_index *pdk_families_bond_j(const pdk_families *f) { return f->bond_j; }
-double pdk_families_horizon(const pdk_families *f) { return f->horizon; }
+pdk_index pdk_families_num_particles(const pdk_families *f) { return f ? f->n : 0; }
+pdk_bond_index pdk_families_num_bonds(const pdk_families *f) { return f ? f->num_bonds : 0; }
+const pdk_bond_index *pdk_families_bond_start(const pdk_families *f) {
+  return f ? f->bond_start : NULL;
+}
+const pdk_index *pdk_families_bond_j(const pdk_families *f) { return f ? f->bond_j : NULL; }
+double pdk_families_horizon(const pdk_families *f) { return f ? f->horizon : NAN; }
 size_t pdk_families_memory_bytes(const pdk_families *f) {
+  if (!f) return 0;
   return (size_t)(f->n + 1) * sizeof *f->bond_start + (size_t)f->num_bonds * sizeof *f->bond_j;
 }
 

@@ -23,7 +23,9 @@ int pdk_families_build_coords(pdk_ctx *ctx, int dim, pdk_index n, const double *
                               pdk_families **out) {
   int err = PDK_SUCCESS;
   pdk_particles *scratch = NULL;
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(coords && coords[0] && coords[1] && (dim == 2 || coords[2]), ctx, PDK_ERR_ARG,
             "pdk_families_build_coords: %d coordinate arrays are needed in %d-D", dim, dim);
   PDK_CALL(pdk_particles_create(ctx, dim, n, &scratch));

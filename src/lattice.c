@@ -220,7 +220,9 @@ static int lattice_layout_make(pdk_ctx *ctx, const pdk_lattice_opts *o, lattice_
 int pdk_lattice_count(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_index *count) {
   pdk_lattice_opts defaults = pdk_lattice_opts_default();
   lattice_layout L;
+  PDK_CHECK_ARG(count, ctx);
   *count = 0;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CALL(lattice_layout_make(ctx, opts ? opts : &defaults, &L));
   *count = (pdk_index)L.total;
   return PDK_SUCCESS;
@@ -257,7 +259,9 @@ int pdk_lattice_create(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_particles
   pdk_lattice_opts defaults = pdk_lattice_opts_default();
   lattice_layout layout;
   pdk_particles *p = NULL;
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CALL(lattice_layout_make(ctx, opts ? opts : &defaults, &layout));
   PDK_CALL(pdk_particles_create(ctx, layout.dim, (pdk_index)layout.total, &p));
 

@@ -321,7 +321,11 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   pdk_ctx *ctx = pdk_particles_ctx(p);
   int err = PDK_SUCCESS;
   pdk_model *m = NULL;
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(fam, ctx);
+  PDK_CHECK_ARG(opts_in, ctx);
   pdk_model_opts resolved = *opts_in;
   const pdk_model_opts *opts = &resolved;
   if (resolved.law == PDK_LAW_JC && resolved.kind == PDK_MODEL_CORRESPONDENCE) {
@@ -405,22 +409,27 @@ void pdk_model_destroy(pdk_model **mp) {
   *mp = NULL;
 }
 
-int pdk_model_force(pdk_model *m, double *strain_energy) { return m->ops->force(m, 1, strain_energy); }
+int pdk_model_force(pdk_model *m, double *strain_energy) {
+  PDK_CHECK_ARG(m, NULL);
+  return m->ops->force(m, 1, strain_energy);
+}
 int pdk_model_force_trial(pdk_model *m, double *strain_energy) {
+  PDK_CHECK_ARG(m, NULL);
   return m->ops->force(m, 0, strain_energy);
 }
 
-const pdk_model_opts *pdk_model_opts_get(const pdk_model *m) { return &m->opts; }
-pdk_particles *pdk_model_particles(const pdk_model *m) { return m->p; }
-pdk_families *pdk_model_families(const pdk_model *m) { return m->fam; }
-const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m->bond_alive; }
-pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m->num_broken; }
-pdk_index pdk_model_num_flagged(const pdk_model *m) { return m->num_flagged; }
+const pdk_model_opts *pdk_model_opts_get(const pdk_model *m) { return m ? &m->opts : NULL; }
+pdk_particles *pdk_model_particles(const pdk_model *m) { return m ? m->p : NULL; }
+pdk_families *pdk_model_families(const pdk_model *m) { return m ? m->fam : NULL; }
+const uint8_t *pdk_model_bond_alive(const pdk_model *m) { return m ? m->bond_alive : NULL; }
+pdk_bond_index pdk_model_num_broken(const pdk_model *m) { return m ? m->num_broken : 0; }
+pdk_index pdk_model_num_flagged(const pdk_model *m) { return m ? m->num_flagged : 0; }
 int pdk_model_stencil_active(const pdk_model *m) { return m && m->stencil != NULL; }
 const char *pdk_model_stencil_reason(const pdk_model *m) { return m ? m->stencil_why : ""; }
-pdk_index pdk_model_num_failed(const pdk_model *m) { return m->num_failed; }
+pdk_index pdk_model_num_failed(const pdk_model *m) { return m ? m->num_failed : 0; }
 
 double pdk_model_damage_max(const pdk_model *m) {
+  if (!m) return 0.0;
   const double *D = pdk_particles_field_data(m->p, "damage", 0);
   if (!D) return 0.0;
   const pdk_index n = pdk_particles_count(m->p);
@@ -431,12 +440,13 @@ double pdk_model_damage_max(const pdk_model *m) {
 }
 
 double pdk_model_padding_fraction(const pdk_model *m) {
+  if (!m) return 0.0;
   return m->ops == &pdk_model_ops_lps ? pdk_model_lps_padding_fraction(m)
                                       : pdk_model_pmb_padding_fraction(m);
 }
 
 double pdk_model_float_stretch_ratio(const pdk_model *m) {
-  if (m->opts.precision != PDK_PRECISION_FLOAT ||
+  if (!m || m->opts.precision != PDK_PRECISION_FLOAT ||
       (m->ops != &pdk_model_ops_pmb && m->ops != &pdk_model_ops_lps))
     return -1.0;
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
@@ -467,6 +477,7 @@ double pdk_model_float_stretch_ratio(const pdk_model *m) {
   return smax / 0x1p-24;
 }
 pdk_index pdk_model_num_isolated(const pdk_model *m) {
+  if (!m) return 0;
   /* The bond state indexes the families given at creation; ul (no bond state) walks its own. */
   const pdk_families *fam = m->bond_alive ? m->fam : pdk_model_current_families(m);
   const pdk_bond_index *bs = pdk_families_bond_start(fam);
@@ -480,10 +491,11 @@ pdk_index pdk_model_num_isolated(const pdk_model *m) {
   }
   return count;
 }
-long pdk_model_num_compactions(const pdk_model *m) { return m->num_compactions; }
-long pdk_model_num_rebuilds(const pdk_model *m) { return m->num_rebuilds; }
+long pdk_model_num_compactions(const pdk_model *m) { return m ? m->num_compactions : 0; }
+long pdk_model_num_rebuilds(const pdk_model *m) { return m ? m->num_rebuilds : 0; }
 
 int pdk_model_rebuild(pdk_model *m) {
+  PDK_CHECK_ARG(m, NULL);
   PDK_CHECK(m->ops == &pdk_model_ops_corr_ul, m->ctx, PDK_ERR_ARG,
             "pdk_model_rebuild: only the ul connectivity rebuilds its families (this %s model "
             "uses %s)",
@@ -493,17 +505,19 @@ int pdk_model_rebuild(pdk_model *m) {
 }
 
 pdk_families *pdk_model_current_families(const pdk_model *m) {
+  if (!m) return NULL;
   return m->ops == &pdk_model_ops_corr_ul ? pdk_model_corr_ul_families(m) : m->fam;
 }
 
 int pdk_model_set_dt(pdk_model *m, double dt) {
+  PDK_CHECK_ARG(m, NULL);
   PDK_CHECK(isfinite(dt) && dt > 0, m->ctx, PDK_ERR_ARG, "model time step must be > 0 and finite, got %g",
             dt);
   m->dt = dt;
   return PDK_SUCCESS;
 }
 
-double pdk_model_get_dt(const pdk_model *m) { return m->dt; }
+double pdk_model_get_dt(const pdk_model *m) { return m ? m->dt : NAN; }
 
 /* Particles per block of the energy sums: a constant, so the order of the sum is fixed. */
 #define PDK_MODEL_SUM_BLOCK 4096
@@ -538,6 +552,7 @@ static int volume_sum(pdk_model *m, const char *name, double *out) {
 }
 
 int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking) {
+  PDK_CHECK_ARG(m, NULL);
   if (plastic) {
     PDK_CALL(volume_sum(m, "w_plastic", plastic));
     if (pdk_particles_field_exists(m->p, "w_stab")) {

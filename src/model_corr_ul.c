@@ -436,6 +436,44 @@ static int ul_over_skin(pdk_model *m) {
   return !(r2 <= limit * limit); /* NaN positions count as moved */
 }
 
+/* Why pass 1 flagged particle i before reaching the law, as its test (kernels/ref/corr_ul.c): N
+ * not positive or M not spanning at the current positions (F is not written then); NULL when
+ * the family passed it (the law failed at the F the pass wrote). */
+static const char *ul_family_why(const pdk_corr_ul_arrays *ua, const pdk_corr_consts *k,
+                                 pdk_index i, char *buf, size_t len) {
+  const pdk_corr_arrays *a = &ua->base;
+  const int d = k->dim;
+  double N[3][3] = {{0}}, M[3][3] = {{0}};
+  for (pdk_bond_index b = a->bond_start[i]; b < a->bond_start[i + 1]; ++b) {
+    const pdk_index j = a->bond_j[b];
+    const double wv = a->bond_omega[b] * a->volume[j];
+    for (int r = 0; r < d; ++r)
+      for (int c = 0; c < d; ++c) {
+        N[r][c] += wv * (a->x[r][j] - a->x[r][i]) * (a->X[c][j] - a->X[c][i]);
+        M[r][c] += wv * (a->x[r][j] - a->x[r][i]) * (a->x[c][j] - a->x[c][i]);
+      }
+  }
+  double detN = N[0][0] * N[1][1] - N[0][1] * N[1][0], detM = M[0][0] * M[1][1] - M[0][1] * M[1][0];
+  double trM = M[0][0] + M[1][1];
+  if (d == 3) {
+    detN = N[0][0] * (N[1][1] * N[2][2] - N[1][2] * N[2][1]) -
+           N[0][1] * (N[1][0] * N[2][2] - N[1][2] * N[2][0]) +
+           N[0][2] * (N[1][0] * N[2][1] - N[1][1] * N[2][0]);
+    detM = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+           M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+           M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    trM += M[2][2];
+  }
+  const double mean = trM / d, scale = d == 2 ? mean * mean : mean * mean * mean;
+  if (detN > 0.0 && isfinite(detN) && trM > 0.0 && isfinite(detM) && detM >= k->span_rtol * scale)
+    return NULL;
+  snprintf(buf, len,
+           "its family is turned inside out or collapsed at the current positions (det N = %.3g, "
+           "N the weighted sum of current x reference bond vectors)",
+           detN);
+  return buf;
+}
+
 static int ul_force(pdk_model *m, int commit, double *energy) {
   ul_impl *c = m->impl;
   pdk_corr_consts kc = c->k;
@@ -493,6 +531,15 @@ static int ul_force(pdk_model *m, int commit, double *energy) {
   }
   m->num_flagged = flagged;
   m->num_failed = num_failed;
+  if (commit && flagged && m->opts.law == PDK_LAW_JC) {
+    pdk_index first;
+    const pdk_index count = pdk_model_corr_jc_first_failure(m, flag, failed, &first);
+    if (count) {
+      char why[160];
+      return pdk_model_corr_jc_failure_error(m, first, count,
+                                             ul_family_why(&ua, k, first, why, sizeof why));
+    }
+  }
   if (energy) {
     double e = 0.0;
     for (pdk_index blk = 0; blk < num_blocks; ++blk)

@@ -78,6 +78,11 @@ int pdk_model_corr_ul_rebuild(pdk_model *m);
  * Used by checkpoint restore after the fields were read. */
 int pdk_model_corr_ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds);
 pdk_families *pdk_model_corr_ul_families(const pdk_model *m);
+/* Correspondence with the Johnson-Cook law, after a committing pass (src/model_corr.c): the
+ * particles whose update failed (their count, the first in *first) and the error naming it. */
+pdk_index pdk_model_corr_jc_first_failure(const pdk_model *m, const uint8_t *flag,
+                                          const uint8_t *failed, pdk_index *first);
+int pdk_model_corr_jc_failure_error(pdk_model *m, pdk_index i, pdk_index count, const char *why);
 
 /* Influence function omega(r) for r <= delta (see pdk_influence). */
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);

@@ -315,9 +315,11 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   }
 
   /* 2. offsets: the union of the families' bond offsets */
-  const int R = (int)ceil(delta / h * (1.0 + 1e-9));
-  if (R > STENCIL_MAX_REACH)
-    WHY("the horizon spans %d spacings (more than %d)", R, STENCIL_MAX_REACH);
+  /* the reach in double first: a horizon of billions of spacings must not reach the int */
+  const double reach = ceil(delta / h * (1.0 + 1e-9));
+  if (!(reach <= STENCIL_MAX_REACH))
+    WHY("the horizon spans %.4g spacings (more than %d)", reach, STENCIL_MAX_REACH);
+  const int R = (int)reach;
   const int side = 2 * R + 1;
   const int64_t tsize = dim == 3 ? (int64_t)side * side * side : (int64_t)side * side;
   table = malloc((size_t)tsize * sizeof *table);

@@ -1061,7 +1061,9 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   pdk_output *o = NULL;
   pdk_output_opts opts = opts_in ? *opts_in : pdk_output_opts_default();
   const char *dir = opts.dir && opts.dir[0] ? opts.dir : ".";
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(p, ctx, PDK_ERR_ARG, "no particle store given");
   PDK_CHECK(opts.name && opts.name[0] && !strchr(opts.name, '/') && !strchr(opts.name, ':'), ctx,
             PDK_ERR_ARG,
@@ -1255,7 +1257,9 @@ static void set_displacement(pdk_output *o, int k, double out[3]) {
 }
 
 int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
+  PDK_CHECK_ARG(o, NULL);
   pdk_ctx *ctx = o->ctx;
+  PDK_CHECK_ARG(h, ctx);
   int err = PDK_SUCCESS;
   hid_t fspace = -1, mspace = -1;
   herr_t st;

@@ -42,6 +42,7 @@ static const char *type_name(pdk_type t) {
 }
 
 static pdk_field *find_field(const pdk_particles *p, const char *name) {
+  if (!p || !name) return NULL;
   for (int k = 0; k < p->num_fields; ++k)
     if (!strcmp(p->fields[k].name, name)) return &p->fields[k];
   return NULL;
@@ -55,7 +56,9 @@ static void free_field(pdk_field *f) {
 int pdk_particles_create(pdk_ctx *ctx, int dim, pdk_index n, pdk_particles **out) {
   int err = PDK_SUCCESS;
   pdk_particles *p = NULL;
+  PDK_CHECK_ARG(out, ctx);
   *out = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(dim == 2 || dim == 3, ctx, PDK_ERR_ARG, "dimension must be 2 or 3, got %d", dim);
   PDK_CHECK(n >= 1, ctx, PDK_ERR_ARG,
             "a particle store needs at least one particle, got %d (did a region or hole remove "
@@ -89,12 +92,13 @@ void pdk_particles_destroy(pdk_particles **pp) {
   *pp = NULL;
 }
 
-int pdk_particles_dim(const pdk_particles *p) { return p->dim; }
-pdk_index pdk_particles_count(const pdk_particles *p) { return p->n; }
-pdk_index pdk_particles_count_padded(const pdk_particles *p) { return p->n_pad; }
-pdk_ctx *pdk_particles_ctx(const pdk_particles *p) { return p->ctx; }
+int pdk_particles_dim(const pdk_particles *p) { return p ? p->dim : 0; }
+pdk_index pdk_particles_count(const pdk_particles *p) { return p ? p->n : 0; }
+pdk_index pdk_particles_count_padded(const pdk_particles *p) { return p ? p->n_pad : 0; }
+pdk_ctx *pdk_particles_ctx(const pdk_particles *p) { return p ? p->ctx : NULL; }
 
 int pdk_particles_field_add(pdk_particles *p, const char *name, pdk_type type, int num_comp) {
+  PDK_CHECK_ARG(p, NULL);
   pdk_ctx *ctx = p->ctx;
   PDK_CHECK(name && name[0] && strlen(name) < PDK_FIELD_NAME_MAX, ctx, PDK_ERR_ARG,
             "field name must be 1 to %d characters", PDK_FIELD_NAME_MAX - 1);
@@ -134,6 +138,8 @@ int pdk_particles_field_add(pdk_particles *p, const char *name, pdk_type type, i
 }
 
 int pdk_particles_field_remove(pdk_particles *p, const char *name) {
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(name, p->ctx);
   pdk_field *f = find_field(p, name);
   PDK_CHECK(f, p->ctx, PDK_ERR_NOT_FOUND, "no field '%s' to remove", name);
   PDK_CHECK(strcmp(name, "id") && strcmp(name, "X") && strcmp(name, "volume"), p->ctx, PDK_ERR_ARG,
@@ -157,7 +163,10 @@ void *pdk_particles_field_data(pdk_particles *p, const char *name, int comp) {
 
 int pdk_particles_field_get(pdk_particles *p, const char *name, int comp, void **out) {
   pdk_field *f = find_field(p, name);
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(out, p->ctx);
   *out = NULL;
+  PDK_CHECK_ARG(name, p->ctx);
   PDK_CHECK(f, p->ctx, PDK_ERR_NOT_FOUND,
             "field '%s' does not exist: no model or solver of this run declared it", name);
   PDK_CHECK(comp >= 0 && comp < f->num_comp, p->ctx, PDK_ERR_ARG,
@@ -168,15 +177,17 @@ int pdk_particles_field_get(pdk_particles *p, const char *name, int comp, void *
 
 int pdk_particles_field_info(const pdk_particles *p, const char *name, pdk_type *type, int *num_comp) {
   pdk_field *f = find_field(p, name);
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(name, p->ctx);
   PDK_CHECK(f, p->ctx, PDK_ERR_NOT_FOUND, "field '%s' does not exist", name);
   if (type) *type = f->type;
   if (num_comp) *num_comp = f->num_comp;
   return PDK_SUCCESS;
 }
 
-int pdk_particles_num_fields(const pdk_particles *p) { return p->num_fields; }
+int pdk_particles_num_fields(const pdk_particles *p) { return p ? p->num_fields : 0; }
 const char *pdk_particles_field_name(const pdk_particles *p, int k) {
-  return k >= 0 && k < p->num_fields ? p->fields[k].name : NULL;
+  return p && k >= 0 && k < p->num_fields ? p->fields[k].name : NULL;
 }
 
 size_t pdk_particles_field_bytes(const pdk_particles *p, const char *name) {
@@ -186,11 +197,13 @@ size_t pdk_particles_field_bytes(const pdk_particles *p, const char *name) {
 
 size_t pdk_particles_memory_bytes(const pdk_particles *p) {
   size_t total = 0;
+  if (!p) return 0;
   for (int k = 0; k < p->num_fields; ++k) total += pdk_particles_field_bytes(p, p->fields[k].name);
   return total;
 }
 
 void pdk_particles_print_memory(const pdk_particles *p, FILE *out) {
+  if (!p || !out) return;
   fprintf(out, "particle fields (%d particles, %d padded):\n", (int)p->n, (int)p->n_pad);
   for (int k = 0; k < p->num_fields; ++k) {
     const pdk_field *f = &p->fields[k];
@@ -205,6 +218,7 @@ double *pdk_particles_volume(pdk_particles *p) { return pdk_particles_field_data
 int64_t *pdk_particles_id(pdk_particles *p) { return pdk_particles_field_data(p, "id", 0); }
 
 int pdk_particles_check_finite(pdk_particles *p) {
+  PDK_CHECK_ARG(p, NULL);
   int64_t *id = pdk_particles_id(p);
   for (int c = 0; c < p->dim; ++c) {
     const double *x = pdk_particles_X(p, c);
@@ -240,6 +254,8 @@ static int regather(pdk_particles *p, const pdk_index *src_index, pdk_index new_
 
 int pdk_particles_permute(pdk_particles *p, const pdk_index *perm) {
   int err = PDK_SUCCESS;
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(perm, p->ctx);
   uint8_t *seen = calloc((size_t)p->n, 1);
   PDK_CHECK(seen, p->ctx, PDK_ERR_MEMORY, "out of memory checking a permutation");
   for (pdk_index k = 0; k < p->n; ++k) {
@@ -255,6 +271,8 @@ cleanup:
 
 int pdk_particles_compact(pdk_particles *p, const uint8_t *keep) {
   int err = PDK_SUCCESS;
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(keep, p->ctx);
   pdk_index m = 0;
   for (pdk_index i = 0; i < p->n; ++i) m += keep[i] != 0;
   PDK_CHECK(m > 0, p->ctx, PDK_ERR_ARG,
@@ -372,6 +390,7 @@ static int sort_setup(pdk_particles *p, double unit, const char *unit_name, doub
 }
 
 int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *perm_out) {
+  PDK_CHECK_ARG(p, NULL);
   const int dim = p->dim;
   const pdk_index n = p->n;
   double lo[3];
@@ -396,6 +415,7 @@ int pdk_particles_reorder_morton(pdk_particles *p, double cell_edge, pdk_index *
 }
 
 int pdk_particles_reorder_rows(pdk_particles *p, double spacing, pdk_index *perm_out) {
+  PDK_CHECK_ARG(p, NULL);
   const int dim = p->dim;
   const pdk_index n = p->n;
   double lo[3];

@@ -110,6 +110,11 @@ void pdk_ctx_bind_thread(pdk_ctx *ctx, int tid);
     if (!(cond)) return pdk_ctx_error_set((ctx), (code), __func__, __VA_ARGS__);                \
   } while (0)
 
+/* A pointer argument of a public function that must not be NULL (a handle, an out pointer):
+ * PDK_ERR_ARG, with a message in ctx when there is one (ctx may be NULL). */
+#define PDK_CHECK_ARG(ptr, ctx)                                                                 \
+  PDK_CHECK((ptr) != NULL, (ctx), PDK_ERR_ARG, "argument '%s' is NULL", #ptr)
+
 #define PDK_CALL(expr)                                                                          \
   do {                                                                                          \
     int pdk_call_err_ = (expr);                                                                 \

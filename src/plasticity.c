@@ -44,6 +44,7 @@ pdk_jc_state pdk_jc_state_initial(void) {
 }
 
 int pdk_jc_params_check(pdk_ctx *ctx, const pdk_jc_params *p) {
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(p, ctx, PDK_ERR_ARG,
             "Johnson-Cook parameters are NULL; start from pdk_jc_params_default()");
   PDK_CHECK(isfinite(p->density) && p->density > 0, ctx, PDK_ERR_ARG,

@@ -27,8 +27,8 @@ pdk_region pdk_region_box(const double lo[3], const double hi[3]) {
   pdk_region r;
   memset(&r, 0, sizeof r);
   r.kind = PDK_REGION_BOX;
-  memcpy(r.lo, lo, sizeof r.lo);
-  memcpy(r.hi, hi, sizeof r.hi);
+  if (lo) memcpy(r.lo, lo, sizeof r.lo);
+  if (hi) memcpy(r.hi, hi, sizeof r.hi);
   return r;
 }
 
@@ -36,7 +36,7 @@ pdk_region pdk_region_ball(const double center[3], double radius) {
   pdk_region r;
   memset(&r, 0, sizeof r);
   r.kind = PDK_REGION_BALL;
-  memcpy(r.center, center, sizeof r.center);
+  if (center) memcpy(r.center, center, sizeof r.center);
   r.radius = radius;
   return r;
 }
@@ -45,8 +45,8 @@ pdk_region pdk_region_halfspace(const double point[3], const double normal[3]) {
   pdk_region r;
   memset(&r, 0, sizeof r);
   r.kind = PDK_REGION_HALFSPACE;
-  memcpy(r.point, point, sizeof r.point);
-  memcpy(r.normal, normal, sizeof r.normal);
+  if (point) memcpy(r.point, point, sizeof r.point);
+  if (normal) memcpy(r.normal, normal, sizeof r.normal);
   return r;
 }
 
@@ -79,6 +79,10 @@ void pdk_region_describe(const pdk_region *r, int dim, char *buf, size_t len) {
   size_t pos = 0;
   if (!buf || len == 0) return;
   buf[0] = '\0';
+  if (!r) {
+    snprintf(buf, len, "no region (NULL)");
+    return;
+  }
   if (dim != 2 && dim != 3) dim = 3;
   if (r->invert) append_str(buf, len, &pos, "the complement of ");
   switch (r->kind) {
@@ -129,6 +133,7 @@ static int all_finite(int n, const double *v) {
 
 int pdk_region_check(pdk_ctx *ctx, int dim, const pdk_region *r) {
   static const char axis_name[3] = {'x', 'y', 'z'};
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(dim == 2 || dim == 3, ctx, PDK_ERR_ARG, "region dimension must be 2 or 3, got %d", dim);
   PDK_CHECK(r, ctx, PDK_ERR_ARG, "region is NULL");
   switch (r->kind) {
@@ -198,6 +203,7 @@ static int polygon_contains(const double *v, int nv, double x, double y) {
 
 int pdk_region_contains(const pdk_region *r, int dim, const double *x) {
   int in = 0;
+  if (!r || !x) return 0;
   switch (r->kind) {
   case PDK_REGION_BOX:
     in = 1;
@@ -272,6 +278,7 @@ int pdk_particles_cut(pdk_particles *p, const pdk_region *r, pdk_index *removed)
   uint8_t *keep = NULL;
   char what[512], extent[256];
   if (removed) *removed = 0;
+  PDK_CHECK_ARG(p, NULL);
   PDK_CALL(pdk_region_check(ctx, pdk_particles_dim(p), r));
   keep = malloc((size_t)n);
   PDK_CHECK(keep, ctx, PDK_ERR_MEMORY, "out of memory marking %d particles for a cut", (int)n);
@@ -314,6 +321,7 @@ int pdk_particles_set_define(pdk_particles *p, const char *name, const pdk_regio
   uint8_t *flags = NULL;
   char field[PDK_FIELD_NAME_MAX], what[512], extent[256];
   if (count) *count = 0;
+  PDK_CHECK_ARG(p, NULL);
   PDK_CALL(set_field_name(ctx, name, field));
   PDK_CALL(pdk_region_check(ctx, dim, r));
   /* Membership into a scratch array first, so a failed definition leaves the store unchanged. */
@@ -345,6 +353,8 @@ int pdk_particles_set_indices(pdk_particles *p, const char *name, pdk_index **in
   char field[PDK_FIELD_NAME_MAX];
   pdk_type type;
   int num_comp;
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(indices, ctx);
   *indices = NULL;
   if (count) *count = 0;
   PDK_CALL(set_field_name(ctx, name, field));

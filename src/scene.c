@@ -2210,6 +2210,7 @@ int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
 
   PDK_CHECK(out, ctx, PDK_ERR_ARG, "pdk_scene_load: out is NULL");
   *out = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(path, ctx, PDK_ERR_ARG, "pdk_scene_load: no scene path given");
   PDK_CHECK(num_overrides >= 0 && (num_overrides == 0 || overrides), ctx, PDK_ERR_ARG,
             "pdk_scene_load: %d overrides but no array", num_overrides);
@@ -2326,12 +2327,14 @@ void pdk_scene_destroy(pdk_scene **sp) {
   *sp = NULL;
 }
 
-const char *pdk_scene_path(const pdk_scene *s) { return s->path; }
-const char *pdk_scene_name(const pdk_scene *s) { return s->name; }
-const char *pdk_scene_text(const pdk_scene *s) { return s->text; }
-int pdk_scene_threads(const pdk_scene *s) { return s->threads; }
-int pdk_scene_dimension(const pdk_scene *s) { return s->dim; }
-pdk_solver_type pdk_scene_solver_type(const pdk_scene *s) { return s->solver_type; }
+const char *pdk_scene_path(const pdk_scene *s) { return s ? s->path : ""; }
+const char *pdk_scene_name(const pdk_scene *s) { return s ? s->name : ""; }
+const char *pdk_scene_text(const pdk_scene *s) { return s ? s->text : ""; }
+int pdk_scene_threads(const pdk_scene *s) { return s ? s->threads : 0; }
+int pdk_scene_dimension(const pdk_scene *s) { return s ? s->dim : 0; }
+pdk_solver_type pdk_scene_solver_type(const pdk_scene *s) {
+  return s ? s->solver_type : PDK_SOLVER_EXPLICIT;
+}
 const char *pdk_solver_type_name(pdk_solver_type type) {
   switch (type) {
   case PDK_SOLVER_EXPLICIT: return "explicit";
@@ -2340,4 +2343,4 @@ const char *pdk_solver_type_name(pdk_solver_type type) {
   }
   return "?";
 }
-const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s) { return &s->output; }
+const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s) { return s ? &s->output : NULL; }

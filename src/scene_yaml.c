@@ -170,6 +170,10 @@ static void key_parent(char *path) {
 void pdk_scene_key_location(const pdk_scene *s, const char *key_path, char *buf, size_t len) {
   char path[KEY_MAX];
   if (!buf || !len) return;
+  if (!s) {
+    snprintf(buf, len, "(no scene)");
+    return;
+  }
   snprintf(path, sizeof path, "%s", key_path ? key_path : "");
   while (path[0]) {
     const pdk_scene_key *k = key_find(s, path);
@@ -189,6 +193,7 @@ int pdk_scene_error(const pdk_scene *s, pdk_ctx *ctx, int code, const char *key,
                     ...) {
   char where[PDK_ERRMSG_MAX / 2], what[PDK_ERRMSG_MAX];
   va_list ap;
+  if (!fmt) return pdk_ctx_error_set(ctx, code, NULL, "(no message)");
   va_start(ap, fmt);
   vsnprintf(what, sizeof what, fmt, ap);
   va_end(ap);

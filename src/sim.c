@@ -218,6 +218,7 @@ static int create_static(pdk_sim *sim, const pdk_scene *s) {
 int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   int err = PDK_SUCCESS;
   pdk_sim *sim = NULL;
+  PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(out && s, ctx, PDK_ERR_ARG, "pdk_sim_create: scene or out is NULL");
   *out = NULL;
   sim = calloc(1, sizeof *sim);
@@ -401,10 +402,10 @@ void pdk_sim_destroy(pdk_sim **simp) {
   *simp = NULL;
 }
 
-pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim->p; }
-pdk_families *pdk_sim_families(pdk_sim *sim) { return sim->fam; }
-pdk_model *pdk_sim_model(pdk_sim *sim) { return sim->m; }
-pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim->e; }
+pdk_particles *pdk_sim_particles(pdk_sim *sim) { return sim ? sim->p : NULL; }
+pdk_families *pdk_sim_families(pdk_sim *sim) { return sim ? sim->fam : NULL; }
+pdk_model *pdk_sim_model(pdk_sim *sim) { return sim ? sim->m : NULL; }
+pdk_explicit *pdk_sim_explicit(pdk_sim *sim) { return sim ? sim->e : NULL; }
 /* The last step of the run when dt took its current value at (step0, time0). */
 static long end_step(const pdk_sim *sim, long step0, double time0, double dt) {
   if (!sim->e || sim->end_time <= 0) return sim->num_steps;
@@ -416,6 +417,7 @@ static long end_step(const pdk_sim *sim, long step0, double time0, double dt) {
 long pdk_sim_num_steps(const pdk_sim *sim) {
   long step0 = 0;
   double time0 = 0.0;
+  if (!sim) return 0;
   if (sim->e) pdk_explicit_dt_start(sim->e, &step0, &time0);
   return end_step(sim, step0, time0, sim->e ? pdk_explicit_dt(sim->e) : 0.0);
 }
@@ -511,10 +513,14 @@ int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path,
   info->dt_created_before = rd.cs.dt_created;
   return PDK_SUCCESS;
 }
-pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) { return sim->type; }
-pdk_static *pdk_sim_static(pdk_sim *sim) { return sim->st; }
+pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim) {
+  return sim ? sim->type : PDK_SOLVER_EXPLICIT;
+}
+pdk_static *pdk_sim_static(pdk_sim *sim) { return sim ? sim->st : NULL; }
 
 int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK_ARG(sim, NULL);
+  PDK_CHECK_ARG(h, sim->ctx);
   PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
             "pdk_sim_static_history: the scene's solver is explicit, not static");
   const pdk_static_event *ev = pdk_static_last_event(sim->st);
@@ -532,6 +538,7 @@ int pdk_sim_static_history(pdk_sim *sim, pdk_history *h) {
 }
 
 int pdk_sim_static_step(pdk_sim *sim, pdk_history *h) {
+  PDK_CHECK_ARG(sim, NULL);
   PDK_CHECK(sim->st, sim->ctx, PDK_ERR_ARG,
             "pdk_sim_static_step: the scene's solver is explicit, not static");
   PDK_CALL(pdk_static_solve_level(sim->st));
@@ -685,6 +692,7 @@ static int update_von_mises(pdk_sim *sim) {
 }
 
 int pdk_sim_update_output_fields(pdk_sim *sim) {
+  PDK_CHECK_ARG(sim, NULL);
   if (sim->has_von_mises) PDK_CALL(update_von_mises(sim));
   if (!sim->has_u) return PDK_SUCCESS;
   const int dim = pdk_particles_dim(sim->p);

@@ -7,6 +7,8 @@
 int pdk_smooth_field(pdk_particles *p, pdk_families *fam, pdk_influence w, double gaussian_width,
                      const char *in, const char *out) {
   pdk_ctx *ctx = pdk_particles_ctx(p);
+  PDK_CHECK_ARG(p, NULL);
+  PDK_CHECK_ARG(fam, ctx);
   PDK_CHECK(in && out && strcmp(in, out) != 0, ctx, PDK_ERR_ARG,
             "smoothing: give two different field names (in '%s', out '%s')", in ? in : "(null)",
             out ? out : "(null)");

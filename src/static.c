@@ -190,6 +190,7 @@ static int setup_conditions(pdk_static *s) {
 
 /* Pseudo-time of level k (time mode) or its load factor (scale mode); 0 before the first. */
 double pdk_static_level_time(const pdk_static *s, int k) {
+  if (!s) return NAN;
   if (k < 0) return 0.0;
   return s->time_mode ? s->levels[k] * s->opts.total_time : s->levels[k];
 }
@@ -234,7 +235,9 @@ static void set_level_values(pdk_static *s, int k) {
 }
 
 int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static **out) {
+  PDK_CHECK_ARG(m, NULL);
   pdk_ctx *ctx = m->ctx;
+  PDK_CHECK_ARG(out, ctx);
   int err = PDK_SUCCESS;
   pdk_static *s = NULL;
   *out = NULL;
@@ -338,7 +341,7 @@ void pdk_static_destroy(pdk_static **sp) {
   *sp = NULL;
 }
 
-const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return &s->stats; }
+const pdk_static_stats *pdk_static_stats_get(const pdk_static *s) { return s ? &s->stats : NULL; }
 
 void pdk_static_apply_prescribed(pdk_static *s) {
   for (int c = 0; c < s->dim; ++c) {
@@ -404,20 +407,60 @@ int pdk_static_converged(const pdk_static *s) {
 }
 
 int pdk_static_nonfinite(pdk_static *s, const char *method, long iteration, const char *hint) {
-  pdk_index bad = -1;
-  int bad_c = 0;
+  /* What went non-finite: the first particle (index order) with a non-finite position, else the
+   * first with a non-finite residual force; when both are finite everywhere, the norms overflowed
+   * (squares beyond the double range): the particle with the largest residual force. */
+  const int64_t *ids = pdk_particles_id(s->p);
+  pdk_index bad = -1, big = -1, far = -1;
+  int bad_c = 0, big_c = 0, far_c = 0, bad_what = 0; /* 1 position, 2 force */
+  double bad_v = 0.0, rmax = -1.0, umax = -1.0;
   for (pdk_index i = 0; i < s->n && bad < 0; ++i)
-    for (int c = 0; c < s->dim; ++c)
-      if (!isfinite(s->r[c][i]) || !isfinite(field(s->p, "x", c)[i])) {
-        bad = i;
-        bad_c = c;
+    for (int c = 0; c < s->dim; ++c) {
+      const double x = field(s->p, "x", c)[i], ri = s->r[c][i];
+      if (!isfinite(x) || !isfinite(ri)) {
+        bad = i, bad_c = c, bad_what = isfinite(x) ? 2 : 1, bad_v = isfinite(x) ? ri : x;
         break;
       }
-  long long id = bad >= 0 ? (long long)pdk_particles_id(s->p)[bad] : -1;
+      const double u = fabs(x - pdk_particles_X(s->p, c)[i]);
+      if (fabs(ri) > rmax) rmax = fabs(ri), big = i, big_c = c;
+      if (u > umax) umax = u, far = i, far_c = c;
+    }
+  char what[320];
+  if (bad_what == 1)
+    snprintf(what, sizeof what, "particle %d (id %lld) has a non-finite position along %c (%g)",
+             (int)bad, (long long)ids[bad], "xyz"[bad_c], bad_v);
+  else if (bad_what == 2)
+    snprintf(what, sizeof what, "the residual force on particle %d (id %lld) along %c is %g",
+             (int)bad, (long long)ids[bad], "xyz"[bad_c], bad_v);
+  else if (big >= 0)
+    snprintf(what, sizeof what,
+             "every force and position is finite, but the %s norm overflowed: the largest "
+             "residual force is %.3g on particle %d (id %lld) along %c, the largest displacement "
+             "%.3g on particle %d (id %lld) along %c",
+             isfinite(s->rnorm) ? "load" : "residual", rmax, (int)big, (long long)ids[big],
+             "xyz"[big_c], umax, (int)far, (long long)ids[far], "xyz"[far_c]);
+  else
+    snprintf(what, sizeof what, "the body has no particle");
+  /* the largest prescribed displacement of the level, and its condition's set */
+  double umax_bc = 0.0;
+  int bc = -1;
+  for (int c = 0; c < s->dim; ++c)
+    for (pdk_index i = 0; i < s->n; ++i)
+      if (s->fixed[c][i] && !(fabs(s->u_level[c][i]) <= umax_bc))
+        umax_bc = fabs(s->u_level[c][i]), bc = s->owner[c][i];
+  char bcs[200] = "";
+  if (bc >= 0 && bc < s->opts.num_bcs) {
+    const char *set = s->bcs[bc].set ? s->bcs[bc].set : "(every particle)";
+    snprintf(bcs, sizeof bcs,
+             " (the largest prescribed displacement of this level is %g, %.3g horizons, boundary "
+             "condition %d on set '%s')",
+             umax_bc, umax_bc / s->horizon, bc, strncmp(set, "set:", 4) ? set : set + 4);
+  }
   return pdk_ctx_error_set(s->ctx, PDK_ERR_NUMERIC, method,
                            "the residual became non-finite at load level %d (load factor %g), "
-                           "round %d, iteration %ld: particle %d (id %lld), component %d; %s",
-                           s->level, s->lambda, s->round, iteration, (int)bad, id, bad_c, hint);
+                           "round %d, iteration %ld: %s; check the boundary conditions' values%s "
+                           "and the load steps; %s",
+                           s->level, s->lambda, s->round, iteration, what, bcs, hint);
 }
 
 /* Coloring of the coupling graph for difference tangents.
@@ -666,12 +709,13 @@ static void scale_free(pdk_static *s, double factor) {
   }
 }
 
-int pdk_static_num_levels(const pdk_static *s) { return s->num_levels; }
-double pdk_static_total_time(const pdk_static *s) { return s->opts.total_time; }
-int pdk_static_levels_solved(const pdk_static *s) { return s->stats.levels_done; }
-const pdk_static_event *pdk_static_last_event(const pdk_static *s) { return &s->last; }
+int pdk_static_num_levels(const pdk_static *s) { return s ? s->num_levels : 0; }
+double pdk_static_total_time(const pdk_static *s) { return s ? s->opts.total_time : NAN; }
+int pdk_static_levels_solved(const pdk_static *s) { return s ? s->stats.levels_done : 0; }
+const pdk_static_event *pdk_static_last_event(const pdk_static *s) { return s ? &s->last : NULL; }
 
 int pdk_static_solve_level(pdk_static *s) {
+  PDK_CHECK_ARG(s, NULL);
   pdk_ctx *ctx = s->ctx;
   const int k = s->stats.levels_done;
   PDK_CHECK(k < s->num_levels, ctx, PDK_ERR_ARG, "%s: all %d load levels are solved already",
@@ -729,12 +773,14 @@ cleanup:
 }
 
 int pdk_static_solve(pdk_static *s) {
+  PDK_CHECK_ARG(s, NULL);
   while (s->stats.levels_done < s->num_levels)
     PDK_CALL(pdk_static_solve_level(s));
   return PDK_SUCCESS;
 }
 
 void pdk_static_stats_print(const pdk_static_stats *st, FILE *out) {
+  if (!st || !out) return;
   const double mib = 1.0 / (1024.0 * 1024.0);
   fprintf(out, "levels %d, iterations %ld, force passes %ld (+%ld commits), re-solves %d\n",
           st->levels_done, st->iterations, st->force_passes, st->commit_passes, st->break_rounds);

@@ -4,6 +4,12 @@
  * that can fail return an int status (PDK_SUCCESS == 0); the message of the last failure is kept
  * in the context (pdk_ctx_error_message) and names what was wrong, where and how to fix it.
  * There are no globals: two contexts are independent.
+ *
+ * NULL arguments: every public function takes NULL for a handle or pointer without crashing. One
+ * that returns a status returns PDK_ERR_ARG, with a message naming the argument in the context
+ * when one is at hand (the ctx argument or the context of another handle); destroy and close
+ * functions do nothing; getters return 0, NULL, "" or NaN (pdk_model_float_stretch_ratio: -1).
+ * Optional pointers (documented as such, e.g. out-counts and opts that default) stay optional.
  */
 #ifndef PDK_CTX_H
 #define PDK_CTX_H

@@ -103,7 +103,7 @@ typedef struct pdk_jc_state {
   double cp_inv[6]; /* C_p^-1 = Fp^-1 Fp^-T (Voigt xx yy zz yz xz xy); identity at start, det 1
                        unless pdk_jc_remap changed it (plastic steps keep the det) */
   double eps_p;     /* equivalent plastic strain [-] (logarithmic) */
-  double damage;    /* D [-] */
+  double damage;    /* D [-], in [0, 1] (capped at 1 on the step the point fails) */
   double temp_rise; /* adiabatic temperature rise [K] */
   int failed;       /* 1 once D >= D_c; the history is frozen from then on */
 } pdk_jc_state;

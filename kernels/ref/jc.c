@@ -75,6 +75,9 @@
  *   (COUPLING_EFFECTIVE, strain equivalence; the stress then drops to 1 - D_c = 70% before the
  *   point fails). From the step on which D >= D_c the point carries no stress (FAILED_ZERO) or
  *   only a compressive pressure K ln J for J < 1 (FAILED_COMPRESSION); its history is frozen.
+ *   D is capped at 1 (Johnson-Cook's fracture) on the step that fails the point: one step can
+ *   carry D_n + d_eps_p / eps_f far past D_c (the shipped two-hole plate reached 1.57), and with
+ *   coupling a D above 1 would give a negative (1 - D) and a negative plastic dissipation.
  *
  * Energies (per reference volume): W = (1 - D) W~ (D = 0 without coupling);
  *   dW_plastic = (1 - (D_n + D)/2) int sigma_y d eps_p over the step (tau~ : d eps_p = q d eps_p
@@ -280,6 +283,7 @@ static double flow_stress_step(const pdk_jc_params *p, double ep_n, double dg, d
 }
 
 double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star, double T_star) {
+  if (!p) return NAN;
   double sy = hardening(p, eps_p);
   if (p->C != 0.0 && rate_star > 1.0) sy = sy * (1.0 + p->C * log(rate_star));
   if (p->thermal) {
@@ -290,6 +294,7 @@ double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star
 }
 
 double pdk_jc_failure_strain(const pdk_jc_params *p, double eta, double rate_star, double T_star) {
+  if (!p) return NAN;
   double ef = p->D1 + p->D2 * exp(p->D3 * eta);
   if (p->D4 != 0.0) ef = ef * (1.0 + p->D4 * log(rate_star > 1.0 ? rate_star : 1.0));
   if (p->thermal && p->D5 != 0.0) {
@@ -446,6 +451,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
       triaxiality = eta;
       failure_strain = ef;
       D = ef > 0.0 ? D_n + dg / ef : (D_n > p->D_c ? D_n : p->D_c);
+      if (D > 1.0) D = 1.0; /* D in [0, 1]: a step past failure does not damage beyond it */
     }
     const int coupled = p->coupling == PDK_JC_COUPLING_EFFECTIVE;
     const double Dk_n = coupled ? D_n : 0.0, Dk = coupled ? D : 0.0;
@@ -556,13 +562,14 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
 
 int pdk_jc_update(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
                   const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res) {
+  if (!p || !F || !in || !out || !P) return PDK_ERR_ARG;
   return jc_update(p, dim, F, dt, NULL, in, out, P, res, 1);
 }
 
 int pdk_jc_update_avg(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
                       double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
                       double P[3][3], pdk_jc_result *res) {
-  if (!isfinite(sigma_m_avg)) return PDK_ERR_ARG;
+  if (!p || !F || !in || !out || !P || !isfinite(sigma_m_avg)) return PDK_ERR_ARG;
   return jc_update(p, dim, F, dt, &sigma_m_avg, in, out, P, res, 1);
 }
 
@@ -580,7 +587,7 @@ int pdk_jc_update_kernel(const pdk_jc_params *p, int dim, const double F[3][3], 
  * not touched. */
 int pdk_jc_remap(int dim, const double F_old_in[3][3], const double F_new_in[3][3],
                  pdk_jc_state *s) {
-  if (dim != 2 && dim != 3) return PDK_ERR_ARG;
+  if ((dim != 2 && dim != 3) || !F_old_in || !F_new_in || !s) return PDK_ERR_ARG;
   if (s->failed) return PDK_SUCCESS;
   double Fo[3][3], Fn[3][3];
   for (int i = 0; i < 3; ++i)
