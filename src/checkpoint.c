@@ -23,18 +23,21 @@
  * kind, bond state, each field's type and shape, and the ids, reference positions and volumes bit
  * for bit. The first difference is the error.
  *
- * The checksum (format 2): the root attribute "checksum" holds CKPT_HASH_NAME and a 64-bit hash of
- * everything else in the file, walked in a fixed order (groups and their links by name, each
- * object's attributes by name): every object's path and kind, every attribute's name, datatype
- * (H5Tencode: class, size, byte order, ...), extent and bytes, every dataset's datatype, shape and
- * bytes, in the file's own (little-endian) representation. The hash takes 64-bit little-endian
- * words w: x = (x ^ w) * P, then x ^= x >> 32 (P: FNV-1a's 64-bit prime, x from its offset basis).
- * Both maps are invertible in x, so a change of any single word always changes the result; the
- * xor-shift carries high bits down, so that changes in the top bits of two words cannot cancel
- * (as they can with the multiply alone). Verifying the shipped plate's 6.4 MB checkpoint takes
- * 20-45 ms. A checkpoint is verified before anything is read from it; one that does not match its
- * checksum is damaged and refused. Format 1 files (earlier pdk, no checksum) are refused: their
- * data cannot be verified.
+ * The checksum (format 2): the file is created with a 512-byte HDF5 user block (the bytes HDF5
+ * leaves to the application before its superblock). When the HDF5 file is complete and closed,
+ * pdk hashes every byte after the user block and writes into it, as text,
+ *   pdk checkpoint
+ *   checksum fnv1a64x:<16 hex digits>
+ *   size <the file's size in bytes>
+ * followed by zeros. Reading verifies that text, the size and the hash on the raw bytes before
+ * HDF5 opens the file, so a damaged file (any byte changed, or truncated) is refused without HDF5
+ * ever parsing its damaged metadata (HDF5 1.10 can crash on a corrupted object header). The hash
+ * takes 64-bit little-endian words w: x = (x ^ w) * P, then x ^= x >> 32 (P: FNV-1a's 64-bit
+ * prime, x from its offset basis). Both maps are invertible in x, so a change of any single word
+ * always changes the result; the xor-shift carries high bits down, so that changes in the top bits
+ * of two words cannot cancel (as they can with the multiply alone). Opening and verifying the
+ * shipped plate's 6.4 MB checkpoint takes 3-17 ms (a loaded 2-core machine). Format 1 files
+ * (earlier pdk, no user block) are refused: their data cannot be verified.
  */
 #define _DEFAULT_SOURCE /* stat */
 #include <errno.h>
@@ -49,22 +52,16 @@
 
 #define CKPT_KIND "pdk checkpoint"
 #define CKPT_FORMAT 2
-#define CKPT_CHECKSUM_ATTR "checksum"
 #define CKPT_HASH_NAME "fnv1a64x"
-#define CKPT_HASH_BLOCK ((size_t)8 << 20) /* bytes read at a time while hashing a dataset */
+#define CKPT_USERBLOCK 512 /* bytes before the HDF5 superblock: the checksum text */
+#define CKPT_MAGIC "pdk checkpoint\n"
+/* bytes read at a time while hashing (a multiple of 8) */
+#define CKPT_HASH_BLOCK ((size_t)1 << 20)
 
 /* ---- checksum ---------------------------------------------------------------------------------
  */
 
-typedef struct ckpt_hash {
-  uint64_t x;
-  int failed;
-  char what[512]; /* where hashing failed: the object's path and what could not be read */
-} ckpt_hash;
-
-static void hash_bytes(ckpt_hash *hs, const void *data, size_t len) {
-  const unsigned char *p = data;
-  uint64_t x = hs->x;
+static uint64_t hash_bytes(uint64_t x, const unsigned char *p, size_t len) {
   size_t k = 0;
   for (; k + 8 <= len; k += 8) {
     uint64_t w = 0;
@@ -73,221 +70,109 @@ static void hash_bytes(ckpt_hash *hs, const void *data, size_t len) {
     x = (x ^ w) * 0x100000001b3ULL;
     x ^= x >> 32;
   }
-  if (k < len) { /* the tail, zero-padded; the lengths are hashed separately */
+  if (k < len) { /* the tail (only at the end of the file), zero-padded; the size is stored */
     uint64_t w = 0;
     for (size_t b = len; b-- > k;)
       w = w << 8 | p[b];
     x = (x ^ w) * 0x100000001b3ULL;
     x ^= x >> 32;
   }
-  hs->x = x;
+  return x;
 }
 
-static void hash_u64(ckpt_hash *hs, uint64_t v) {
-  unsigned char b[8];
-  for (int k = 0; k < 8; ++k)
-    b[k] = (unsigned char)(v >> (8 * k));
-  hash_bytes(hs, b, 8);
-}
-
-static void hash_str(ckpt_hash *hs, const char *s) {
-  hash_u64(hs, strlen(s));
-  hash_bytes(hs, s, strlen(s));
-}
-
-/* Records where hashing failed (the first failure only) and clears HDF5's error stack. */
-static void hash_fail(ckpt_hash *hs, const char *path, const char *what) {
-  if (!hs->failed) snprintf(hs->what, sizeof hs->what, "%s: %s", path[0] ? path : "/", what);
-  hs->failed = 1;
-  H5Eclear2(H5E_DEFAULT);
-}
-
-/* The whole datatype (class, size, byte order, sign, padding, ...) as HDF5 encodes it. */
-static int hash_type(ckpt_hash *hs, hid_t t) {
-  size_t len = 0;
-  if (H5Tencode(t, NULL, &len) < 0 || len == 0) return -1;
-  unsigned char *buf = malloc(len);
-  if (!buf || H5Tencode(t, buf, &len) < 0) {
-    free(buf);
-    return -1;
-  }
-  hash_u64(hs, len);
-  hash_bytes(hs, buf, len);
-  free(buf);
-  return 0;
-}
-
-/* A type the hash can take byte for byte: anything but variable-length data (pdk writes none). */
-static int hashable_type(hid_t t) {
-  const H5T_class_t c = H5Tget_class(t);
-  return c != H5T_NO_CLASS && c != H5T_VLEN && c != H5T_REFERENCE &&
-         !(c == H5T_STRING && H5Tis_variable_str(t) != 0) && H5Tget_size(t) > 0;
-}
-
-typedef struct hash_attr_ctx {
-  ckpt_hash *hs;
-  const char *path;
-  int is_root;
-} hash_attr_ctx;
-
-static herr_t hash_attr_cb(hid_t loc, const char *name, const H5A_info_t *info, void *data) {
-  (void)info;
-  hash_attr_ctx *hc = data;
-  ckpt_hash *hs = hc->hs;
-  if (hc->is_root && !strcmp(name, CKPT_CHECKSUM_ATTR)) return 0;
-  hid_t a = -1, t = -1, sp = -1;
-  unsigned char *buf = NULL;
-  herr_t ret = -1;
-  char what[320];
-  snprintf(what, sizeof what, "attribute '%s' cannot be read", name);
-  if ((a = H5Aopen(loc, name, H5P_DEFAULT)) < 0 || (t = H5Aget_type(a)) < 0 ||
-      (sp = H5Aget_space(a)) < 0 || !hashable_type(t))
-    goto done;
-  const hssize_t np = H5Sget_simple_extent_npoints(sp);
-  const size_t size = H5Tget_size(t);
-  if (np < 0) goto done;
-  hash_str(hs, name);
-  if (hash_type(hs, t) < 0) goto done;
-  hash_u64(hs, size);
-  hash_u64(hs, (uint64_t)np);
-  buf = malloc((size_t)np * size + 1);
-  if (!buf || (np > 0 && H5Aread(a, t, buf) < 0)) goto done;
-  hash_bytes(hs, buf, (size_t)np * size);
-  ret = 0;
-done:
-  if (ret < 0) hash_fail(hs, hc->path, what);
-  free(buf);
-  if (sp >= 0) H5Sclose(sp);
-  if (t >= 0) H5Tclose(t);
-  if (a >= 0) H5Aclose(a);
-  return ret;
-}
-
-static void hash_attrs(ckpt_hash *hs, hid_t obj, const char *path, int is_root) {
-  hash_attr_ctx hc = {hs, path, is_root};
-  hsize_t idx = 0;
-  if (H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, &idx, hash_attr_cb, &hc) < 0)
-    hash_fail(hs, path, "its attributes cannot be read");
-}
-
-/* A dataset's type, shape and bytes, read CKPT_HASH_BLOCK bytes at a time along its first axis. */
-static void hash_dataset(ckpt_hash *hs, hid_t d, const char *path) {
-  hid_t t = -1, fspace = -1, mspace = -1;
-  unsigned char *buf = NULL;
-  hsize_t dims[H5S_MAX_RANK], start[H5S_MAX_RANK] = {0}, count[H5S_MAX_RANK];
-  int ok = 0;
-  if ((t = H5Dget_type(d)) < 0 || !hashable_type(t) || (fspace = H5Dget_space(d)) < 0) goto done;
-  const int rank = H5Sget_simple_extent_ndims(fspace);
-  if (rank < 0 || H5Sget_simple_extent_dims(fspace, dims, NULL) < 0) goto done;
-  const size_t size = H5Tget_size(t);
-  if (hash_type(hs, t) < 0) goto done;
-  hash_u64(hs, size);
-  hash_u64(hs, (uint64_t)rank);
-  size_t row = size; /* bytes of one index of the first axis */
-  for (int k = 0; k < rank; ++k) {
-    hash_u64(hs, dims[k]);
-    if (k > 0) row *= dims[k];
-  }
-  if (rank == 0) {
-    if (!(buf = malloc(size)) || H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) < 0) goto done;
-    hash_bytes(hs, buf, size);
-    ok = 1;
-    goto done;
-  }
-  if (row == 0 || dims[0] == 0) {
-    ok = 1;
-    goto done;
-  }
-  const hsize_t per = row >= CKPT_HASH_BLOCK ? 1 : (hsize_t)(CKPT_HASH_BLOCK / row);
-  if (!(buf = malloc((size_t)(per < dims[0] ? per : dims[0]) * row))) goto done;
-  for (int k = 1; k < rank; ++k)
-    count[k] = dims[k];
-  for (hsize_t r0 = 0; r0 < dims[0]; r0 += per) {
-    count[0] = dims[0] - r0 < per ? dims[0] - r0 : per;
-    start[0] = r0;
-    if (H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-        (mspace = H5Screate_simple(rank, count, NULL)) < 0 ||
-        H5Dread(d, t, mspace, fspace, H5P_DEFAULT, buf) < 0)
+/* The hash of the bytes of f from CKPT_USERBLOCK to its end (`size`); -1 with errno on a read
+ * error. */
+static int hash_file(FILE *f, long size, uint64_t *out) {
+  unsigned char *buf = malloc(CKPT_HASH_BLOCK);
+  uint64_t x = 0xcbf29ce484222325ULL; /* FNV-1a's offset basis */
+  int rc = -1;
+  if (!buf || fseek(f, CKPT_USERBLOCK, SEEK_SET) != 0) goto done;
+  for (long pos = CKPT_USERBLOCK; pos < size;) {
+    const size_t want = size - pos < (long)CKPT_HASH_BLOCK ? (size_t)(size - pos) : CKPT_HASH_BLOCK;
+    if (fread(buf, 1, want, f) != want) {
+      if (!ferror(f)) errno = EIO;
       goto done;
-    H5Sclose(mspace);
-    mspace = -1;
-    hash_bytes(hs, buf, (size_t)count[0] * row);
+    }
+    x = hash_bytes(x, buf, want);
+    pos += (long)want;
   }
-  ok = 1;
+  *out = x;
+  rc = 0;
 done:
-  if (!ok) hash_fail(hs, path, "its data cannot be read");
   free(buf);
-  if (mspace >= 0) H5Sclose(mspace);
-  if (fspace >= 0) H5Sclose(fspace);
-  if (t >= 0) H5Tclose(t);
+  return rc;
 }
 
-/* Group g at `path` ("" for the root): its attributes, then each link by name, recursively. */
-static void hash_group(ckpt_hash *hs, hid_t g, const char *path, int depth) {
-  H5G_info_t info;
-  hash_attrs(hs, g, path, depth == 0);
-  if (depth > 16) { /* a checkpoint is three levels deep */
-    hash_fail(hs, path, "groups nest too deep");
-    return;
-  }
-  if (H5Gget_info(g, &info) < 0) {
-    hash_fail(hs, path, "the group cannot be read");
-    return;
-  }
-  for (hsize_t k = 0; k < info.nlinks && !hs->failed; ++k) {
-    const ssize_t len =
-        H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, NULL, 0, H5P_DEFAULT);
-    char *name = len >= 0 ? malloc((size_t)len + 1) : NULL;
-    char *child = NULL;
-    hid_t obj = -1;
-    if (!name || H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, (size_t)len + 1,
-                                    H5P_DEFAULT) < 0) {
-      hash_fail(hs, path, "a link name cannot be read");
-      free(name);
-      return;
-    }
-    child = pdk_str_printf("%s/%s", path, name);
-    free(name);
-    if (!child) {
-      hash_fail(hs, path, "out of memory");
-      return;
-    }
-    obj = H5Oopen(g, child + strlen(path) + 1, H5P_DEFAULT);
-    const H5I_type_t type = obj >= 0 ? H5Iget_type(obj) : H5I_BADID;
-    hash_str(hs, child);
-    hash_u64(hs, (uint64_t)type);
-    if (type == H5I_GROUP) {
-      hash_group(hs, obj, child, depth + 1);
-    } else if (type == H5I_DATASET) {
-      hash_attrs(hs, obj, child, 0);
-      hash_dataset(hs, obj, child);
-    } else {
-      hash_fail(hs, child, "it is neither a group nor a dataset");
-    }
-    if (obj >= 0) H5Oclose(obj);
-    free(child);
-  }
+/* After the HDF5 file at `part` is closed: the checksum text into its user block. */
+static int seal_checkpoint(pdk_ctx *ctx, const char *part) {
+  int err = PDK_SUCCESS;
+  char block[CKPT_USERBLOCK];
+  uint64_t x = 0;
+  long size = -1;
+  FILE *f = fopen(part, "r+b");
+  PDK_CHECK(f, ctx, PDK_ERR_IO, "cannot reopen the checkpoint '%s' to seal it: %s", part,
+            strerror(errno));
+  if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+  PDK_CHECK_GOTO(size > CKPT_USERBLOCK && hash_file(f, size, &x) == 0, ctx, PDK_ERR_IO,
+                 "cannot read back the checkpoint '%s' to checksum it: %s", part,
+                 size > CKPT_USERBLOCK ? strerror(errno) : "it is empty");
+  memset(block, 0, sizeof block);
+  snprintf(block, sizeof block, "%schecksum %s:%016llx\nsize %ld\n", CKPT_MAGIC, CKPT_HASH_NAME,
+           (unsigned long long)x, size);
+  PDK_CHECK_GOTO(fseek(f, 0, SEEK_SET) == 0 && fwrite(block, 1, sizeof block, f) == sizeof block &&
+                     fflush(f) == 0,
+                 ctx, PDK_ERR_IO, "cannot write the checksum into '%s': %s", part, strerror(errno));
+cleanup:
+  if (fclose(f) != 0 && !err)
+    err = pdk_ctx_error_set(ctx, PDK_ERR_IO, __func__, "cannot write the checksum into '%s': %s",
+                            part, strerror(errno));
+  return err;
 }
 
-/* The checksum of an open file as the text stored in its "checksum" attribute. */
-static int file_checksum(hid_t file, char out[64], char what[512]) {
-  ckpt_hash hs;
-  memset(&hs, 0, sizeof hs);
-  hs.x = 0xcbf29ce484222325ULL; /* FNV-1a's offset basis */
-  hash_group(&hs, file, "", 0);
-  if (hs.failed) {
-    snprintf(what, 512, "%s", hs.what);
-    return -1;
-  }
-  snprintf(out, 64, "%s:%016llx", CKPT_HASH_NAME, (unsigned long long)hs.x);
-  return 0;
-}
-
-static int write_checksum(pdk_ctx *ctx, hid_t file, const char *path) {
-  char sum[64], what[512];
-  PDK_CHECK(file_checksum(file, sum, what) == 0, ctx, PDK_ERR_IO,
-            "cannot checksum the checkpoint '%s' being written: %s", path, what);
-  return pdk_h5_attr_write_string(ctx, file, CKPT_CHECKSUM_ATTR, sum);
+/* Verifies the user block of a file whose HDF5 signature is at CKPT_USERBLOCK: *sealed = 1 when
+ * it is a checkpoint's and its size and checksum match; 0 when the block does not start with
+ * CKPT_MAGIC (not sealed by pdk: HDF5 opens the file to say what it is). */
+static int verify_seal(pdk_ctx *ctx, const char *path, int *sealed) {
+  int err = PDK_SUCCESS;
+  char block[CKPT_USERBLOCK + 1];
+  char name[32];
+  unsigned long long stored = 0;
+  long size = -1, stored_size = -1;
+  int used = 0;
+  uint64_t x = 0;
+  *sealed = 0;
+  FILE *f = fopen(path, "rb");
+  PDK_CHECK(f, ctx, PDK_ERR_IO, "cannot read the checkpoint '%s': %s", path, strerror(errno));
+  PDK_CHECK_GOTO(fread(block, 1, CKPT_USERBLOCK, f) == CKPT_USERBLOCK, ctx, PDK_ERR_IO,
+                 "cannot read the checkpoint '%s': %s", path,
+                 ferror(f) ? strerror(errno) : "it is shorter than its header");
+  block[CKPT_USERBLOCK] = '\0';
+  if (strncmp(block, CKPT_MAGIC, strlen(CKPT_MAGIC))) goto cleanup;
+  *sealed = 1;
+  const int fields = sscanf(block + strlen(CKPT_MAGIC), "checksum %31[^:]:%16llx\nsize %ld\n%n",
+                            name, &stored, &stored_size, &used);
+  int clean = fields == 3 && used > 0 && !strcmp(name, CKPT_HASH_NAME);
+  for (size_t k = strlen(CKPT_MAGIC) + (size_t)used; clean && k < CKPT_USERBLOCK; ++k)
+    clean = block[k] == '\0';
+  PDK_CHECK_GOTO(clean, ctx, PDK_ERR_IO,
+                 "checkpoint '%s' is damaged: its checksum header (the first %d bytes) is not "
+                 "readable; restart from another checkpoint or run the scene again",
+                 path, CKPT_USERBLOCK);
+  if (fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+  PDK_CHECK_GOTO(size == stored_size, ctx, PDK_ERR_IO,
+                 "checkpoint '%s' is damaged: it is %ld bytes, it was written with %ld (%s); "
+                 "restart from another checkpoint or run the scene again",
+                 path, size, stored_size, size < stored_size ? "truncated" : "grown");
+  PDK_CHECK_GOTO(hash_file(f, size, &x) == 0, ctx, PDK_ERR_IO,
+                 "cannot read the checkpoint '%s': %s", path, strerror(errno));
+  PDK_CHECK_GOTO(x == stored, ctx, PDK_ERR_IO,
+                 "checkpoint '%s' is damaged: its data does not match its checksum (stored "
+                 "%s:%016llx, computed %s:%016llx); restart from another checkpoint or run the "
+                 "scene again",
+                 path, CKPT_HASH_NAME, stored, CKPT_HASH_NAME, (unsigned long long)x);
+cleanup:
+  fclose(f);
+  return err;
 }
 
 /* Writes field `name` of p as /fields/<name> [num_comp][n]. */
@@ -345,7 +230,8 @@ cleanup:
 
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text) {
   int err = PDK_SUCCESS;
-  hid_t file = -1, g = -1;
+  hid_t file = -1, g = -1, fcpl = -1;
+  herr_t fst;
   char *part = NULL;
   PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
@@ -356,7 +242,9 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
   part = pdk_str_printf("%s.part", path);
   PDK_CHECK(part, ctx, PDK_ERR_MEMORY, "out of memory");
-  PDK_CALL_GOTO(pdk_h5_file_create(ctx, part, &file));
+  PDK_H5_CALL_GOTO(ctx, fcpl, H5Pcreate(H5P_FILE_CREATE));
+  PDK_H5_CALL_GOTO(ctx, fst, H5Pset_userblock(fcpl, CKPT_USERBLOCK)); /* the checksum's place */
+  PDK_CALL_GOTO(pdk_h5_file_create_with(ctx, part, fcpl, &file));
   PDK_CALL_GOTO(pdk_h5_write_provenance(ctx, file, CKPT_KIND));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "format", CKPT_FORMAT));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "dimension", pdk_particles_dim(p)));
@@ -411,14 +299,15 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
     PDK_CALL_GOTO(write_field(ctx, g, p, pdk_particles_field_name(p, k)));
   H5Gclose(g);
   g = -1;
-  PDK_CALL_GOTO(write_checksum(ctx, file, path)); /* last: it covers everything above */
   {
     hid_t closing = file;
     file = -1;
     PDK_CALL_GOTO(pdk_h5_file_close(ctx, closing, part)); /* a failed write is reported here */
   }
+  PDK_CALL_GOTO(seal_checkpoint(ctx, part)); /* the checksum of the closed file */
   PDK_CALL_GOTO(pdk_file_commit(ctx, part, path));
 cleanup:
+  if (fcpl >= 0) H5Pclose(fcpl);
   if (g >= 0) H5Gclose(g);
   if (file >= 0 && err && pdk_h5_file_error(file)) err = pdk_h5_file_check(ctx, file, part);
   if (file >= 0) pdk_h5_file_close(NULL, file, part);
@@ -430,31 +319,32 @@ cleanup:
 /* ---- read -------------------------------------------------------------------------------------
  */
 
-/* 1 when the file at `path` carries the HDF5 signature (at offset 0, 512, 1024, ...: after a user
- * block), 0 when not, -1 (errno set) when it cannot be read. */
-static int has_hdf5_signature(const char *path) {
+/* Where the file at `path` carries the HDF5 signature (offset 0, 512, 1024, ...: after a user
+ * block), -2 when nowhere, -1 (errno set) when it cannot be read. */
+static long hdf5_signature_at(const char *path) {
   static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
   FILE *f = fopen(path, "rb");
   if (!f) return -1;
-  int found = 0;
-  for (long off = 0; !found; off = off ? 2 * off : 512) {
+  long at = -2;
+  for (long off = 0; at < 0; off = off ? 2 * off : 512) {
     unsigned char buf[8];
     if (fseek(f, off, SEEK_SET) != 0 || fread(buf, 1, 8, f) != 8) break;
-    found = !memcmp(buf, sig, 8);
+    if (!memcmp(buf, sig, 8)) at = off;
   }
   const int bad = ferror(f);
   const int saved = errno;
   fclose(f);
   errno = saved;
-  return bad && !found ? -1 : found;
+  return bad && at < 0 ? -1 : at;
 }
 
-/* Opens a checkpoint and checks that it is one, of this format, and intact (its checksum). Every
- * refusal is one line that names the file. */
+/* Opens a checkpoint and checks that it is one, intact (its checksum, verified before HDF5 reads
+ * it) and of this format. Every refusal is one line that names the file. */
 static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
   int err = PDK_SUCCESS;
   hid_t file = -1;
-  char *kind = NULL, *stored = NULL;
+  char *kind = NULL;
+  int sealed = 0;
   int64_t format = 0;
   struct stat sb;
   *out = -1;
@@ -465,13 +355,14 @@ static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
   }
   PDK_CHECK(!S_ISDIR(sb.st_mode), ctx, PDK_ERR_IO,
             "'%s' is a folder, not a checkpoint (a run writes <dir>/<name>_checkpoint.h5)", path);
-  const int sig = has_hdf5_signature(path);
-  PDK_CHECK(sig >= 0, ctx, PDK_ERR_IO, "cannot read the checkpoint '%s': %s", path,
+  const long sig = hdf5_signature_at(path);
+  PDK_CHECK(sig != -1, ctx, PDK_ERR_IO, "cannot read the checkpoint '%s': %s", path,
             strerror(errno));
-  PDK_CHECK(sig > 0, ctx, PDK_ERR_IO,
+  PDK_CHECK(sig >= 0, ctx, PDK_ERR_IO,
             "'%s' is not a pdk checkpoint: it is not an HDF5 file (a run writes its checkpoint as "
             "<dir>/<name>_checkpoint.h5)",
             path);
+  if (sig == CKPT_USERBLOCK) PDK_CALL(verify_seal(ctx, path, &sealed));
   file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file < 0) {
     H5Eclear2(H5E_DEFAULT);
@@ -506,30 +397,14 @@ static int open_checkpoint(pdk_ctx *ctx, const char *path, hid_t *out) {
   PDK_CHECK_GOTO(format == CKPT_FORMAT, ctx, PDK_ERR_UNSUPPORTED,
                  "checkpoint '%s' has format %lld; this pdk reads format %d", path,
                  (long long)format, CKPT_FORMAT);
-  {
-    char sum[64], what[512];
-    if (!pdk_h5_attr_exists(file, CKPT_CHECKSUM_ATTR) ||
-        pdk_h5_attr_read_string(ctx, file, CKPT_CHECKSUM_ATTR, &stored)) {
-      H5Eclear2(H5E_DEFAULT);
-      PDK_CHECK_GOTO(0, ctx, PDK_ERR_IO,
-                     "checkpoint '%s' is damaged: its checksum is missing; restart from another "
-                     "checkpoint or run the scene again",
-                     path);
-    }
-    PDK_CHECK_GOTO(file_checksum(file, sum, what) == 0, ctx, PDK_ERR_IO,
-                   "checkpoint '%s' is damaged: %s; restart from another checkpoint or run the "
-                   "scene again",
-                   path, what);
-    PDK_CHECK_GOTO(!strcmp(stored, sum), ctx, PDK_ERR_IO,
-                   "checkpoint '%s' is damaged: its data does not match its checksum (stored "
-                   "%.40s, computed %s); restart from another checkpoint or run the scene again",
-                   path, stored, sum);
-  }
+  PDK_CHECK_GOTO(sealed, ctx, PDK_ERR_IO,
+                 "checkpoint '%s' is damaged: its checksum header (the first %d bytes) is "
+                 "missing; restart from another checkpoint or run the scene again",
+                 path, CKPT_USERBLOCK);
   *out = file;
   file = -1;
 cleanup:
   free(kind);
-  free(stored);
   if (file >= 0) H5Fclose(file);
   return err;
 }

@@ -553,6 +553,10 @@ static vfd_file *vfd_of(hid_t file) {
 }
 
 int pdk_h5_file_create(pdk_ctx *ctx, const char *path, hid_t *file) {
+  return pdk_h5_file_create_with(ctx, path, H5P_DEFAULT, file);
+}
+
+int pdk_h5_file_create_with(pdk_ctx *ctx, const char *path, hid_t fcpl, hid_t *file) {
   int err = PDK_SUCCESS;
   hid_t fapl = -1, driver;
   herr_t st;
@@ -561,7 +565,7 @@ int pdk_h5_file_create(pdk_ctx *ctx, const char *path, hid_t *file) {
   PDK_H5_CALL_GOTO(ctx, fapl, H5Pcreate(H5P_FILE_ACCESS));
   PDK_H5_CALL_GOTO(ctx, st, H5Pset_driver(fapl, driver, NULL));
   vfd_open_errno = 0;
-  *file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  *file = H5Fcreate(path, H5F_ACC_TRUNC, fcpl, fapl);
   if (*file < 0 && vfd_open_errno) {
     H5Eclear2(H5E_DEFAULT);
     PDK_CHECK_GOTO(0, ctx, PDK_ERR_IO, "cannot create '%s': %s", path, strerror(vfd_open_errno));

@@ -72,6 +72,8 @@ int pdk_file_exists(const char *path);
  * a PDK_ERR_IO naming it and the reason ("Read-only file system", "Permission denied"). Close it
  * with pdk_h5_file_close (not H5Fclose). */
 int pdk_h5_file_create(pdk_ctx *ctx, const char *path, hid_t *file);
+/* The same with a file-creation property list (for example a user block). */
+int pdk_h5_file_create_with(pdk_ctx *ctx, const char *path, hid_t fcpl, hid_t *file);
 /* PDK_ERR_IO "cannot write '<path>': <reason>" when a write to `file` has failed, else success. */
 int pdk_h5_file_check(pdk_ctx *ctx, hid_t file, const char *path);
 /* The errno of the first failed write to `file`, 0 when none failed (or another driver). */

@@ -141,11 +141,12 @@ int pdk_output_close(pdk_output **o, int success);
  * <path>.part, synced, then renamed). Restoring into a simulation built from the same scene
  * continues bitwise as if never interrupted.
  *
- * Layout: / attributes kind = "pdk checkpoint", format (int, 2), pdk_version, build_flags,
+ * Layout: a 512-byte HDF5 user block holding the text "pdk checkpoint\nchecksum fnv1a64x:<16 hex
+ * digits>\nsize <bytes>\n" and zeros: a 64-bit hash of every byte of the file after the user
+ * block, and the file's size (src/checkpoint.c), written once the HDF5 file is closed;
+ * / attributes kind = "pdk checkpoint", format (int, 2), pdk_version, build_flags,
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
- * dataset /scene), checksum ("fnv1a64x:" and 16 hex digits: a 64-bit hash of every other
- * attribute and dataset of the file, their names, types and shapes; src/checkpoint.c);
- * /solver attributes time, step, dt, dt_created (the step the run was created with), strain,
+ * dataset /scene); /solver attributes time, step, dt, dt_created (the step the run was created with), strain,
  * external_work, and the dt_update state dt_stable, dt_step0, dt_time0, est_step, est_broken,
  * num_estimates, num_dt_changes;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
