@@ -770,9 +770,9 @@ int pdk_model_corr_jc_failure_error(pdk_model *m, pdk_index i, pdk_index count, 
       m->ctx, PDK_ERR_NUMERIC, "correspondence force pass",
       "the Johnson-Cook update failed for particle %d (id %lld, now at %s): %s; %lld particle(s) "
       "in all in this pass. The stress is undefined there, so the run stops instead of carrying "
-      "zero stress: the time step (%g) may be too large for the loading, or a load, velocity or "
-      "displacement too large for the body; lower the time step or check the boundary "
-      "conditions' values",
+      "zero stress: the step (the model's time step %g; a static solve's load step) may be too "
+      "large for the loading, or a load, velocity or displacement too large for the body; take "
+      "smaller steps or check the boundary conditions' values",
       (int)i, (long long)pdk_particles_id(m->p)[i], where, why, (long long)count, m->dt);
 }
 

@@ -61,7 +61,7 @@ static void model_api(pdk_ctx *ctx, pdk_connectivity conn) {
       const char *msg = pdk_ctx_error_message(ctx);
       snprintf(needle, sizeof needle, "%d particle(s) in all", (int)n);
       const char *why = conn == PDK_CONNECTIVITY_UL ? "turned inside out" : "det F = -1";
-      T_ASSERT(strstr(msg, why) && strstr(msg, needle) && strstr(msg, "time step"),
+      T_ASSERT(strstr(msg, why) && strstr(msg, needle) && strstr(msg, "take smaller steps"),
                "conn %d mode %d: %s", (int)conn, mode, msg);
     }
     pdk_model_destroy(&m);

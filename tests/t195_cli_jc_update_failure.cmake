@@ -16,7 +16,7 @@ if(NOT rc EQUAL 1)
   message(FATAL_ERROR "exit ${rc}, expected 1\n${out}${err}")
 endif()
 if(NOT err MATCHES "pdk: step 1 \\(time [0-9.e+-]+\\): the Johnson-Cook update failed for particle [0-9]+ \\(id [0-9]+, now at"
-   OR NOT err MATCHES "lower the time step or check the boundary conditions' values")
+   OR NOT err MATCHES "take smaller steps or check the boundary conditions' values")
   message(FATAL_ERROR "no message naming the step, the particle and the remedy:\n${err}")
 endif()
 if(err MATCHES "energy:" OR err MATCHES "off by" OR err MATCHES "done:")
