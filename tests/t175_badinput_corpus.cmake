@@ -7,16 +7,16 @@
 # case's change. Outside sanitizer builds each case runs under a 2 GiB address-space limit, so a
 # runaway allocation ends as a failed case instead of exhausting the machine.
 #
-# Cases of the rows in PDK_BADINPUT_PENDING_ROWS (known failures, rows of the issue being fixed)
+# Cases of the rows in PDK_BADINPUT_PENDING_ROWS (known failures, rows still being fixed)
 # still run and are reported, but do not fail the test; a pending row none of whose cases fails
 # any more fails it, so the list only shrinks. Run it alone and see each case:
 #   ctest --test-dir build -R t175 --output-on-failure -V
 # labels: unit
 cmake_minimum_required(VERSION 3.25)
 
-# Rows of the issue whose cases still fail: remove a row once its fix is merged (the test then
+# Rows whose cases still fail (tests/badinput/README.md): remove a row once its fix is merged (the test then
 # fails if the row's cases do not all pass, and says so if they do while the row is listed).
-set(PDK_BADINPUT_PENDING_ROWS 1 2 3 9 10 12 13 14 15 16 18)
+set(PDK_BADINPUT_PENDING_ROWS)
 
 set(corpus ${PDK_SOURCE_DIR}/tests/badinput)
 file(REMOVE_RECURSE ${PDK_TEST_DIR})
