@@ -842,6 +842,11 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
     PDK_CALL_GOTO(compose_document(ctx, &vp, &vsrc, &vdoc, &have_vdoc, &found));
     if (found) PDK_CALL_GOTO(compose_end(ctx, &vp, &vsrc));
   }
+  /* An empty scene gets its root mapping first: node 1 is the root, so the value copied next
+   * must not take that place (it would become the mapping the path walks, and contain itself). */
+  if (!yaml_document_get_root_node(d))
+    PDK_CHECK_GOTO(yaml_document_add_mapping(d, NULL, YAML_BLOCK_MAPPING_STYLE) == 1, ctx,
+                   PDK_ERR_MEMORY, "out of memory applying --set %s", ov);
   int vnode;
   if (yaml_document_get_root_node(&vdoc)) {
     int *memo = calloc((size_t)node_count(&vdoc) + 1, sizeof *memo);
@@ -854,13 +859,7 @@ static int override_apply(pdk_ctx *ctx, const char *file, doc_state *ds, int k, 
   PDK_CHECK_GOTO(vnode, ctx, PDK_ERR_MEMORY, "out of memory applying --set %s", ov);
 
   /* Walk to the parent of the last segment, creating mappings for missing keys. */
-  int cur;
-  if (!yaml_document_get_root_node(d)) {
-    cur = yaml_document_add_mapping(d, NULL, YAML_BLOCK_MAPPING_STYLE);
-    PDK_CHECK_GOTO(cur == 1, ctx, PDK_ERR_MEMORY, "out of memory applying --set %s", ov);
-  } else {
-    cur = 1;
-  }
+  int cur = 1;
   for (int i = 0; i < num_seg; ++i) {
     const int last = i == num_seg - 1;
     yaml_node_t *n = yaml_document_get_node(d, cur);

@@ -204,6 +204,10 @@ static const error_case cases[] = {
      PDK_ERR_ARG, "description", "recursive alias"},
     {"recursive alias in an override", NULL, NULL, "description=&a [*a]", AT_LOAD, PDK_ERR_ARG,
      "description", "recursive alias"},
+    /* an empty scene (a comment only) gets its root mapping before an override's value is
+     * copied in: the value once took the root's place and the key walk made it contain itself */
+    {"mapping override into an empty scene", NULL, "# nothing yet\n", "solver.x=a: {b: 1}",
+     AT_LOAD, PDK_ERR_ARG, "solver.x", "unknown key 'x'"},
     {"undefined alias", "solver:\n", "description: *nowhere #<\nsolver:\n", NULL, AT_LOAD,
      PDK_ERR_ARG, "description", "no anchor"},
     {"second document in an override", NULL, NULL, "description=a\n---\nb", AT_LOAD, PDK_ERR_ARG,
