@@ -68,6 +68,7 @@ struct pdk_output {
   char *name;
   char *h5_ref; /* "<name>.h5", XML-escaped: how the .xmf names the data file */
   char *final[OUT_NUM_FILES], *part[OUT_NUM_FILES];
+  char *adopt_part, *adopt_final; /* pdk_output_adopt: a caller's file committed with the set */
   hid_t file;
   hid_t history; /* /history group */
   FILE *xmf, *csv;
@@ -1530,6 +1531,9 @@ static void output_free(pdk_output *o) {
     free(o->part[f]);
     free(o->final[f]);
   }
+  if (o->adopt_part) pdk_file_remove(o->adopt_part);
+  free(o->adopt_part);
+  free(o->adopt_final);
   free(o->set_name);
   free(o->set_field);
   free(o->last_field);
@@ -1920,16 +1924,42 @@ static int finish(pdk_output *o) {
   }
   for (int f = 0; f < OUT_NUM_FILES; ++f)
     if (made[f]) PDK_CALL(pdk_file_sync(ctx, o->part[f]));
+  if (o->adopt_part) PDK_CALL(pdk_file_sync(ctx, o->adopt_part));
 
   /* the previous run's files, the .xmf first: from here on its set is incomplete */
   PDK_CALL(pdk_file_discard(ctx, o->final[OUT_XMF]));
   for (int f = 0; f < OUT_NUM_FILES; ++f)
     if (f != OUT_XMF) PDK_CALL(pdk_file_discard(ctx, o->final[f]));
+  if (o->adopt_final) PDK_CALL(pdk_file_discard(ctx, o->adopt_final));
   /* the new files, the .xmf last */
   for (int f = 0; f < OUT_NUM_FILES; ++f)
     if (f != OUT_XMF && made[f]) PDK_CALL(pdk_file_commit(ctx, o->part[f], o->final[f]));
+  if (o->adopt_part) {
+    PDK_CALL(pdk_file_commit(ctx, o->adopt_part, o->adopt_final));
+    free(o->adopt_part);
+    o->adopt_part = NULL;
+  }
   PDK_CALL(pdk_file_commit(ctx, o->part[OUT_XMF], o->final[OUT_XMF]));
   return plot_err;
+}
+
+int pdk_output_adopt(pdk_output *o, const char *part, const char *final) {
+  PDK_CHECK_ARG(o, NULL);
+  pdk_ctx *ctx = o->ctx;
+  PDK_CHECK(part && part[0] && final && final[0] && strcmp(part, final), ctx, PDK_ERR_ARG,
+            "pdk_output_adopt needs a file's temporary name and another, final name");
+  PDK_CHECK(!o->adopt_part, ctx, PDK_ERR_ARG,
+            "the output already adopted '%s': it takes one file of the caller's", o->adopt_part);
+  PDK_CHECK(pdk_file_exists(part), ctx, PDK_ERR_IO, "cannot adopt '%s': it does not exist", part);
+  o->adopt_part = strdup(part);
+  o->adopt_final = strdup(final);
+  if (!o->adopt_part || !o->adopt_final) {
+    free(o->adopt_part);
+    free(o->adopt_final);
+    o->adopt_part = o->adopt_final = NULL;
+    return pdk_ctx_error_set(ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  }
+  return PDK_SUCCESS;
 }
 
 int pdk_output_close(pdk_output **op, int success) {

@@ -5,7 +5,8 @@
  * every k, in a child process. After each kill the final names (not .part) in the folder are
  * all the first run's files (byte for byte) or all the second's, never both; a <name>.xmf
  * present means its whole set is present. A run that is not killed leaves exactly the second
- * run's set and no .part file.
+ * run's set and no .part file. Each run also hands the output a file of its own
+ * (pdk_output_adopt, as pdk run does its final checkpoint), which must follow the same rule.
  * Test files go to ./t181_out.
  * labels: unit */
 #include <signal.h>
@@ -19,8 +20,11 @@
 #define NAME "run"
 #define MAX_FILES 16
 
-static const char *const suffix[] = {".h5",          ".xmf",        "_history.csv", "_history.gp",
-                                     "_history.png", "_fields.csv", "_fields.gp",   "_fields.png"};
+/* the last is the file each run hands to the output (pdk_output_adopt), as pdk run does its
+ * final checkpoint */
+static const char *const suffix[] = {".h5",          ".xmf",        "_history.csv",
+                                     "_history.gp",  "_history.png", "_fields.csv",
+                                     "_fields.gp",   "_fields.png",  "_checkpoint.h5"};
 #define NUM_SUFFIX ((int)(sizeof suffix / sizeof suffix[0]))
 
 typedef struct blob {
@@ -60,6 +64,11 @@ static int one_run(pdk_ctx *ctx, pdk_particles *p, int second) {
   T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
   T_ASSERT(pdk_output_will_plot(o), "gnuplot was found at open");
   T_OK(ctx, ou_write(o, p, second ? 8 : 6, second ? 200.0 : 100.0));
+  const char *part = DIR_OUT "/" NAME "_checkpoint.h5.part";
+  FILE *f = fopen(part, "wb");
+  T_ASSERT(f && fprintf(f, "checkpoint of run %d\n", second + 1) > 0 && fclose(f) == 0,
+           "cannot write %s", part);
+  T_OK(ctx, pdk_output_adopt(o, part, DIR_OUT "/" NAME "_checkpoint.h5"));
   return pdk_output_close(&o, 1);
 }
 

@@ -219,6 +219,9 @@ static void output_api(pdk_ctx *ctx, pdk_particles *p, pdk_explicit *e) {
   T_OK(ctx, pdk_output_open(ctx, &oo, p, &o));
   ARG_ERR(pdk_output_write_fields(o, NULL, 0, 0.0, fields, 1));
   NULL_ARG(ctx, pdk_output_write_history(o, NULL));
+  NULL_ARG(NOCTX, pdk_output_adopt(NULL, "a.part", "a"));
+  ARG_ERR(pdk_output_adopt(o, NULL, "a"));
+  ARG_ERR(pdk_output_adopt(o, "a.part", NULL));
   pdk_output_close(&o, 0);
   const char *ck = "t194_api_null.out/ck.h5";
   NULL_ARG(NOCTX, pdk_checkpoint_write(NULL, ck, e, NULL));

@@ -135,6 +135,12 @@ long pdk_output_last_field_step(const pdk_output *o);
  * fails, the data files are still completed and renamed, that PNG is not left, and the error
  * (PDK_ERR_EXTERNAL) names the script to rerun. */
 int pdk_output_close(pdk_output **o, int success);
+/* Makes a file the caller completed under the temporary name part one of the output's set: the
+ * closing phase syncs it, removes the previous file at final with the previous run's files and
+ * renames part to final with the new ones (before the .xmf), so a kill leaves it beside files of
+ * its own run only. Closing without success removes part. One such file per output; pdk run
+ * gives it the checkpoint written at the end of a run or at Ctrl-C. */
+int pdk_output_adopt(pdk_output *o, const char *part, const char *final);
 
 /* Checkpoint: every registered particle field, the model's bond state and counters, and the
  * solver's scalars (time, step, dt, strain energy, external work), in one HDF5 file (written as

@@ -18,7 +18,7 @@
 #define PATH_MAX 4096
 #endif
 /* The longest file name pdk puts into the output folder, after "<dir>/<name>". */
-#define LONGEST_SUFFIX "_checkpoint.h5.part"
+#define LONGEST_SUFFIX "_checkpoint.h5.part.part"
 
 static volatile sig_atomic_t interrupted = 0;
 static void on_sigint(int sig) {
@@ -451,6 +451,25 @@ static void shell_quote(FILE *f, const char *s) {
   fputc('\'', f);
 }
 
+/* The checkpoint at the end of a run or at Ctrl-C: written complete under a temporary name
+ * (<ckpt>.part) and handed to the output, whose closing phase renames it with the run's other
+ * files, so a kill in that phase never leaves this run's checkpoint beside an earlier run's
+ * output (the periodic checkpoints of solver.checkpoint_interval are committed at once: a
+ * killed run must leave one; a restart checks that the output it continues reaches it). */
+static int final_checkpoint(pdk_ctx *ctx, pdk_output *out, const char *ckpt, pdk_explicit *e,
+                            const pdk_scene *scene) {
+  char part[PATH_MAX];
+  int len = snprintf(part, sizeof part, "%s.part", ckpt); /* fits: checked with the names */
+  if (len < 0 || (size_t)len >= sizeof part) {
+    fprintf(stderr, "pdk: the checkpoint's temporary name '%s.part' is too long\n", ckpt);
+    return PDK_ERR_ARG;
+  }
+  int err = pdk_checkpoint_write(ctx, part, e, pdk_scene_text(scene));
+  if (!err) err = pdk_output_adopt(out, part, ckpt);
+  if (err) remove(part);
+  return err;
+}
+
 /* The command that continues this run from its checkpoint: the same program, scene, output
  * folder, overrides, threads and -q, then --restart, each argument shell-quoted, so it can be
  * pasted. */
@@ -518,7 +537,7 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
                      : snprintf(dir, sizeof dir, "out/%s", name);
   if (len > 0 && (size_t)len < sizeof dir)
     len = snprintf(ckpt, sizeof ckpt, "%s/%s%s", dir, name, "_checkpoint.h5");
-  if (len < 0 || (size_t)len + strlen(".part") >= sizeof ckpt) {
+  if (len < 0 || (size_t)len + strlen(".part.part") >= sizeof ckpt) {
     fprintf(stderr,
             "pdk: the output files '%s' would pass this system's limit of %d bytes for a path "
             "(PATH_MAX): give a shorter folder with -o%s\n",
@@ -691,7 +710,7 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
     goto done;
   }
   if (interrupted) {
-    if (pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene))) {
+    if (final_checkpoint(ctx, out, ckpt, e, scene)) {
       fprintf(stderr, "pdk: interrupted, and the checkpoint failed: %s\n",
               pdk_ctx_error_message(ctx));
       pdk_output_close(&out, 0);
@@ -706,7 +725,7 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
     rc = 130;
     goto done;
   }
-  if (pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene)) || pdk_output_close(&out, 1)) {
+  if (final_checkpoint(ctx, out, ckpt, e, scene) || pdk_output_close(&out, 1)) {
     fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
     pdk_output_close(&out, 0);
     rc = 1;
