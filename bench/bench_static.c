@@ -2,8 +2,8 @@
  * Newton tangent and factor.
  *
  * Problems (both with an analytical solution, printed as a sanity column):
- *   2-D  the V-Q uniaxial block (seeds/notes/002 section 4.1): NP x NP node grid on a 10 mm square,
- *        bottom clamped, sides on rollers, top traction as a body force; correspondence, cubic
+ *   2-D  the V-Q uniaxial block (Queiruga & Moridis 2017 section 4.1): NP x NP node grid on a
+ *        10 mm square, bottom clamped, sides on rollers, top traction as a body force; correspondence, cubic
  *        influence, RF 1.5, small-strain law; E = 1000, nu = 0, T = 1 (strain 1e-3).
  *   3-D  the same in a cube: bottom face clamped, the four sides on rollers (normal component),
  *        top traction; correspondence with Silling stabilization, RF 1.5 (18 neighbours).

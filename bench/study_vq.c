@@ -1,5 +1,6 @@
 /* V-Q study: reproduces Queiruga & Moridis 2017 Tables 3, 4, 5, 7, 8 and the spurious shear mode
- * (VALIDATION.md V-Q3-V-Q8) with pdk's Newton solver. Problems and metrics: tests/vq_util.h.
+ * (V-Q3-V-Q8, docs/validation/targets.md) with pdk's Newton solver. Problems and metrics:
+ * tests/vq_util.h.
  *
  *   study_vq one <law> <problem> <omega> <rf> <np>   one solve (law F|silling|oterkus|oterkus_cal,
  *                                                     problem uniaxial|isotropic|shear|crack,

@@ -1,5 +1,5 @@
 /* Dilatation laws in plane strain with any influence function (Queiruga & Moridis 2017, sections
- * 2.2 and 2.3; seeds/notes/002 section 2): Silling's LPS law (kind lps with lps_use_influence = 1)
+ * 2.2 and 2.3): Silling's LPS law (kind lps with lps_use_influence = 1)
  * and Oterkus' law (kind oterkus). 2-D only, no bond breaking (bonds cut by pre-cracks do not exist
  * and so carry weight 0 in every sum, as the paper's alpha = 0).
  *

@@ -11,7 +11,7 @@
  * e] W = K theta^2/2 + (15 G / 2m) sum omega (e - theta r0/3)^2 beta V plane strain:    lambda = K
  * - 2G/3 (the 3-D Lame constant, plane strain keeps it) theta = 2/m sum omega r0 e beta V,  t =
  * (omega/m) [2 (lambda - mu) theta r0 + 8 mu e] W = (lambda + mu) theta^2/2 + (4 mu / m) sum omega
- * (e - theta r0/2)^2 beta V (Queiruga & Moridis 2017 section 2.2; seeds/notes/002 checks isotropic,
+ * (e - theta r0/2)^2 beta V (Queiruga & Moridis 2017 section 2.2; checked for isotropic,
  * uniaxial and shear strain against sigma = lambda tr(eps) I + 2 mu eps.) For an isotropic stretch
  * s, theta = 3s (2s) exactly for any family and W = 9/2 K s^2 (2 (lambda + mu) s^2).
  *

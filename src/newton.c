@@ -915,7 +915,7 @@ static int blame_singular(pdk_static *s, long dof, double ratio, int keep_prefix
     snprintf(cause, sizeof cause,
              "zero-energy modes: the near-null displacement (largest at particle id %lld) "
              "oscillates between neighbours while its discrete deformation gradient vanishes "
-             "(non-affine fraction %.2f; VALIDATION.md V-Z). %s",
+             "(non-affine fraction %.2f; V-Z in docs/validation/targets.md). %s",
              peak_id, rho,
              corr_unstab ? "Correspondence without stabilization has them; set the model's "
                            "stabilization to silling or hourglass, or solve with ADR"

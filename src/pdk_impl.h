@@ -1,6 +1,6 @@
 /* Private to libpdk: error macros, aligned allocation, the context's insides.
  *
- * Error convention (STYLE.md): a fallible function returns int (0 = success). PDK_CHECK records a
+ * Error convention: a fallible function returns int (0 = success). PDK_CHECK records a
  * message in the context and returns; PDK_CHECK_GOTO and PDK_CALL_GOTO set `err` and jump to the
  * function's single `cleanup:` label, for functions that own memory. Inside OpenMP regions record
  * failure in a private flag, reduce it, and check after the region.

@@ -54,7 +54,7 @@ int main(void) {
 
   /* The exact-count formula reproduces the notes' free 100^3 average. */
   T_NEAR((double)exact_block_bonds(3, 100, 3.015) / 1e6, 117.844248, 0, 1e-9,
-         "free 100^3 cube at m = 3.015 (VALIDATION.md: 117.84)");
+         "free 100^3 cube at m = 3.015 (docs/validation/targets.md: 117.84)");
 
   /* Bulk family sizes: every particle at least ceil(m) spacings from the faces. */
   const double spacings[2] = {0.1, 1e-3};

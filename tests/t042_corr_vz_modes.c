@@ -15,8 +15,8 @@
  * symmetric cases (no stabilization, Silling), singular values (dgesvd) for the hourglass form,
  * whose linearisation is not symmetric.
  *
- * Expected count (VALIDATION.md V-Z): d times the number of grid wave vectors q = 2 pi k / n with
- * g(q) = sum_k omega_k sin(q . xi_k) xi_k = 0 (the discrete gradient of e^{i q.X} vanishes);
+ * Expected count (V-Z, docs/validation/targets.md): d times the number of grid wave vectors
+ * q = 2 pi k / n with g(q) = sum_k omega_k sin(q . xi_k) xi_k = 0 (the discrete gradient of e^{i q.X} vanishes);
  * computed here and checked against the table values. A stabilized model keeps only the d
  * translations.
  *

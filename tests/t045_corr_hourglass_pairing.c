@@ -1,5 +1,5 @@
 /* Zero-energy modes in practice: the random-particle patch of Ganzenmuller, Hiermaier and May
- * (seeds/000, section 5.2.1; notes 000_ganzenmueller_sph.md 4.1), released from a 10% biaxial
+ * (Ganzenmueller, Hiermaier & May, section 5.2.1), released from a 10% biaxial
  * stretch. Classical (unstabilized) correspondence develops particle disorder and hourglass-like
  * pairing; each stabilization (Silling, hourglass) suppresses it.
  *

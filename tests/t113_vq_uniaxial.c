@@ -1,4 +1,4 @@
-/* V-Q3 / V-Q4 smoke test (Queiruga & Moridis 2017, seeds/notes/002 section 4.1): uniaxial
+/* V-Q3 / V-Q4 smoke test (Queiruga & Moridis 2017 section 4.1): uniaxial
  * compression of a 10 mm square, correspondence (F-based) law, cubic influence, RF = 1.5, solved
  * by Newton at two resolutions; the top-displacement error falls with order about 1.
  * labels: physics

@@ -23,7 +23,7 @@
  *    particles only, so the affine field is in equilibrium there): 1e-8 relative. The explicit
  *    solver refuses scale_field.
  * 8. V-Q8 at NP = 50: Silling (cubic w, RF 3.5) whole-domain error 0.353 against 0.379 from the
- *    authors' code at the same NP (seeds/notes/002 section 4.2, supplementary; not a published
+ *    authors' code at the same NP (section 4.2 of the paper's supplementary code; not a published
  *    target, but the same discretization): tolerance 15% (the authors prescribed the same rows and
  *    pressure, but details such as the tip bonds may differ); the F-law at RF 1.5, NP 100: the
  *    linear-w smoothing lowers the error near the crack (Table 7: by 3x at NP 200; 0.32 -> 0.19

@@ -1,4 +1,4 @@
-/* V-Q5 (Queiruga & Moridis 2017, Table 5, seeds/notes/002 sections 2.2, 2.3, 5): the two
+/* V-Q5 (Queiruga & Moridis 2017, Table 5, sections 2.2, 2.3, 5): the two
  * dilatation laws at fixed RF converge only on "their" constant-strain problem, and converge to a
  * wrong value on the others, by the amount the lattice moments predict.
  * labels: physics

@@ -1,4 +1,5 @@
-/* Ductile fracture of the plate with two holes (VALIDATION.md V-PH), coarse: the shipped scene
+/* Ductile fracture of the plate with two holes (V-PH,
+ * docs/validation/targets.md), coarse: the shipped scene
  * scenes/plate_two_holes.yaml (0.5 mm) at 1 mm spacing, run in TL with bond breaking and in
  * semi-TL, to 300 us after separation. Checked, in both modes (regions and definitions in
  * plate_two_holes_util.h):

@@ -1,4 +1,5 @@
-/* Resolution study of the plate with two holes (VALIDATION.md V-PH): the shipped scene
+/* Resolution study of the plate with two holes (V-PH,
+ * docs/validation/targets.md): the shipped scene
  * scenes/plate_two_holes.yaml at spacings 1, 0.5 (the shipped default) and 0.25 mm (the spacing
  * of plate_two_holes_fine.yaml), TL, each run to 300 us after the plate separates.
  * Recorded per spacing (plate_two_holes_util.h): peak bottom force, the time and top

@@ -1,4 +1,5 @@
-/* Elastic plate with a hole (VALIDATION.md V-PH, first item): stresses at the hole's edge against
+/* Elastic plate with a hole (V-PH,
+ * docs/validation/targets.md, first item): stresses at the hole's edge against
  * Kirsch, and the free-surface condition there, for the correspondence model as the ductile
  * scenes use it (constant influence, Silling 0.1, horizon 3.015 h, square lattice).
  *

@@ -1,4 +1,4 @@
-/* V-Q problems of Queiruga & Moridis 2017 (seeds/notes/002, VALIDATION.md V-Q), shared by the
+/* V-Q problems of Queiruga & Moridis 2017 (docs/validation/targets.md V-Q), shared by the
  * tests t113, t116, t117, t118 and the study program bench/study_vq.c. Units N-mm-GPa (forces in kN).
  *
  * Constant-strain blocks (section 5, Table 1, Fig. 5): H = W = 10 mm, E = 1000 GPa, nu = 0, plane

@@ -15,7 +15,7 @@
  *            by Newton (or ADR).
  *            Error: relative L2 norm of u - u* over the square's particles.
  *   vq_uniaxial, vq_isotropic, vq_shear
- *            the V-Q constant-strain tests (VALIDATION.md, seeds/notes/002 section 4.1): 10 mm
+ *            the V-Q constant-strain tests (Queiruga & Moridis 2017 section 4.1): 10 mm
  *            square, node grid NP x NP, E = 1000, nu = 0, T = 1e-3; uniaxial (bottom clamped, side
  *            rollers, top traction), isotropic (bottom and left rollers, top and right traction),
  *            shear (bottom clamped, side rollers u_y = 0, top tangential traction). Error: the

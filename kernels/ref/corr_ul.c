@@ -1,5 +1,5 @@
 /* Reference correspondence kernels, updated Lagrangian (UL) connectivity (Bergel & Li, Comput.
- * Mech. 2016, seeds/004; notes in seeds/notes/004_bergel_li_tl_ul.md), 2-D plane strain and 3-D.
+ * Mech. 2016; docs/validation/targets.md V-BL), 2-D plane strain and 3-D.
  *
  * Configurations. 0: the initial one (X, V0: the store's "X", "volume"); r: the configuration of
  * the last rebuild (X_r, V_r, with F_ref the deformation gradient from 0 to r and J_ref = det
