@@ -297,7 +297,7 @@ static int corr_setup(pdk_model *m) {
   c->pass1 = ctx->kernels.corr_pass1;
   c->pass2 = ctx->kernels.corr_pass2;
   c->num_blocks = (n + PDK_CORR_BLOCK - 1) / PDK_CORR_BLOCK;
-  /* streamed once per sweep, 8 B per bond (4 KiB pages: bench/README.md, "Transparent huge
+  /* streamed once per sweep, 8 B per bond (4 KiB pages: bench/log.md, "Transparent huge
    * pages, dropped") */
   c->bond_omega = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
   c->W = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
