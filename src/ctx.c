@@ -102,6 +102,14 @@ static int fail_early(char *buf, size_t len, const char *fmt, const char *arg) {
   return PDK_ERR_ARG;
 }
 
+/* Binds OpenMP threads 0..num_threads-1 to cores per the policy; remembers how many were. */
+static void bind_threads(pdk_ctx *ctx) {
+  if (ctx->bind != PDK_BIND_CORE) return;
+  if (ctx->num_threads > ctx->num_bound) ctx->num_bound = ctx->num_threads;
+#pragma omp parallel default(none) shared(ctx) num_threads(ctx->num_threads)
+  pdk_ctx_bind_thread(ctx, omp_get_thread_num());
+}
+
 int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, size_t err_len) {
   pdk_ctx_opts opts = opts_in ? *opts_in : pdk_ctx_opts_default();
   if (!out) return fail_early(err_buf, err_len, "%s", "pdk_ctx_create: argument 'out' is NULL");
@@ -118,6 +126,15 @@ int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, si
   if (env_threads && opts.num_threads == 0) {
     if (parse_positive_int(env_threads, &opts.num_threads))
       return fail_early(err_buf, err_len, "PDK_NUM_THREADS='%s' is not a thread count; use an integer from 1 to 4096", env_threads);
+  }
+  /* OpenMP's own variable, after pdk's: its first entry (a list gives nested levels) */
+  const char *env_omp = getenv("OMP_NUM_THREADS");
+  if (env_omp && env_omp[0] && opts.num_threads == 0) {
+    char first[32] = {0};
+    const size_t len = strcspn(env_omp, ",");
+    if (len < sizeof first) memcpy(first, env_omp, len);
+    if (len >= sizeof first || parse_positive_int(first, &opts.num_threads))
+      return fail_early(err_buf, err_len, "OMP_NUM_THREADS='%s' is not a thread count; use an integer from 1 to 4096 (or unset it)", env_omp);
   }
   if (opts.num_threads < 0)
     return fail_early(err_buf, err_len, "%s", "num_threads must be >= 0 (0 picks one thread per core)");
@@ -154,11 +171,16 @@ int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, si
                       "or 'simd' (best for the CPU), or 'avx2', 'avx512' where the CPU has them",
                       opts.kernels);
   }
-  pdk_h5_init();
+  pdk_h5_quiet_acquire();
 
   if (ctx->bind == PDK_BIND_CORE) {
-#pragma omp parallel default(none) shared(ctx) num_threads(ctx->num_threads)
-    pdk_ctx_bind_thread(ctx, omp_get_thread_num());
+    /* the caller's thread is OpenMP thread 0 and gets pinned: keep its binding to give back */
+    hwloc_bitmap_t set = hwloc_bitmap_alloc();
+    if (set && hwloc_get_cpubind(topo, set, HWLOC_CPUBIND_THREAD) == 0)
+      ctx->caller_cpuset = set;
+    else
+      hwloc_bitmap_free(set);
+    bind_threads(ctx);
   }
   *out = ctx;
   return PDK_SUCCESS;
@@ -166,8 +188,21 @@ int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, si
 
 void pdk_ctx_destroy(pdk_ctx **ctx) {
   if (!ctx || !*ctx) return;
-  if ((*ctx)->topology) hwloc_topology_destroy((hwloc_topology_t)(*ctx)->topology);
-  free(*ctx);
+  pdk_ctx *c = *ctx;
+  hwloc_topology_t topo = c->topology;
+  if (c->caller_cpuset) {
+    /* the threads pdk pinned (the caller's and the OpenMP pool's) get the caller's binding back,
+     * the one they started with */
+    hwloc_const_bitmap_t set = c->caller_cpuset;
+    if (c->num_bound > 0) {
+#pragma omp parallel default(none) shared(topo, set) num_threads(c->num_bound)
+      hwloc_set_cpubind(topo, set, HWLOC_CPUBIND_THREAD);
+    }
+    hwloc_bitmap_free(c->caller_cpuset);
+  }
+  if (topo) hwloc_topology_destroy(topo);
+  pdk_h5_quiet_release();
+  free(c);
   *ctx = NULL;
 }
 
@@ -189,10 +224,7 @@ int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads) {
   PDK_CHECK(num_threads >= 1 && num_threads <= 4096, ctx, PDK_ERR_ARG,
             "thread count %d is out of range; use 1 to 4096", num_threads);
   ctx->num_threads = num_threads;
-  if (ctx->bind == PDK_BIND_CORE) {
-#pragma omp parallel default(none) shared(ctx) num_threads(ctx->num_threads)
-    pdk_ctx_bind_thread(ctx, omp_get_thread_num());
-  }
+  bind_threads(ctx);
   return PDK_SUCCESS;
 }
 
@@ -278,7 +310,8 @@ int pdk_ctx_print_info(pdk_ctx *ctx, FILE *out) {
   print_caches(out, topo);
 
   int nt = ctx->num_threads;
-  fprintf(out, "threads: %d (binding policy: %s; set with --threads, PDK_NUM_THREADS, PDK_BIND=core|none)\n",
+  if (ctx->bind == PDK_BIND_CORE && nt > ctx->num_bound) ctx->num_bound = nt;
+  fprintf(out, "threads: %d (binding policy: %s; set with --threads, PDK_NUM_THREADS, OMP_NUM_THREADS, PDK_BIND=core|none)\n",
           nt, ctx->bind == PDK_BIND_CORE ? "one per core" : "none");
   char where[256][128];
   int shown = nt < 256 ? nt : 256;

@@ -2,14 +2,29 @@
 #include "ext.h"
 
 #include <errno.h>
+#include <pthread.h>
 #include <string.h>
 
-void pdk_h5_init(void) {
-  static int done = 0; /* benign race: H5Eset_auto2 is idempotent */
-  if (!done) {
+static pthread_mutex_t h5_quiet_lock = PTHREAD_MUTEX_INITIALIZER;
+static int h5_quiet_count;      /* contexts alive */
+static H5E_auto2_t h5_saved_func; /* the handler before the first context */
+static void *h5_saved_data;
+
+void pdk_h5_quiet_acquire(void) {
+  pthread_mutex_lock(&h5_quiet_lock);
+  if (h5_quiet_count++ == 0) {
+    if (H5Eget_auto2(H5E_DEFAULT, &h5_saved_func, &h5_saved_data) < 0)
+      h5_saved_func = NULL, h5_saved_data = NULL;
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    done = 1;
   }
+  pthread_mutex_unlock(&h5_quiet_lock);
+}
+
+void pdk_h5_quiet_release(void) {
+  pthread_mutex_lock(&h5_quiet_lock);
+  if (h5_quiet_count > 0 && --h5_quiet_count == 0)
+    H5Eset_auto2(H5E_DEFAULT, h5_saved_func, h5_saved_data);
+  pthread_mutex_unlock(&h5_quiet_lock);
 }
 
 int pdk_ext_hwloc_fail(pdk_ctx *ctx, const char *call, const char *where, int err_no) {

@@ -19,8 +19,12 @@
 
 #include "pdk_impl.h"
 
-/* Called once per process before any HDF5 call: turns off HDF5's automatic stack printing. */
-void pdk_h5_init(void);
+/* HDF5's automatic error-stack printing is off while any context exists (pdk reports HDF5
+ * failures itself, with the file's name): the first pdk_h5_quiet_acquire saves the process's
+ * handler and turns printing off, the last pdk_h5_quiet_release puts the saved handler back, so
+ * a host program that uses HDF5 gets its own setting back when it destroys its contexts. */
+void pdk_h5_quiet_acquire(void);
+void pdk_h5_quiet_release(void);
 
 int pdk_ext_hwloc_fail(pdk_ctx *ctx, const char *call, const char *where, int err_no);
 int pdk_ext_h5_fail(pdk_ctx *ctx, const char *call, const char *where);

@@ -92,6 +92,8 @@ struct pdk_ctx {
   unsigned isa;
   pdk_kernel_table kernels;
   void *topology;    /* hwloc_topology_t, owned */
+  void *caller_cpuset; /* hwloc_bitmap_t: the creating thread's binding, restored on destroy */
+  int num_bound;     /* OpenMP threads 0..num_bound-1 were bound to cores (restored on destroy) */
   int num_cores;
   int error_code;
   char error[PDK_ERRMSG_MAX];

@@ -51,7 +51,9 @@ enum {
 };
 
 typedef struct pdk_ctx_opts {
-  int num_threads;     /* 0: one per core (hwloc), capped at the OpenMP maximum; env PDK_NUM_THREADS */
+  int num_threads;     /* 0: from the environment, PDK_NUM_THREADS, else the first entry of
+                          OMP_NUM_THREADS, else one per core (hwloc) capped at the OpenMP
+                          maximum */
   pdk_bind bind;       /* env PDK_BIND=core|none overrides the default, not an explicit option */
   int bind_explicit;   /* 1: `bind` was set by the caller and wins over the environment */
   const char *kernels; /* force a kernel variant family by name ("ref", "simd", or "avx2",
@@ -64,7 +66,11 @@ typedef struct pdk_ctx pdk_ctx;
 pdk_ctx_opts pdk_ctx_opts_default(void);
 
 /* Creates a context. On failure *out is NULL and, if err_buf is not NULL, the reason is written
- * to err_buf (there is no context yet to hold it). */
+ * to err_buf (there is no context yet to hold it). With PDK_BIND_CORE the OpenMP threads pdk uses
+ * are bound to cores, the calling thread (OpenMP's thread 0) included; HDF5's automatic error
+ * printing is off while any context exists (pdk reports HDF5 failures in its own messages).
+ * pdk_ctx_destroy gives both back: the threads it bound return to the calling thread's binding
+ * at creation, and the last context destroyed restores the HDF5 error handler it found. */
 int pdk_ctx_create(const pdk_ctx_opts *opts, pdk_ctx **out, char *err_buf, size_t err_len);
 void pdk_ctx_destroy(pdk_ctx **ctx);
 
