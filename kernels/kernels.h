@@ -4,7 +4,7 @@
 #ifndef PDK_KERNELS_H
 #define PDK_KERNELS_H
 
-#include "pdk/ctx.h"
+#include "kernel_types.h"
 
 /* Kernels whose result must match the reference bit for bit open with PDK_KERNEL_FP_EXACT: it turns
  * off floating-point contraction (a*b + c fused into one FMA), which the compiler would otherwise
@@ -393,16 +393,30 @@ pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
                                                    const pdk_stencil_arrays *a, int64_t r0,
                                                    int64_t r1);
 
+/* ---- Johnson-Cook material point (kernels/ref/jc.c; formulation in its header) -------------- */
+/* The functions of pdk/plasticity.h are these kernels: src/plasticity.c defines each public one as
+ * a call of its kernel here, after checking the arguments (NULL pointers, a non-finite
+ * sigma_m_avg: PDK_ERR_ARG). The kernels take valid pointers.
+ * pdk_jc_update_full_kernel: pdk_jc_update (sigma_m_avg NULL) or pdk_jc_update_avg (sigma_m_avg
+ * the family average; not finite: PDK_ERR_ARG).
+ * pdk_jc_update_kernel: the same update for the model kernels, except that res->sigma is left 0:
+ * they read sigma_vm, W, the energies and sigma_m_eff, not the six Cauchy components. */
+int pdk_jc_update_full_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                              const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                              double P[3][3], pdk_jc_result *res);
+int pdk_jc_update_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                         const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                         double P[3][3], pdk_jc_result *res);
+/* pdk_jc_remap: checks dim and the pointers itself (PDK_ERR_ARG). */
+int pdk_jc_remap_kernel(int dim, const double F_old[3][3], const double F_new[3][3],
+                        pdk_jc_state *s);
+/* pdk_jc_flow_stress, pdk_jc_failure_strain: NaN for p NULL. */
+double pdk_jc_flow_stress_kernel(const pdk_jc_params *p, double eps_p, double rate_star,
+                                 double T_star);
+double pdk_jc_failure_strain_kernel(const pdk_jc_params *p, double eta, double rate_star,
+                                    double T_star);
+
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
-/* The Johnson-Cook update of the model kernels (kernels/ref/jc.c): pdk_jc_update (sigma_m_avg
- * NULL) or pdk_jc_update_avg (pdk/plasticity.h), except that res->sigma is left 0: the kernels
- * read sigma_vm, W, the energies and sigma_m_eff, not the six Cauchy components. */
-struct pdk_jc_params;
-struct pdk_jc_state;
-struct pdk_jc_result;
-int pdk_jc_update_kernel(const struct pdk_jc_params *p, int dim, const double F[3][3], double dt,
-                         const double *sigma_m_avg, const struct pdk_jc_state *in,
-                         struct pdk_jc_state *out, double P[3][3], struct pdk_jc_result *res);
 
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */
@@ -413,15 +427,15 @@ int pdk_jc_update_kernel(const struct pdk_jc_params *p, int dim, const double F[
 
 typedef struct pdk_corr_consts {
   int dim;             /* 2 (plane strain) or 3 */
-  int law;             /* pdk_law */
+  int law;             /* PDK_KERNEL_LAW_* (pdk_law) */
   double lambda, mu;   /* Lame constants [pressure] */
-  int stab;            /* pdk_stabilization */
+  int stab;            /* PDK_KERNEL_STAB_* (pdk_stabilization) */
   double stab_modulus; /* C_s c_d K [pressure]; particle i's coefficient is stab_modulus / m_i */
   double horizon;      /* delta [length] (hourglass form) */
   double span_rtol;    /* PDK_CORR_SPAN_RTOL */
   double s00, alpha;   /* critical stretch and its alpha (bond failure) */
-  /* Johnson-Cook law (law == PDK_LAW_JC) */
-  const struct pdk_jc_params *jc; /* material; NULL for the elastic laws */
+  /* Johnson-Cook law (law == PDK_KERNEL_LAW_JC) */
+  const pdk_jc_params *jc;        /* material; NULL for the elastic laws */
   double dt;                      /* step length passed to the update [time] (> 0) */
   int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
   int break_failed;               /* 1: bonds of failed particles break (both ends) */
@@ -497,7 +511,7 @@ typedef struct pdk_corr_arrays {
   const double *s0;                 /* critical stretch per particle, previous pass; NULL: no
                                        stretch criterion */
   double *s0_next;                  /* critical stretch per particle, next pass */
-  /* Johnson-Cook history (committed state; NULL unless law == PDK_LAW_JC) */
+  /* Johnson-Cook history (committed state; NULL unless law == PDK_KERNEL_LAW_JC) */
   double *cp_inv[6];  /* C_p^-1, Voigt xx yy zz yz xz xy */
   double *eps_p;      /* equivalent plastic strain */
   double *damage;     /* D */
@@ -533,7 +547,7 @@ typedef struct pdk_corr_arrays {
  * weighted volume or without stabilization): the value pass 1 stores for pass 2. */
 static inline double pdk_corr_kst(const struct pdk_corr_consts *k, const pdk_corr_arrays *a,
                                   pdk_index i) {
-  if (k->stab == 0 || a->flag[i] || !(a->m[i] > 0.0)) return 0.0; /* 0: PDK_STAB_NONE */
+  if (k->stab == PDK_KERNEL_STAB_NONE || a->flag[i] || !(a->m[i] > 0.0)) return 0.0;
   return (k->stab_p ? k->stab_p[i] : k->stab_modulus) *
          (a->stab_factor ? a->stab_factor[i] : 1.0) / a->m[i];
 }
@@ -585,9 +599,9 @@ typedef struct pdk_corr_rowf {
  * `stab`, float storage `fl`, optimized variant `opt`. The optimized variants use the rows except
  * with hourglass stabilization. */
 static inline unsigned pdk_corr_pair_layout(int stab, int fl, int opt) {
-  const unsigned k = stab != 0 ? 1u : 0u; /* PDK_STAB_NONE is 0 */
-  if (opt && stab != 2) return 32u;               /* 2: PDK_STAB_HOURGLASS */
-  if (fl) return k | 8u | (stab == 2 ? 16u : 0u);
+  const unsigned k = stab != PDK_KERNEL_STAB_NONE ? 1u : 0u;
+  if (opt && stab != PDK_KERNEL_STAB_HOURGLASS) return 32u;
+  if (fl) return k | 8u | (stab == PDK_KERNEL_STAB_HOURGLASS ? 16u : 0u);
   if (!opt) return 0u;
   return k | 4u;
 }
