@@ -96,10 +96,10 @@ pdk_index pdk_kernel_family_scan3_avx512(pdk_index n_cand, const double *restric
   } while (0)
 
 /* ---- Bond-based PMB and state-based LPS (kernels/ref/pmb.c, kernels/ref/lps.c) ----------------
- * Formulas and contracts at the top of each file. Common arguments: particles [i0, i1); CSR
- * families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current x, y[, z]
- * positions, volume, outputs: [n_pad] each. bond_alive [num_bonds] (NULL: bonds never break) is
- * read, and written only by a committing force pass (s0_next != NULL), which also writes
+ * Formulas and contracts at the top of each file. The arrays (pdk_bond_arrays below): particles
+ * [i0, i1); CSR families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current
+ * x, y[, z] positions, volume, outputs: [n_pad] each. bond_alive [num_bonds] (NULL: bonds never
+ * break) is read, and written only by a committing force pass (s0_next != NULL), which also writes
  * s0_next[i] and returns the number of bonds it broke (the LAMMPS s0 rule). w (NULL: skip) gets
  * the strain energy density W_i [energy/volume]. */
 typedef struct pdk_pmb_consts {
@@ -118,73 +118,6 @@ typedef struct pdk_lps_consts {
   double e_bulk, e_dev; /* W = e_bulk theta^2/2 + e_dev/m sum omega (e - theta r0/d)^2 beta V */
   double s00, alpha;
 } pdk_lps_consts;
-
-pdk_bond_index pdk_kernel_pmb_force3_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict Z, const double *restrict x,
-                                         const double *restrict y, const double *restrict z,
-                                         const double *restrict volume, const pdk_pmb_consts *k,
-                                         uint8_t *restrict bond_alive, const double *restrict s0,
-                                         double *restrict s0_next, double *restrict fx,
-                                         double *restrict fy, double *restrict fz,
-                                         double *restrict w);
-pdk_bond_index pdk_kernel_pmb_force2_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict x, const double *restrict y,
-                                         const double *restrict volume, const pdk_pmb_consts *k,
-                                         uint8_t *restrict bond_alive, const double *restrict s0,
-                                         double *restrict s0_next, double *restrict fx,
-                                         double *restrict fy, double *restrict w);
-
-/* m_i = sum_b r0 beta V_j over every bond (LPS weighted volume with omega = 1/r0). */
-void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict Z, const double *restrict volume,
-                                         const pdk_lps_consts *k, double *restrict m);
-void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict volume, const pdk_lps_consts *k,
-                                         double *restrict m);
-/* theta_i = d inv_m_i sum_b alive_b e beta V_j; inv_m [n_pad] = 1/m (0 for an empty family). */
-void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict Z,
-                                  const double *restrict x, const double *restrict y,
-                                  const double *restrict z, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta);
-void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict x,
-                                  const double *restrict y, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta);
-/* Force pass; theta and inv_m must be complete for every particle (neighbours are read). */
-pdk_bond_index pdk_kernel_lps_force3_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict Z, const double *restrict x, const double *restrict y,
-    const double *restrict z, const double *restrict volume, const pdk_lps_consts *k,
-    const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
-    const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
-    double *restrict fz, double *restrict w);
-pdk_bond_index pdk_kernel_lps_force2_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict x, const double *restrict y, const double *restrict volume,
-    const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
-    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-    double *restrict fx, double *restrict fy, double *restrict w);
 
 /* ---- PMB and LPS through the kernel table -------------------------------------------------------
  * One entry per pass, 2-D and 3-D, with every array in one struct so variants that read other
@@ -229,12 +162,15 @@ typedef pdk_bond_index (*pdk_lps_force_fn)(const pdk_lps_consts *k, const pdk_bo
 
 pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1);
+/* LPS dilation theta_i = d inv_m_i sum_b alive_b e beta V_j into theta_out; inv_m [n_pad] = 1/m
+ * (0 for an empty family). */
 void pdk_kernel_lps_dilation_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
                                  pdk_index i1);
+/* LPS force pass; theta and inv_m must be complete for every particle (neighbours are read). */
 pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1);
-/* Set-up only (not in the table): m_i of pdk_kernel_lps_weighted_volume3_ref from a's arrays,
- * with bond_r0 when it is set. */
+/* Set-up only (not in the table): m_i = sum_b r0 beta V_j over every bond (LPS weighted volume
+ * with omega = 1/r0) from a's arrays, with bond_r0 when it is set. */
 void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1, double *restrict m);
 /* AVX2 + FMA CPUs (PDK_ISA_AVX2): 4 bonds per step. */
