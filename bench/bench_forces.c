@@ -60,12 +60,6 @@
 
 #include "pdk/pdk.h"
 
-/* src/model_impl.h declares the kinds' operation tables weak; a weak reference does not pull an
- * object out of the static archive, so reference the kinds this benchmark uses strongly. */
-extern const struct pdk_model_ops pdk_model_ops_pmb, pdk_model_ops_lps, pdk_model_ops_corr;
-__attribute__((used)) static const void *const link_models[] = {
-    &pdk_model_ops_pmb, &pdk_model_ops_lps, &pdk_model_ops_corr};
-
 #define MAX_LIST 8
 
 static int cmp_double(const void *a, const void *b) {

@@ -4,7 +4,7 @@
 #ifndef PDK_KERNELS_H
 #define PDK_KERNELS_H
 
-#include "pdk/ctx.h"
+#include "kernel_types.h"
 
 /* Kernels whose result must match the reference bit for bit open with PDK_KERNEL_FP_EXACT: it turns
  * off floating-point contraction (a*b + c fused into one FMA), which the compiler would otherwise
@@ -96,10 +96,10 @@ pdk_index pdk_kernel_family_scan3_avx512(pdk_index n_cand, const double *restric
   } while (0)
 
 /* ---- Bond-based PMB and state-based LPS (kernels/ref/pmb.c, kernels/ref/lps.c) ----------------
- * Formulas and contracts at the top of each file. Common arguments: particles [i0, i1); CSR
- * families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current x, y[, z]
- * positions, volume, outputs: [n_pad] each. bond_alive [num_bonds] (NULL: bonds never break) is
- * read, and written only by a committing force pass (s0_next != NULL), which also writes
+ * Formulas and contracts at the top of each file. The arrays (pdk_bond_arrays below): particles
+ * [i0, i1); CSR families bond_start [n+1], bond_j [num_bonds]; reference X, Y[, Z] and current
+ * x, y[, z] positions, volume, outputs: [n_pad] each. bond_alive [num_bonds] (NULL: bonds never
+ * break) is read, and written only by a committing force pass (s0_next != NULL), which also writes
  * s0_next[i] and returns the number of bonds it broke (the LAMMPS s0 rule). w (NULL: skip) gets
  * the strain energy density W_i [energy/volume]. */
 typedef struct pdk_pmb_consts {
@@ -118,73 +118,6 @@ typedef struct pdk_lps_consts {
   double e_bulk, e_dev; /* W = e_bulk theta^2/2 + e_dev/m sum omega (e - theta r0/d)^2 beta V */
   double s00, alpha;
 } pdk_lps_consts;
-
-pdk_bond_index pdk_kernel_pmb_force3_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict Z, const double *restrict x,
-                                         const double *restrict y, const double *restrict z,
-                                         const double *restrict volume, const pdk_pmb_consts *k,
-                                         uint8_t *restrict bond_alive, const double *restrict s0,
-                                         double *restrict s0_next, double *restrict fx,
-                                         double *restrict fy, double *restrict fz,
-                                         double *restrict w);
-pdk_bond_index pdk_kernel_pmb_force2_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict x, const double *restrict y,
-                                         const double *restrict volume, const pdk_pmb_consts *k,
-                                         uint8_t *restrict bond_alive, const double *restrict s0,
-                                         double *restrict s0_next, double *restrict fx,
-                                         double *restrict fy, double *restrict w);
-
-/* m_i = sum_b r0 beta V_j over every bond (LPS weighted volume with omega = 1/r0). */
-void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict Z, const double *restrict volume,
-                                         const pdk_lps_consts *k, double *restrict m);
-void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j,
-                                         const double *restrict X, const double *restrict Y,
-                                         const double *restrict volume, const pdk_lps_consts *k,
-                                         double *restrict m);
-/* theta_i = d inv_m_i sum_b alive_b e beta V_j; inv_m [n_pad] = 1/m (0 for an empty family). */
-void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict Z,
-                                  const double *restrict x, const double *restrict y,
-                                  const double *restrict z, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta);
-void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict x,
-                                  const double *restrict y, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta);
-/* Force pass; theta and inv_m must be complete for every particle (neighbours are read). */
-pdk_bond_index pdk_kernel_lps_force3_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict Z, const double *restrict x, const double *restrict y,
-    const double *restrict z, const double *restrict volume, const pdk_lps_consts *k,
-    const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
-    const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
-    double *restrict fz, double *restrict w);
-pdk_bond_index pdk_kernel_lps_force2_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict x, const double *restrict y, const double *restrict volume,
-    const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
-    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-    double *restrict fx, double *restrict fy, double *restrict w);
 
 /* ---- PMB and LPS through the kernel table -------------------------------------------------------
  * One entry per pass, 2-D and 3-D, with every array in one struct so variants that read other
@@ -229,12 +162,15 @@ typedef pdk_bond_index (*pdk_lps_force_fn)(const pdk_lps_consts *k, const pdk_bo
 
 pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1);
+/* LPS dilation theta_i = d inv_m_i sum_b alive_b e beta V_j into theta_out; inv_m [n_pad] = 1/m
+ * (0 for an empty family). */
 void pdk_kernel_lps_dilation_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
                                  pdk_index i1);
+/* LPS force pass; theta and inv_m must be complete for every particle (neighbours are read). */
 pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1);
-/* Set-up only (not in the table): m_i of pdk_kernel_lps_weighted_volume3_ref from a's arrays,
- * with bond_r0 when it is set. */
+/* Set-up only (not in the table): m_i = sum_b r0 beta V_j over every bond (LPS weighted volume
+ * with omega = 1/r0) from a's arrays, with bond_r0 when it is set. */
 void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1, double *restrict m);
 /* AVX2 + FMA CPUs (PDK_ISA_AVX2): 4 bonds per step. */
@@ -393,16 +329,30 @@ pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
                                                    const pdk_stencil_arrays *a, int64_t r0,
                                                    int64_t r1);
 
+/* ---- Johnson-Cook material point (kernels/ref/jc.c; formulation in its header) -------------- */
+/* The functions of pdk/plasticity.h are these kernels: src/plasticity.c defines each public one as
+ * a call of its kernel here, after checking the arguments (NULL pointers, a non-finite
+ * sigma_m_avg: PDK_ERR_ARG). The kernels take valid pointers.
+ * pdk_jc_update_full_kernel: pdk_jc_update (sigma_m_avg NULL) or pdk_jc_update_avg (sigma_m_avg
+ * the family average; not finite: PDK_ERR_ARG).
+ * pdk_jc_update_kernel: the same update for the model kernels, except that res->sigma is left 0:
+ * they read sigma_vm, W, the energies and sigma_m_eff, not the six Cauchy components. */
+int pdk_jc_update_full_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                              const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                              double P[3][3], pdk_jc_result *res);
+int pdk_jc_update_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                         const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                         double P[3][3], pdk_jc_result *res);
+/* pdk_jc_remap: checks dim and the pointers itself (PDK_ERR_ARG). */
+int pdk_jc_remap_kernel(int dim, const double F_old[3][3], const double F_new[3][3],
+                        pdk_jc_state *s);
+/* pdk_jc_flow_stress, pdk_jc_failure_strain: NaN for p NULL. */
+double pdk_jc_flow_stress_kernel(const pdk_jc_params *p, double eps_p, double rate_star,
+                                 double T_star);
+double pdk_jc_failure_strain_kernel(const pdk_jc_params *p, double eta, double rate_star,
+                                    double T_star);
+
 /* ---- Correspondence (kernels/ref/corr.c; formulas and contract in its header) ---------------- */
-/* The Johnson-Cook update of the model kernels (kernels/ref/jc.c): pdk_jc_update (sigma_m_avg
- * NULL) or pdk_jc_update_avg (pdk/plasticity.h), except that res->sigma is left 0: the kernels
- * read sigma_vm, W, the energies and sigma_m_eff, not the six Cauchy components. */
-struct pdk_jc_params;
-struct pdk_jc_state;
-struct pdk_jc_result;
-int pdk_jc_update_kernel(const struct pdk_jc_params *p, int dim, const double F[3][3], double dt,
-                         const double *sigma_m_avg, const struct pdk_jc_state *in,
-                         struct pdk_jc_state *out, double P[3][3], struct pdk_jc_result *res);
 
 #define PDK_CORR_FLAG_SPAN 1u     /* the family does not span the space: K singular */
 #define PDK_CORR_FLAG_INVERTED 2u /* the law is undefined at F (Neo-Hooke or JC with J <= 0) */
@@ -413,15 +363,15 @@ int pdk_jc_update_kernel(const struct pdk_jc_params *p, int dim, const double F[
 
 typedef struct pdk_corr_consts {
   int dim;             /* 2 (plane strain) or 3 */
-  int law;             /* pdk_law */
+  int law;             /* PDK_KERNEL_LAW_* (pdk_law) */
   double lambda, mu;   /* Lame constants [pressure] */
-  int stab;            /* pdk_stabilization */
+  int stab;            /* PDK_KERNEL_STAB_* (pdk_stabilization) */
   double stab_modulus; /* C_s c_d K [pressure]; particle i's coefficient is stab_modulus / m_i */
   double horizon;      /* delta [length] (hourglass form) */
   double span_rtol;    /* PDK_CORR_SPAN_RTOL */
   double s00, alpha;   /* critical stretch and its alpha (bond failure) */
-  /* Johnson-Cook law (law == PDK_LAW_JC) */
-  const struct pdk_jc_params *jc; /* material; NULL for the elastic laws */
+  /* Johnson-Cook law (law == PDK_KERNEL_LAW_JC) */
+  const pdk_jc_params *jc;        /* material; NULL for the elastic laws */
   double dt;                      /* step length passed to the update [time] (> 0) */
   int commit;                     /* pass 1: 1 writes the history, 0 leaves it alone (trial) */
   int break_failed;               /* 1: bonds of failed particles break (both ends) */
@@ -497,7 +447,7 @@ typedef struct pdk_corr_arrays {
   const double *s0;                 /* critical stretch per particle, previous pass; NULL: no
                                        stretch criterion */
   double *s0_next;                  /* critical stretch per particle, next pass */
-  /* Johnson-Cook history (committed state; NULL unless law == PDK_LAW_JC) */
+  /* Johnson-Cook history (committed state; NULL unless law == PDK_KERNEL_LAW_JC) */
   double *cp_inv[6];  /* C_p^-1, Voigt xx yy zz yz xz xy */
   double *eps_p;      /* equivalent plastic strain */
   double *damage;     /* D */
@@ -533,7 +483,7 @@ typedef struct pdk_corr_arrays {
  * weighted volume or without stabilization): the value pass 1 stores for pass 2. */
 static inline double pdk_corr_kst(const struct pdk_corr_consts *k, const pdk_corr_arrays *a,
                                   pdk_index i) {
-  if (k->stab == 0 || a->flag[i] || !(a->m[i] > 0.0)) return 0.0; /* 0: PDK_STAB_NONE */
+  if (k->stab == PDK_KERNEL_STAB_NONE || a->flag[i] || !(a->m[i] > 0.0)) return 0.0;
   return (k->stab_p ? k->stab_p[i] : k->stab_modulus) *
          (a->stab_factor ? a->stab_factor[i] : 1.0) / a->m[i];
 }
@@ -585,9 +535,9 @@ typedef struct pdk_corr_rowf {
  * `stab`, float storage `fl`, optimized variant `opt`. The optimized variants use the rows except
  * with hourglass stabilization. */
 static inline unsigned pdk_corr_pair_layout(int stab, int fl, int opt) {
-  const unsigned k = stab != 0 ? 1u : 0u; /* PDK_STAB_NONE is 0 */
-  if (opt && stab != 2) return 32u;               /* 2: PDK_STAB_HOURGLASS */
-  if (fl) return k | 8u | (stab == 2 ? 16u : 0u);
+  const unsigned k = stab != PDK_KERNEL_STAB_NONE ? 1u : 0u;
+  if (opt && stab != PDK_KERNEL_STAB_HOURGLASS) return 32u;
+  if (fl) return k | 8u | (stab == PDK_KERNEL_STAB_HOURGLASS ? 16u : 0u);
   if (!opt) return 0u;
   return k | 4u;
 }

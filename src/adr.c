@@ -35,6 +35,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "lanczos.h"
 #include "static_impl.h"
 
 #define PDK_ADR_ROWSUM_MAX_PASSES 128
@@ -99,127 +100,24 @@ cleanup:
   return err;
 }
 
-/* Symmetric tridiagonal (alpha[0..k-1], beta[1..k-1]) largest eigenvalue by Sturm bisection. */
-static double tridiag_max_eig(const double *alpha, const double *beta, int k) {
-  double lo = alpha[0], hi = alpha[0];
-  for (int i = 0; i < k; ++i) {
-    double r = (i > 0 ? fabs(beta[i]) : 0.0) + (i + 1 < k ? fabs(beta[i + 1]) : 0.0);
-    lo = fmin(lo, alpha[i] - r);
-    hi = fmax(hi, alpha[i] + r);
-  }
-  for (int it = 0; it < 200 && hi - lo > 1e-14 * fabs(hi); ++it) {
-    double mid = 0.5 * (lo + hi);
-    int count = 0;
-    double d = 1.0;
-    for (int i = 0; i < k; ++i) {
-      d = alpha[i] - mid - (i > 0 ? beta[i] * beta[i] / d : 0.0);
-      if (d == 0.0) d = -1e-300;
-      if (d < 0) count++;
-    }
-    if (count == k)
-      hi = mid;
-    else
-      lo = mid;
-  }
-  return hi;
-}
-
-/* lambda_max(V^-1 K) by Lanczos in the V-inner product; K q ~ -V (f(x + eps q) - f(x)) / eps. */
+/* lambda_max(V^-1 K) by Lanczos in the V-inner product (lanczos.h); "x" and "f" are restored. */
 static int mass_lanczos(pdk_static *s, double *lambda_max) {
-  pdk_ctx *ctx = s->ctx;
-  const int dim = s->dim, kmax = PDK_ADR_LANCZOS_STEPS;
-  const pdk_index n = s->n;
-  const double *vol = pdk_particles_volume(s->p);
-  const int64_t *id = pdk_particles_id(s->p);
-  int err = PDK_SUCCESS;
-  double *x0[3] = {0}, *f0[3] = {0}, *q[3] = {0}, *qprev[3] = {0}, *w[3] = {0};
-  double alpha[PDK_ADR_LANCZOS_STEPS], beta[PDK_ADR_LANCZOS_STEPS + 1];
-  for (int c = 0; c < dim; ++c) {
-    x0[c] = malloc((size_t)n * sizeof(double));
-    f0[c] = malloc((size_t)n * sizeof(double));
-    q[c] = calloc((size_t)n, sizeof(double));
-    qprev[c] = calloc((size_t)n, sizeof(double));
-    w[c] = malloc((size_t)n * sizeof(double));
-    PDK_CHECK_GOTO(x0[c] && f0[c] && q[c] && qprev[c] && w[c], ctx, PDK_ERR_MEMORY,
-                   "adr: out of memory for the Lanczos mass estimate");
-    memcpy(x0[c], field(s->p, "x", c), (size_t)n * sizeof(double));
-  }
-  PDK_CALL_GOTO(pdk_model_force_trial(s->m, NULL));
-  s->stats.force_passes++;
-  for (int c = 0; c < dim; ++c)
-    memcpy(f0[c], field(s->p, "f", c), (size_t)n * sizeof(double));
-  double norm2 = 0.0; /* start vector: pseudo-random from the particle id (order independent) */
-  for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i) {
-      uint64_t hsh =
-          (uint64_t)id[i] * 0x9E3779B97F4A7C15ull + (uint64_t)c * 0xBF58476D1CE4E5B9ull + 7;
-      hsh ^= hsh >> 31;
-      hsh *= 0x94D049BB133111EBull;
-      hsh ^= hsh >> 29;
-      q[c][i] = ((double)(hsh >> 11) / 9007199254740992.0) - 0.5;
-      norm2 += vol[i] * q[c][i] * q[c][i];
-    }
-  for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i)
-      q[c][i] /= sqrt(norm2);
-  int k;
-  beta[0] = 0.0;
-  for (k = 0; k < kmax; ++k) {
-    double qmax = 0.0;
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i)
-        qmax = fmax(qmax, fabs(q[c][i]));
-    const double eps = 1e-7 * s->horizon / qmax;
-    for (int c = 0; c < dim; ++c) {
-      double *x = field(s->p, "x", c);
-      for (pdk_index i = 0; i < n; ++i)
-        x[i] = x0[c][i] + eps * q[c][i];
-    }
-    PDK_CALL_GOTO(pdk_model_force_trial(s->m, NULL));
-    s->stats.force_passes++;
-    double al = 0.0;
-    for (int c = 0; c < dim; ++c) {
-      const double *f = field(s->p, "f", c);
-      for (pdk_index i = 0; i < n; ++i) {
-        w[c][i] = -(f[i] - f0[c][i]) / eps; /* V^-1 K q */
-        al += vol[i] * w[c][i] * q[c][i];
-      }
-    }
-    alpha[k] = al;
-    double b2 = 0.0;
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) {
-        w[c][i] -= al * q[c][i] + beta[k] * qprev[c][i];
-        b2 += vol[i] * w[c][i] * w[c][i];
-      }
-    beta[k + 1] = sqrt(b2);
-    if (!(beta[k + 1] > 1e-12 * fabs(al)) || k + 1 == kmax) {
-      ++k;
-      break;
-    }
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) {
-        qprev[c][i] = q[c][i];
-        q[c][i] = w[c][i] / beta[k + 1];
-      }
-  }
-  *lambda_max = tridiag_max_eig(alpha, beta, k);
-  PDK_CHECK_GOTO(
-      isfinite(*lambda_max) && *lambda_max > 0, ctx, PDK_ERR_NUMERIC,
-      "adr: the stiffness bound for the fictitious mass is %g; the body has no stiffness "
-      "(no bonds?)",
-      *lambda_max);
-cleanup:
-  for (int c = 0; c < dim; ++c) {
-    if (x0[c]) memcpy(field(s->p, "x", c), x0[c], (size_t)n * sizeof(double));
-    if (f0[c] && err == PDK_SUCCESS) memcpy(field(s->p, "f", c), f0[c], (size_t)n * sizeof(double));
-    free(x0[c]);
-    free(f0[c]);
-    free(q[c]);
-    free(qprev[c]);
-    free(w[c]);
-  }
-  return err;
+  pdk_lanczos_opts lo = {0};
+  lo.steps = PDK_ADR_LANCZOS_STEPS;
+  lo.mass = 0;
+  lo.horizon = s->horizon;
+  lo.salt = 7;
+  lo.scale_by_inverse = 0;
+  lo.restore_f = 1;
+  long passes = 0;
+  const int err = pdk_lanczos_max_eig(s->m, &lo, lambda_max, &passes);
+  s->stats.force_passes += passes;
+  if (err) return err;
+  PDK_CHECK(isfinite(*lambda_max) && *lambda_max > 0, s->ctx, PDK_ERR_NUMERIC,
+            "adr: the stiffness bound for the fictitious mass is %g; the body has no stiffness "
+            "(no bonds?)",
+            *lambda_max);
+  return PDK_SUCCESS;
 }
 
 int pdk_adr_setup(pdk_static *s) {

@@ -11,7 +11,9 @@
 #include <omp.h>
 #include <string.h>
 
+#include "bc.h"
 #include "explicit_impl.h"
+#include "lanczos.h"
 
 pdk_tfun pdk_tfun_constant(double a) {
   pdk_tfun f = {PDK_TFUN_CONSTANT, a, 0.0};
@@ -310,127 +312,28 @@ static double external_power(pdk_explicit *e, double t) {
   return power;
 }
 
-/* Symmetric tridiagonal (alpha[0..k-1], beta[1..k-1]) largest eigenvalue by Sturm bisection. */
-static double tridiag_max_eig(const double *alpha, const double *beta, int k) {
-  double lo = alpha[0], hi = alpha[0];
-  for (int i = 0; i < k; ++i) { /* Gershgorin interval */
-    double r = (i > 0 ? fabs(beta[i]) : 0.0) + (i + 1 < k ? fabs(beta[i + 1]) : 0.0);
-    lo = fmin(lo, alpha[i] - r);
-    hi = fmax(hi, alpha[i] + r);
-  }
-  for (int it = 0; it < 200 && hi - lo > 1e-14 * fabs(hi); ++it) {
-    double mid = 0.5 * (lo + hi);
-    int count = 0; /* eigenvalues below mid */
-    double d = 1.0;
-    for (int i = 0; i < k; ++i) {
-      d = alpha[i] - mid - (i > 0 ? beta[i] * beta[i] / d : 0.0);
-      if (d == 0.0) d = -1e-300;
-      if (d < 0) count++;
-    }
-    if (count == k) hi = mid;
-    else lo = mid;
-  }
-  return hi;
-}
-
-/* Largest eigenvalue of M^-1 K by Lanczos in the M-inner product, K v ~ -(f(x0 + eps v) -
- * f(x0)) / eps per unit volume (trial forces: no history changes). 40 iterations give the top of the
- * spectrum to about a percent on lattices; the estimate is a lower bound of lambda_max. */
+/* Largest eigenvalue of M^-1 K by Lanczos in the M-inner product (lanczos.h): trial forces, no
+ * history changes; the estimate is a lower bound of lambda_max. "x" comes back bit for bit, "f"
+ * and the fields derived from "x" are the last probe's. */
 static int estimate_stable_dt(pdk_explicit *e, int mid_run) {
-  int err = PDK_SUCCESS;
-  const int dim = e->dim, kmax = 40;
-  const pdk_index n = e->n;
-  const double *vol = pdk_particles_volume(e->p);
-  const int64_t *id = pdk_particles_id(e->p);
-  double *x0[3] = {0}, *f0[3] = {0}, *q[3] = {0}, *qprev[3] = {0}, *w[3] = {0};
-  double alpha[40], beta[41];
-  for (int c = 0; c < dim; ++c) {
-    x0[c] = malloc((size_t)n * sizeof(double));
-    f0[c] = malloc((size_t)n * sizeof(double));
-    q[c] = calloc((size_t)n, sizeof(double));
-    qprev[c] = calloc((size_t)n, sizeof(double));
-    w[c] = malloc((size_t)n * sizeof(double));
-    PDK_CHECK_GOTO(x0[c] && f0[c] && q[c] && qprev[c] && w[c], e->ctx, PDK_ERR_MEMORY,
-                   "out of memory estimating the stable time step");
-    memcpy(x0[c], field(e->p, "x", c), (size_t)n * sizeof(double));
-  }
-  PDK_CALL_GOTO(pdk_model_force_trial(e->m, NULL));
-  for (int c = 0; c < dim; ++c) memcpy(f0[c], field(e->p, "f", c), (size_t)n * sizeof(double));
-  /* Start vector: deterministic pseudo-random from the particle id (order independent). */
-  double norm2 = 0.0;
-  for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i) {
-      uint64_t h = (uint64_t)id[i] * 0x9E3779B97F4A7C15ull + (uint64_t)c * 0xBF58476D1CE4E5B9ull + 1;
-      h ^= h >> 31;
-      h *= 0x94D049BB133111EBull;
-      h ^= h >> 29;
-      q[c][i] = ((double)(h >> 11) / 9007199254740992.0) - 0.5;
-      norm2 += pdk_model_density_of(e->m, i) * vol[i] * q[c][i] * q[c][i];
-    }
-  double inv = 1.0 / sqrt(norm2);
-  for (int c = 0; c < dim; ++c)
-    for (pdk_index i = 0; i < n; ++i) q[c][i] *= inv;
-  double horizon = pdk_families_horizon(e->m->fam);
-  int k;
-  beta[0] = 0.0;
-  for (k = 0; k < kmax; ++k) {
-    double qmax = 0.0;
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) qmax = fmax(qmax, fabs(q[c][i]));
-    double eps = 1e-7 * horizon / qmax;
-    for (int c = 0; c < dim; ++c) {
-      double *x = field(e->p, "x", c);
-      for (pdk_index i = 0; i < n; ++i) x[i] = x0[c][i] + eps * q[c][i];
-    }
-    PDK_CALL_GOTO(pdk_model_force_trial(e->m, NULL));
-    /* w = M^-1 K q = -(f - f0) / (eps rho) */
-    double a = 0.0;
-    for (int c = 0; c < dim; ++c) {
-      const double *f = field(e->p, "f", c);
-      for (pdk_index i = 0; i < n; ++i) {
-        const double rho_i = pdk_model_density_of(e->m, i);
-        w[c][i] = -(f[i] - f0[c][i]) / (eps * rho_i);
-        a += rho_i * vol[i] * w[c][i] * q[c][i];
-      }
-    }
-    alpha[k] = a;
-    double b2 = 0.0;
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) {
-        w[c][i] -= a * q[c][i] + beta[k] * qprev[c][i];
-        b2 += pdk_model_density_of(e->m, i) * vol[i] * w[c][i] * w[c][i];
-      }
-    beta[k + 1] = sqrt(b2);
-    if (!(beta[k + 1] > 1e-12 * fabs(a)) || k + 1 == kmax) {
-      ++k;
-      break;
-    }
-    for (int c = 0; c < dim; ++c)
-      for (pdk_index i = 0; i < n; ++i) {
-        qprev[c][i] = q[c][i];
-        q[c][i] = w[c][i] / beta[k + 1];
-      }
-  }
-  {
-    double lmax = tridiag_max_eig(alpha, beta, k);
-    /* during a run a body may have lost every bond (fragments that fly apart): nothing limits
-     * the step any more, and the last estimate stands */
-    if (mid_run && !(isfinite(lmax) && lmax > 0)) goto cleanup;
-    PDK_CHECK_GOTO(isfinite(lmax) && lmax > 0, e->ctx, PDK_ERR_NUMERIC,
-                   "the stable time step could not be estimated (largest stiffness eigenvalue %g); "
-                   "the body may have no stiffness (no bonds?)", lmax);
-    e->dt_stable = 2.0 / sqrt(lmax);
-  }
-cleanup:
-  for (int c = 0; c < dim; ++c) {
-    if (x0[c]) memcpy(field(e->p, "x", c), x0[c], (size_t)n * sizeof(double));
-    free(x0[c]);
-    free(f0[c]);
-    free(q[c]);
-    free(qprev[c]);
-    free(w[c]);
-  }
-  return err;
+  pdk_lanczos_opts lo = {0};
+  lo.steps = 40;
+  lo.mass = 1;
+  lo.horizon = pdk_families_horizon(e->m->fam);
+  lo.salt = 1;
+  lo.scale_by_inverse = 1;
+  lo.restore_f = 0;
+  double lmax = 0.0;
+  PDK_CALL(pdk_lanczos_max_eig(e->m, &lo, &lmax, NULL));
+  /* during a run a body may have lost every bond (fragments that fly apart): nothing limits
+   * the step any more, and the last estimate stands */
+  if (mid_run && !(isfinite(lmax) && lmax > 0)) return PDK_SUCCESS;
+  PDK_CHECK(isfinite(lmax) && lmax > 0, e->ctx, PDK_ERR_NUMERIC,
+            "the stable time step could not be estimated (largest stiffness eigenvalue %g); "
+            "the body may have no stiffness (no bonds?)",
+            lmax);
+  e->dt_stable = 2.0 / sqrt(lmax);
+  return PDK_SUCCESS;
 }
 
 /* dt_update: a new estimate at the current state (trial forces only), and dt lowered to safety x
@@ -519,35 +422,10 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
                    "boundary condition %d: scale_field ('%s') is supported by the static solvers "
                    "only; the explicit solver takes uniform values per set",
                    k, bc->scale_field);
-    PDK_CHECK_GOTO(bc->components && bc->components < (1u << e->dim), ctx, PDK_ERR_ARG,
-                   "boundary condition %d: component mask %u must select some of the %d components",
-                   k, bc->components, e->dim);
     const uint8_t *mem = NULL;
-    if (bc->set) {
-      mem = pdk_particles_field_data(e->p, bc->set, 0);
-      PDK_CHECK_GOTO(mem, ctx, PDK_ERR_NOT_FOUND,
-                     "boundary condition %d names the set field '%s', which does not exist; define "
-                     "the set first", k, bc->set);
-    }
-    for (int c = 0; c < e->dim; ++c) {
-      if (!(bc->components & (1u << c))) continue;
-      const pdk_tfun *tf = &bc->value[c];
-      PDK_CHECK_GOTO((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
-                         ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
-                           tf->kind != PDK_TFUN_SINE) || tf->b > 0),
-                     ctx, PDK_ERR_ARG,
-                     "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
-                     "ramp, smooth and sine need a positive duration b", k, c, (int)tf->kind, tf->a, tf->b);
-      if (bc->kind == PDK_BC_BODY_FORCE) continue;
-      for (pdk_index i = 0; i < e->n; ++i) {
-        if (mem && !mem[i]) continue;
-        PDK_CHECK_GOTO(e->bc_of[c][i] < 0 || e->bc_of[c][i] == k, ctx, PDK_ERR_ARG,
-                       "particle %d (id %lld), component %d is prescribed by both boundary "
-                       "conditions %d and %d; give each component of a particle one condition",
-                       (int)i, (long long)pdk_particles_id(e->p)[i], c, e->bc_of[c][i], k);
-        e->bc_of[c][i] = k;
-      }
-    }
+    PDK_CALL_GOTO(pdk_bc_check(ctx, e->p, bc, k, &mem));
+    if (bc->kind != PDK_BC_BODY_FORCE)
+      PDK_CALL_GOTO(pdk_bc_claim(ctx, e->p, bc, k, mem, e->bc_of, NULL, NULL));
   }
   for (int k = 0; k < opts.num_reaction_sets; ++k) {
     e->reaction_member[k] = pdk_particles_field_data(e->p, opts.reaction_sets[k], 0);

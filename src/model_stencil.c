@@ -106,25 +106,6 @@ void pdk_stencil_destroy(pdk_stencil **stp) {
   *stp = NULL;
 }
 
-size_t pdk_stencil_memory_bytes(const pdk_stencil *st) {
-  if (!st) return 0;
-  const size_t ns = (size_t)st->num_sites;
-  size_t b = ns * (sizeof(pdk_index) + (size_t)(2 * st->dim + 1) * sizeof(double));
-  b += (size_t)st->n * sizeof(int64_t) + (size_t)st->lut_len * sizeof(int16_t);
-  b += (size_t)st->num_rows * 2 * sizeof(int64_t);
-  if (st->s0) b += ns * (sizeof(double) + 1);
-  if (st->mask) b += ns * (size_t)st->num_offsets;
-  if (st->inv_m) b += 2 * ns * sizeof(double);
-  for (int t = 0; t < 9; ++t) {
-    if (st->cB[t]) b += ns * sizeof(double);
-    if (st->cBf[t]) b += ns * sizeof(float);
-  }
-  if (st->ck) b += ns * sizeof(double);
-  for (int a = 0; a < 3; ++a)
-    if (st->cs[a]) b += ns * sizeof(double);
-  return b;
-}
-
 int pdk_stencil_model_setup(pdk_model *m, const float *bond_r0, int multi_material) {
   const pdk_model_opts *o = &m->opts;
   m->stencil_why[0] = '\0';

@@ -51,7 +51,4 @@ int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts
  * pass, pdk_kernel_corr_break_ref) from m->bond_alive. */
 void pdk_stencil_mask_rows(pdk_model *m, pdk_stencil *st, const uint8_t *changed);
 
-/* Memory the layout holds [bytes]. */
-size_t pdk_stencil_memory_bytes(const pdk_stencil *st);
-
 #endif

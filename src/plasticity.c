@@ -1,8 +1,10 @@
-/* Johnson-Cook plasticity and damage: defaults and parameter checks. The per-point update is the
- * pure kernel in kernels/ref/jc.c (formulation and definitions in its header comment). */
+/* Johnson-Cook plasticity and damage: defaults, parameter checks, and the public per-point
+ * functions, each a call of its pure kernel in kernels/ref/jc.c (formulation and definitions in
+ * its header comment) after the argument checks. */
 #include <math.h>
 #include <string.h>
 
+#include "kernels.h"
 #include "pdk_impl.h"
 #include "pdk/plasticity.h"
 
@@ -122,4 +124,29 @@ int pdk_jc_params_check(pdk_ctx *ctx, const pdk_jc_params *p) {
               (int)p->failed_mode);
   }
   return PDK_SUCCESS;
+}
+
+int pdk_jc_update(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                  const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res) {
+  if (!p || !F || !in || !out || !P) return PDK_ERR_ARG;
+  return pdk_jc_update_full_kernel(p, dim, F, dt, NULL, in, out, P, res);
+}
+
+int pdk_jc_update_avg(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                      double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out, double P[3][3],
+                      pdk_jc_result *res) {
+  if (!p || !F || !in || !out || !P || !isfinite(sigma_m_avg)) return PDK_ERR_ARG;
+  return pdk_jc_update_full_kernel(p, dim, F, dt, &sigma_m_avg, in, out, P, res);
+}
+
+int pdk_jc_remap(int dim, const double F_old[3][3], const double F_new[3][3], pdk_jc_state *s) {
+  return pdk_jc_remap_kernel(dim, F_old, F_new, s);
+}
+
+double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star, double T_star) {
+  return pdk_jc_flow_stress_kernel(p, eps_p, rate_star, T_star);
+}
+
+double pdk_jc_failure_strain(const pdk_jc_params *p, double eta, double rate_star, double T_star) {
+  return pdk_jc_failure_strain_kernel(p, eta, rate_star, T_star);
 }

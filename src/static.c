@@ -8,6 +8,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "bc.h"
 #include "cells.h"
 #include "static_impl.h"
 
@@ -126,17 +127,8 @@ static int setup_conditions(pdk_static *s) {
               "body-force conditions only (prescribe the displacement instead: from rest, a "
               "velocity v is the displacement v t, time function linear, with a total_time)",
               k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
-    PDK_CHECK(bc->components && bc->components < (1u << dim), ctx, PDK_ERR_ARG,
-              "boundary condition %d: component mask %u must select some of the %d components", k,
-              bc->components, dim);
     const uint8_t *mem = NULL;
-    if (bc->set) {
-      mem = pdk_particles_field_data(s->p, bc->set, 0);
-      PDK_CHECK(mem, ctx, PDK_ERR_NOT_FOUND,
-                "boundary condition %d names the set field '%s', which does not exist; define "
-                "the set first",
-                k, bc->set);
-    }
+    PDK_CALL(pdk_bc_check(ctx, s->p, bc, k, &mem));
     if (bc->scale_field) {
       pdk_type type = PDK_U8;
       int ncomp = 0;
@@ -158,32 +150,10 @@ static int setup_conditions(pdk_static *s) {
                     k, bc->scale_field, (int)i, (long long)pdk_particles_id(s->p)[i], c);
       }
     }
-    for (int c = 0; c < dim; ++c) {
-      if (!(bc->components & (1u << c))) continue;
-      const pdk_tfun *tf = &bc->value[c];
-      PDK_CHECK((unsigned)tf->kind <= PDK_TFUN_SINE && isfinite(tf->a) && isfinite(tf->b) &&
-                    ((tf->kind != PDK_TFUN_RAMP && tf->kind != PDK_TFUN_SMOOTH &&
-                      tf->kind != PDK_TFUN_SINE) ||
-                     tf->b > 0),
-                ctx, PDK_ERR_ARG,
-                "boundary condition %d, component %d: bad time function (kind %d, a %g, b %g); "
-                "ramp, smooth and sine need a positive duration b",
-                k, c, (int)tf->kind, tf->a, tf->b);
-      if (bc->kind == PDK_BC_BODY_FORCE) {
-        s->has_body_force = 1;
-        continue;
-      }
-      for (pdk_index i = 0; i < n; ++i) {
-        if (mem && !mem[i]) continue;
-        PDK_CHECK(s->owner[c][i] < 0, ctx, PDK_ERR_ARG,
-                  "particle %d (id %lld), component %d is prescribed by both boundary "
-                  "conditions %d and %d; give each component of a particle one condition",
-                  (int)i, (long long)pdk_particles_id(s->p)[i], c, (int)s->owner[c][i], k);
-        s->owner[c][i] = k;
-        s->fixed[c][i] = 1;
-        s->num_fixed++;
-      }
-    }
+    if (bc->kind == PDK_BC_BODY_FORCE)
+      s->has_body_force = 1;
+    else
+      PDK_CALL(pdk_bc_claim(ctx, s->p, bc, k, mem, s->owner, s->fixed, &s->num_fixed));
   }
   return PDK_SUCCESS;
 }

@@ -7,13 +7,6 @@
 
 #include "test_util.h"
 
-/* src/model_impl.h declares the per-kind operation tables weak (kinds are developed side by side),
- * and a weak reference does not pull a member out of a static archive: this strong reference makes
- * the test link model_pmb.o and model_lps.o from libpdk.a. (Do not include model_impl.h here.) */
-extern const struct pdk_model_ops pdk_model_ops_pmb, pdk_model_ops_lps;
-__attribute__((used)) static const void *const bm_link_models[] = {&pdk_model_ops_pmb,
-                                                                   &pdk_model_ops_lps};
-
 static inline uint64_t bm_rng_next(uint64_t *s) { /* splitmix64 */
   uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;

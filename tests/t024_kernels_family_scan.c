@@ -28,7 +28,7 @@ enum { MAXC = 100, GUARD = -777 };
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  const unsigned isa = pdk_ctx_isa(ctx);
+  const unsigned isa = t_isa(ctx);
   struct {
     const char *name;
     unsigned need;
@@ -102,9 +102,7 @@ int main(void) {
       }
     }
   }
-  if (!(isa & (PDK_ISA_AVX2 | PDK_ISA_AVX512)))
-    fprintf(stderr, "t024: no AVX2 or AVX-512 on this CPU; only the table was checked\n");
-  (void)tested;
   pdk_ctx_destroy(&ctx);
+  if (!tested) T_SKIP("t024: no AVX2 or AVX-512 on this CPU: no variant to test (the table was)");
   return 0;
 }

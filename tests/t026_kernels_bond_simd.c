@@ -274,7 +274,8 @@ typedef struct variant {
   pdk_lps_force_fn lps;
 } variant;
 
-static void kernel_tests(unsigned isa) {
+/* Returns the number of variants tested. */
+static int kernel_tests(unsigned isa) {
   const variant vs[] = {
       {"avx2", PDK_ISA_AVX2, pdk_kernel_pmb_force_avx2, pdk_kernel_lps_dilation_avx2,
        pdk_kernel_lps_force_avx2},
@@ -335,7 +336,7 @@ static void kernel_tests(unsigned isa) {
   }
   T_ASSERT(!(isa & PDK_ISA_AVX2) || ran > 0, "no variant ran on an AVX2 CPU");
   T_ASSERT(!ran || broke_some > 0, "the commit passes broke no bond: the failure path is untested");
-  if (!ran) printf("t026: this CPU has neither AVX2 nor AVX-512; only the model part ran\n");
+  return ran;
 }
 
 /* ---- model level: table, threads, breaking -------------------------------------------------- */
@@ -432,8 +433,10 @@ static void model_tests(void) {
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  kernel_tests(pdk_ctx_isa(ctx));
+  const int ran = kernel_tests(t_isa(ctx));
   pdk_ctx_destroy(&ctx);
   model_tests();
+  if (!ran)
+    T_SKIP("t026: this CPU has neither AVX2 nor AVX-512: no variant to test (the model part ran)");
   return 0;
 }

@@ -159,7 +159,7 @@ static double maxabs(double *const *T, int dd, pdk_index i) {
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  const unsigned isa = pdk_ctx_isa(ctx);
+  const unsigned isa = t_isa(ctx);
   struct {
     const char *name;
     unsigned need;
@@ -405,7 +405,9 @@ int main(void) {
     free(V), free(bj), free(omega), free(alive);
   }
   if (isa & PDK_ISA_AVX2) T_ASSERT(tested > 0, "no variant tested");
-  printf("t044: %d variant x case combinations agree with the reference\n", tested);
+  if (getenv("PDK_TEST_VERBOSE"))
+    printf("t044: %d variant x case combinations agree with the reference\n", tested);
   pdk_ctx_destroy(&ctx);
+  if (!tested) T_SKIP("t044: no AVX2 or AVX-512 on this CPU: no variant to test (the table was)");
   return 0;
 }

@@ -44,11 +44,8 @@
 
 #include "bond_models_test.h"
 #include "corr_util.h"
+#include "model_impl.h" /* pdk_influence_eval */
 #include "pdk/scene.h"
-
-extern const struct pdk_model_ops pdk_model_ops_corr;
-__attribute__((used)) static const void *const t163_link[] = {&pdk_model_ops_corr};
-double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);
 
 #define EPS DBL_EPSILON
 

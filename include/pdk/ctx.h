@@ -18,6 +18,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "pdk/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -63,7 +65,7 @@ typedef struct pdk_ctx_opts {
 
 typedef struct pdk_ctx pdk_ctx;
 
-pdk_ctx_opts pdk_ctx_opts_default(void);
+PDK_EXPORT pdk_ctx_opts pdk_ctx_opts_default(void);
 
 /* Creates a context. On failure *out is NULL and, if err_buf is not NULL, the reason is written
  * to err_buf (there is no context yet to hold it). With PDK_BIND_CORE the OpenMP threads pdk uses
@@ -71,38 +73,41 @@ pdk_ctx_opts pdk_ctx_opts_default(void);
  * printing is off while any context exists (pdk reports HDF5 failures in its own messages).
  * pdk_ctx_destroy gives both back: the threads it bound return to the calling thread's binding
  * at creation, and the last context destroyed restores the HDF5 error handler it found. */
-int pdk_ctx_create(const pdk_ctx_opts *opts, pdk_ctx **out, char *err_buf, size_t err_len);
-void pdk_ctx_destroy(pdk_ctx **ctx);
+PDK_EXPORT int pdk_ctx_create(const pdk_ctx_opts *opts, pdk_ctx **out, char *err_buf,
+                              size_t err_len);
+PDK_EXPORT void pdk_ctx_destroy(pdk_ctx **ctx);
 
-int pdk_ctx_num_threads(const pdk_ctx *ctx);
+PDK_EXPORT int pdk_ctx_num_threads(const pdk_ctx *ctx);
 /* Changes the thread count used by later calls (1 .. number of hardware threads). */
-int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads);
-pdk_bind pdk_ctx_bind_policy(const pdk_ctx *ctx);
-unsigned pdk_ctx_isa(const pdk_ctx *ctx); /* PDK_ISA_* bits that this CPU has and pdk may use */
-const char *pdk_ctx_kernels_name(const pdk_ctx *ctx); /* "ref", "simd", "avx2" or "avx512" */
+PDK_EXPORT int pdk_ctx_set_num_threads(pdk_ctx *ctx, int num_threads);
+PDK_EXPORT pdk_bind pdk_ctx_bind_policy(const pdk_ctx *ctx);
+/* PDK_ISA_* bits that this CPU has and pdk may use */
+PDK_EXPORT unsigned pdk_ctx_isa(const pdk_ctx *ctx);
+/* "ref", "simd", "avx2" or "avx512" */
+PDK_EXPORT const char *pdk_ctx_kernels_name(const pdk_ctx *ctx);
 
 /* Last error. The message is empty when nothing failed since the last clear. */
-const char *pdk_ctx_error_message(const pdk_ctx *ctx);
-int pdk_ctx_error_code(const pdk_ctx *ctx);
-void pdk_ctx_error_clear(pdk_ctx *ctx);
+PDK_EXPORT const char *pdk_ctx_error_message(const pdk_ctx *ctx);
+PDK_EXPORT int pdk_ctx_error_code(const pdk_ctx *ctx);
+PDK_EXPORT void pdk_ctx_error_clear(pdk_ctx *ctx);
 
 /* Records an error in the context and returns `code`. `where` is the function name. Used by
  * drivers through PDK_CHECK; public so applications built on pdk can report into the same place. */
-int pdk_ctx_error_set(pdk_ctx *ctx, int code, const char *where, const char *fmt, ...)
+PDK_EXPORT int pdk_ctx_error_set(pdk_ctx *ctx, int code, const char *where, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
 
 /* Prints version, build flags, SIMD features, hwloc topology and thread binding. */
-int pdk_ctx_print_info(pdk_ctx *ctx, FILE *out);
+PDK_EXPORT int pdk_ctx_print_info(pdk_ctx *ctx, FILE *out);
 
 /* Peak resident memory of this process in bytes (0 if unknown). */
-size_t pdk_peak_memory_bytes(void);
+PDK_EXPORT size_t pdk_peak_memory_bytes(void);
 /* Monotonic wall clock in seconds. */
-double pdk_wtime(void);
+PDK_EXPORT double pdk_wtime(void);
 
-const char *pdk_status_name(int code);
+PDK_EXPORT const char *pdk_status_name(int code);
 
 #ifdef __cplusplus
 }

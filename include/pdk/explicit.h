@@ -10,6 +10,7 @@
 #ifndef PDK_EXPLICIT_H
 #define PDK_EXPLICIT_H
 
+#include "pdk/export.h"
 #include "pdk/model.h"
 
 #ifdef __cplusplus
@@ -30,10 +31,11 @@ typedef struct pdk_tfun {
   double a, b;
 } pdk_tfun;
 
-pdk_tfun pdk_tfun_constant(double a);
-double pdk_tfun_value(const pdk_tfun *f, double t);
-double pdk_tfun_rate(const pdk_tfun *f, double t); /* d/dt */
-double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1); /* exact integral over [t0, t1] */
+PDK_EXPORT pdk_tfun pdk_tfun_constant(double a);
+PDK_EXPORT double pdk_tfun_value(const pdk_tfun *f, double t);
+PDK_EXPORT double pdk_tfun_rate(const pdk_tfun *f, double t); /* d/dt */
+/* Exact integral over [t0, t1]. */
+PDK_EXPORT double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1);
 
 typedef enum pdk_bc_kind {
   PDK_BC_DISPLACEMENT = 0, /* u_c(t) = value(t) on the chosen components; fixed: value 0 */
@@ -85,7 +87,7 @@ typedef struct pdk_explicit_opts {
   int num_reaction_sets;
 } pdk_explicit_opts;
 
-pdk_explicit_opts pdk_explicit_opts_default(void);
+PDK_EXPORT pdk_explicit_opts pdk_explicit_opts_default(void);
 
 /* Per-step quantities. Reactions are the forces the constraints exert on each set:
  * R = -sum_{i in set} V_i f_i (internal force), so a pulled bar shows a positive reaction. */
@@ -115,8 +117,8 @@ typedef struct pdk_history {
 
 typedef struct pdk_explicit pdk_explicit;
 
-int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts, pdk_explicit **out);
-void pdk_explicit_destroy(pdk_explicit **e);
+PDK_EXPORT int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts, pdk_explicit **out);
+PDK_EXPORT void pdk_explicit_destroy(pdk_explicit **e);
 
 /* Stable time step of the model: 2 / sqrt(lambda_max(M^-1 K)), from 40 Lanczos steps on trial
  * force differences (model-agnostic), computed at creation and, with dt_update, again during the
@@ -124,21 +126,21 @@ void pdk_explicit_destroy(pdk_explicit **e);
  * lattices: the estimate is close to the true limit, and the safety factor is the margin. During a run, a blow-up (non-finite state, or
  * kinetic + strain energy above 100 times the initial energy plus the work done) stops it with a
  * message naming the step and the particle. */
-double pdk_explicit_stable_dt(const pdk_explicit *e); /* the latest estimate */
-double pdk_explicit_dt(const pdk_explicit *e);        /* the current step */
+PDK_EXPORT double pdk_explicit_stable_dt(const pdk_explicit *e); /* the latest estimate */
+PDK_EXPORT double pdk_explicit_dt(const pdk_explicit *e);        /* the current step */
 /* Step count and time at which the current step took effect (0, 0 until a dt_update lowers it),
  * so a run to end time T needs step0 + ceil((T - time0) / dt) steps in all. */
-void pdk_explicit_dt_start(const pdk_explicit *e, long *step0, double *time0);
+PDK_EXPORT void pdk_explicit_dt_start(const pdk_explicit *e, long *step0, double *time0);
 /* Estimates of the stable step so far, counting the one at creation, and how many lowered dt. */
-int pdk_explicit_num_estimates(const pdk_explicit *e);
-int pdk_explicit_num_dt_changes(const pdk_explicit *e);
+PDK_EXPORT int pdk_explicit_num_estimates(const pdk_explicit *e);
+PDK_EXPORT int pdk_explicit_num_dt_changes(const pdk_explicit *e);
 /* The options in effect (dt_update_interval 0 resolved to its default). */
-const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e);
+PDK_EXPORT const pdk_explicit_opts *pdk_explicit_opts_get(const pdk_explicit *e);
 
 /* Advances num_steps steps. hist (may be NULL) receives the state after the last step. */
-int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist);
-double pdk_explicit_time(const pdk_explicit *e);
-long pdk_explicit_step(const pdk_explicit *e);
+PDK_EXPORT int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist);
+PDK_EXPORT double pdk_explicit_time(const pdk_explicit *e);
+PDK_EXPORT long pdk_explicit_step(const pdk_explicit *e);
 
 #ifdef __cplusplus
 }

@@ -35,6 +35,7 @@
 #ifndef PDK_FAMILIES_H
 #define PDK_FAMILIES_H
 
+#include "pdk/export.h"
 #include "pdk/particles.h"
 
 #ifdef __cplusplus
@@ -56,7 +57,7 @@ typedef struct pdk_families_opts {
   size_t max_bytes;                 /* refuse to build if the bonds would take more; 0: 3/4 of RAM */
 } pdk_families_opts;
 
-pdk_families_opts pdk_families_opts_default(void);
+PDK_EXPORT pdk_families_opts pdk_families_opts_default(void);
 
 typedef struct pdk_families pdk_families;
 
@@ -66,28 +67,29 @@ typedef struct pdk_families pdk_families;
  * beyond the memory limit (PDK_ERR_MEMORY, names the count and bytes; checked before the bonds are
  * allocated), bad pre-crack geometry (PDK_ERR_ARG: wrong vertex count, non-finite, zero length or
  * area, not planar). */
-int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts, pdk_families **out);
+PDK_EXPORT int pdk_families_build(pdk_particles *p, const pdk_families_opts *opts,
+                                  pdk_families **out);
 /* The same families over explicit coordinates: coords[a] [n] for a < dim (coords[2] unused in
  * 2-D), ids [n] (may be NULL: messages then name indices) for error messages. Gives the bonds
  * pdk_families_build gives on a store whose "X" holds these coordinates, bit for bit; used to
  * rebuild families in the current configuration (updated-Lagrangian connectivity). Same errors. */
-int pdk_families_build_coords(pdk_ctx *ctx, int dim, pdk_index n, const double *const coords[3],
-                              const int64_t *ids, const pdk_families_opts *opts,
-                              pdk_families **out);
-void pdk_families_destroy(pdk_families **f);
+PDK_EXPORT int pdk_families_build_coords(pdk_ctx *ctx, int dim, pdk_index n,
+                                         const double *const coords[3], const int64_t *ids,
+                                         const pdk_families_opts *opts, pdk_families **out);
+PDK_EXPORT void pdk_families_destroy(pdk_families **f);
 
-pdk_index pdk_families_num_particles(const pdk_families *f);
-pdk_bond_index pdk_families_num_bonds(const pdk_families *f);   /* directed bonds */
-const pdk_bond_index *pdk_families_bond_start(const pdk_families *f);
-const pdk_index *pdk_families_bond_j(const pdk_families *f);
-double pdk_families_horizon(const pdk_families *f);
-size_t pdk_families_memory_bytes(const pdk_families *f);        /* bond_start + bond_j */
+PDK_EXPORT pdk_index pdk_families_num_particles(const pdk_families *f);
+PDK_EXPORT pdk_bond_index pdk_families_num_bonds(const pdk_families *f); /* directed bonds */
+PDK_EXPORT const pdk_bond_index *pdk_families_bond_start(const pdk_families *f);
+PDK_EXPORT const pdk_index *pdk_families_bond_j(const pdk_families *f);
+PDK_EXPORT double pdk_families_horizon(const pdk_families *f);
+PDK_EXPORT size_t pdk_families_memory_bytes(const pdk_families *f); /* bond_start + bond_j */
 
 /* The cell edge pdk_families_build uses for store p and this horizon: a relative 1.5e-8 above the
  * horizon (so round-off can never put two neighbours two cells apart), more only when the body
  * spans more than 2^21 horizons along an axis. Pass it to pdk_particles_reorder_morton for the
  * fastest build. Returns 0 and records an error in the context for a bad horizon or coordinates. */
-double pdk_families_cell_edge(pdk_particles *p, double horizon);
+PDK_EXPORT double pdk_families_cell_edge(pdk_particles *p, double horizon);
 
 #ifdef __cplusplus
 }

@@ -8,6 +8,7 @@
 #ifndef PDK_GEOMETRY_H
 #define PDK_GEOMETRY_H
 
+#include "pdk/export.h"
 #include "pdk/particles.h"
 
 #ifdef __cplusplus
@@ -39,7 +40,7 @@ typedef struct pdk_lattice_opts {
                           stay the full cell volume, also on faces */
 } pdk_lattice_opts;
 
-pdk_lattice_opts pdk_lattice_opts_default(void);
+PDK_EXPORT pdk_lattice_opts pdk_lattice_opts_default(void);
 
 /* Creates a store holding the lattice points; X, volume and id set. Points are ordered x fastest,
  * then y, then z; id = index. Volume is the lattice cell volume (spacing^2 * thickness,
@@ -48,9 +49,9 @@ pdk_lattice_opts pdk_lattice_opts_default(void);
  * jitter out of range, thickness <= 0, unknown type or node_type, node_type with a box that is not
  * a whole number of spacings or with the hexagonal lattice, more than 2^31 - 1 - PDK_PAD points,
  * a box too small to hold any point. */
-int pdk_lattice_create(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_particles **out);
+PDK_EXPORT int pdk_lattice_create(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_particles **out);
 /* Points pdk_lattice_create would make (same checks and errors), allocating nothing. */
-int pdk_lattice_count(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_index *count);
+PDK_EXPORT int pdk_lattice_count(pdk_ctx *ctx, const pdk_lattice_opts *opts, pdk_index *count);
 
 typedef enum pdk_region_kind {
   PDK_REGION_BOX = 0,       /* lo <= x <= hi on every axis */
@@ -71,35 +72,35 @@ typedef struct pdk_region {
 } pdk_region;
 
 /* Constructors; every array has 3 entries (in 2-D the third is ignored but still read). */
-pdk_region pdk_region_box(const double lo[3], const double hi[3]);
-pdk_region pdk_region_ball(const double center[3], double radius);
-pdk_region pdk_region_halfspace(const double point[3], const double normal[3]);
-pdk_region pdk_region_polygon(const double *vertices, int num_vertices);
+PDK_EXPORT pdk_region pdk_region_box(const double lo[3], const double hi[3]);
+PDK_EXPORT pdk_region pdk_region_ball(const double center[3], double radius);
+PDK_EXPORT pdk_region pdk_region_halfspace(const double point[3], const double normal[3]);
+PDK_EXPORT pdk_region pdk_region_polygon(const double *vertices, int num_vertices);
 
 /* Checks a region's parameters (radius > 0, lo <= hi, normal non-zero, >= 3 vertices and 2-D for
  * polygons, all finite); PDK_ERR_ARG with a message naming the bad value. */
-int pdk_region_check(pdk_ctx *ctx, int dim, const pdk_region *r);
+PDK_EXPORT int pdk_region_check(pdk_ctx *ctx, int dim, const pdk_region *r);
 /* 1 if the point x[0..dim-1] lies in the region. Assumes a region that passes pdk_region_check. */
-int pdk_region_contains(const pdk_region *r, int dim, const double *x);
+PDK_EXPORT int pdk_region_contains(const pdk_region *r, int dim, const double *x);
 /* A one-line description for messages, e.g. "the box [0, 0]..[1, 1]"; truncated to len bytes. */
-void pdk_region_describe(const pdk_region *r, int dim, char *buf, size_t len);
+PDK_EXPORT void pdk_region_describe(const pdk_region *r, int dim, char *buf, size_t len);
 
 /* Removes the particles inside the region (cuts a hole); the rest keep their order and every field,
  * sets included. The region is checked first. Error (PDK_ERR_ARG) if it would remove every
  * particle; a region that holds no particle removes none and is not an error. `removed` (may be
  * NULL) receives how many went. */
-int pdk_particles_cut(pdk_particles *p, const pdk_region *r, pdk_index *removed);
+PDK_EXPORT int pdk_particles_cut(pdk_particles *p, const pdk_region *r, pdk_index *removed);
 
 /* Declares the set "set:<name>" (uint8 field) holding the particles inside the region; defining an
  * existing set again replaces its members. The region is checked first. A region that selects no
  * particle is an error (PDK_ERR_ARG) naming the set, the region and the body's extent; the store is
  * then unchanged. `count` (may be NULL) receives the member count. */
-int pdk_particles_set_define(pdk_particles *p, const char *name, const pdk_region *r,
-                             pdk_index *count);
+PDK_EXPORT int pdk_particles_set_define(pdk_particles *p, const char *name, const pdk_region *r,
+                                        pdk_index *count);
 /* Member indices of a set, ascending, in a malloc'ed array the caller frees (also when the count is
  * 0). PDK_ERR_NOT_FOUND if the set was never defined. */
-int pdk_particles_set_indices(pdk_particles *p, const char *name, pdk_index **indices,
-                              pdk_index *count);
+PDK_EXPORT int pdk_particles_set_indices(pdk_particles *p, const char *name, pdk_index **indices,
+                                         pdk_index *count);
 
 #ifdef __cplusplus
 }

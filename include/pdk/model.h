@@ -47,6 +47,7 @@
 #ifndef PDK_MODEL_H
 #define PDK_MODEL_H
 
+#include "pdk/export.h"
 #include "pdk/families.h"
 #include "pdk/particles.h"
 #include "pdk/plasticity.h"
@@ -292,36 +293,37 @@ typedef struct pdk_model_opts {
   pdk_stencil_mode stencil;
 } pdk_model_opts;
 
-pdk_model_opts pdk_model_opts_default(void);
+PDK_EXPORT pdk_model_opts pdk_model_opts_default(void);
 
 typedef struct pdk_model pdk_model;
 
 /* Creates the model, declares its fields, precomputes what is fixed (weighted volumes, shape
  * tensors). "x" is initialised to "X" if it did not exist. */
-int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts,
-                     pdk_model **out);
-void pdk_model_destroy(pdk_model **m);
+PDK_EXPORT int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts,
+                                pdk_model **out);
+PDK_EXPORT void pdk_model_destroy(pdk_model **m);
 
 /* Computes the force density "f" from the current positions "x". If strain_energy is not NULL
  * it receives the total strain energy sum_i V_i W_i [energy], summed in a fixed order. Breaks
  * bonds per the failure criterion (state read from the previous pass, written for the next). */
-int pdk_model_force(pdk_model *m, double *strain_energy);
+PDK_EXPORT int pdk_model_force(pdk_model *m, double *strain_energy);
 /* The same forces, but a trial: no history changes (bond state, critical stretches, plastic
  * strain stay as they are). Used by time-step estimates, relaxation iterates and tangents. */
-int pdk_model_force_trial(pdk_model *m, double *strain_energy);
+PDK_EXPORT int pdk_model_force_trial(pdk_model *m, double *strain_energy);
 
-const pdk_model_opts *pdk_model_opts_get(const pdk_model *m);
-pdk_particles *pdk_model_particles(const pdk_model *m);
-pdk_families *pdk_model_families(const pdk_model *m);
+PDK_EXPORT const pdk_model_opts *pdk_model_opts_get(const pdk_model *m);
+PDK_EXPORT pdk_particles *pdk_model_particles(const pdk_model *m);
+PDK_EXPORT pdk_families *pdk_model_families(const pdk_model *m);
 /* Bond state: [num_bonds] uint8, 1 intact, 0 broken; NULL when the model never breaks bonds. */
-const uint8_t *pdk_model_bond_alive(const pdk_model *m);
-pdk_bond_index pdk_model_num_broken(const pdk_model *m); /* directed bonds broken so far */
+PDK_EXPORT const uint8_t *pdk_model_bond_alive(const pdk_model *m);
+/* Directed bonds broken so far. */
+PDK_EXPORT pdk_bond_index pdk_model_num_broken(const pdk_model *m);
 /* Particles whose family no longer spans the space (correspondence): count, after a force pass. */
-pdk_index pdk_model_num_flagged(const pdk_model *m);
+PDK_EXPORT pdk_index pdk_model_num_flagged(const pdk_model *m);
 /* Particles without an intact bond (every bond broken, or an empty family from the start): they
  * move freely and carry no force. Counted on demand over the bond state (one pass over the
  * bonds), after the last force pass. */
-pdk_index pdk_model_num_isolated(const pdk_model *m);
+PDK_EXPORT pdk_index pdk_model_num_isolated(const pdk_model *m);
 /* Float storage of bond lengths (PMB and LPS with precision float) rounds each reference length
  * to a relative 2^-24, a stretch error of up to 2^-24 = 6.0e-8 on every bond whatever the
  * deformation, so round-off, not discretization, dominates the forces when the stretches are
@@ -331,44 +333,45 @@ pdk_index pdk_model_num_isolated(const pdk_model *m);
  * (precision double; correspondence, whose float tensors carry a relative 2^-24 of the stress
  * instead). The CLI warns at the end of a run when 0 <= ratio < PDK_FLOAT_STRETCH_WARN. */
 #define PDK_FLOAT_STRETCH_WARN 1e4
-double pdk_model_float_stretch_ratio(const pdk_model *m);
+PDK_EXPORT double pdk_model_float_stretch_ratio(const pdk_model *m);
 /* Layout sell: the fraction of the stored bond entries that are padding, (entries - bonds) /
  * entries, the share of the SIMD lanes' work spent on nothing; 0 for layout csr. */
-double pdk_model_padding_fraction(const pdk_model *m);
+PDK_EXPORT double pdk_model_padding_fraction(const pdk_model *m);
 /* 1 when the force passes take the stencil path (opts.stencil on, or auto on a lattice), else 0.
  * pdk_model_stencil_reason: why auto fell back to the general path ("" when it did not, or the
  * stencil is off). */
-int pdk_model_stencil_active(const pdk_model *m);
-const char *pdk_model_stencil_reason(const pdk_model *m);
+PDK_EXPORT int pdk_model_stencil_active(const pdk_model *m);
+PDK_EXPORT const char *pdk_model_stencil_reason(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
-pdk_index pdk_model_num_failed(const pdk_model *m);
+PDK_EXPORT pdk_index pdk_model_num_failed(const pdk_model *m);
 /* Largest Johnson-Cook damage D of any particle (the "damage" field); 0 without it. */
-double pdk_model_damage_max(const pdk_model *m);
+PDK_EXPORT double pdk_model_damage_max(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */
-long pdk_model_num_compactions(const pdk_model *m);
+PDK_EXPORT long pdk_model_num_compactions(const pdk_model *m);
 /* UL: how many times the families were rebuilt in the current configuration (0 in TL, semi-TL). */
-long pdk_model_num_rebuilds(const pdk_model *m);
+PDK_EXPORT long pdk_model_num_rebuilds(const pdk_model *m);
 /* UL: rebuilds the families at the current "x" now (a trial pass at x first gives the F to store
  * as the new reference deformation), whatever the displacement since the last rebuild. Refused
  * (PDK_ERR_ARG) for other connectivity modes. */
-int pdk_model_rebuild(pdk_model *m);
+PDK_EXPORT int pdk_model_rebuild(pdk_model *m);
 /* UL: the families the passes walk now (the ones given to pdk_model_create until the first
  * rebuild); for other modes the model's families. Valid until the next committing pass. */
-pdk_families *pdk_model_current_families(const pdk_model *m);
+PDK_EXPORT pdk_families *pdk_model_current_families(const pdk_model *m);
 /* Time step [time] the history update uses (rate terms and "eps_p_rate"); dt > 0. The explicit
  * solver sets it. Until it is set, a commit pass of a law with rate terms is refused and trial
  * passes take the quasi-static limit (dt = infinity: no rate hardening). */
-int pdk_model_set_dt(pdk_model *m, double dt);
+PDK_EXPORT int pdk_model_set_dt(pdk_model *m, double dt);
 /* The time step of the history update: as set, or 0 (none: quasi-static limit). The static
  * solvers set it for each load step (include/pdk/static.h). */
-double pdk_model_get_dt(const pdk_model *m);
+PDK_EXPORT double pdk_model_get_dt(const pdk_model *m);
 /* Energy dissipated so far [energy], each summed over particles in a fixed order (thread-count
  * independent): plastic work (with what softened stabilization gave up, "w_stab"), damage, and
  * what bond breaking released (see "w_broken"). A
  * quantity the model does not track is 0. Any pointer may be NULL. Together with the strain
  * energy of pdk_model_force: external work = kinetic + strain + plastic + damage + breaking. */
-int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double *breaking);
-const char *pdk_model_kind_name(pdk_model_kind kind);
+PDK_EXPORT int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage,
+                                      double *breaking);
+PDK_EXPORT const char *pdk_model_kind_name(pdk_model_kind kind);
 
 /* Influence-weighted smoothing of a particle field (Queiruga & Moridis 2017, eq. (49), the
  * post-process that removes the oscillations of unstabilized correspondence):
@@ -377,8 +380,8 @@ const char *pdk_model_kind_name(pdk_model_kind kind);
  * function over the families' horizon, w0 = w(0) (10 for 1/r and 1/r^2, whose w(0) is infinite,
  * as the authors' code). `in` is an f64 field; `out` (a different name) is created with the same
  * component count if absent, or must have it. Bitwise the same for any thread count. */
-int pdk_smooth_field(pdk_particles *p, pdk_families *fam, pdk_influence w, double gaussian_width,
-                     const char *in, const char *out);
+PDK_EXPORT int pdk_smooth_field(pdk_particles *p, pdk_families *fam, pdk_influence w,
+                                double gaussian_width, const char *in, const char *out);
 
 #ifdef __cplusplus
 }

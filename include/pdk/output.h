@@ -68,6 +68,7 @@
 #ifndef PDK_OUTPUT_H
 #define PDK_OUTPUT_H
 
+#include "pdk/export.h"
 #include "pdk/explicit.h"
 
 #ifdef __cplusplus
@@ -108,39 +109,40 @@ typedef struct pdk_output_opts {
 } pdk_output_opts;
 
 /* dir ".", name "pdk", plot 1, compression 0, the rest zero/NULL. */
-pdk_output_opts pdk_output_opts_default(void);
+PDK_EXPORT pdk_output_opts pdk_output_opts_default(void);
 
 /* Creates <name>.h5.part, <name>.xmf.part and <name>_history.csv.part in dir and writes the
  * static data. The name must be printable: a control character is an error (PDK_ERR_ARG); any
  * other character is safe in the plot scripts. The store p is borrowed: it must outlive the output and keep its particle order. */
-int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts, pdk_particles *p, pdk_output **out);
+PDK_EXPORT int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts, pdk_particles *p,
+                               pdk_output **out);
 /* Writes the listed particle fields at this step. A name that is not a registered field is an
  * error naming it and listing the fields that exist; so is a name listed twice. */
-int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double time,
-                            const char *const *fields, int num_fields);
+PDK_EXPORT int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double time,
+                                       const char *const *fields, int num_fields);
 /* Appends one history record (a row of every /history column and of the CSV). */
-int pdk_output_write_history(pdk_output *o, const pdk_history *h);
+PDK_EXPORT int pdk_output_write_history(pdk_output *o, const pdk_history *h);
 /* 1 when pdk_output_close(..., 1) will make the PNG: the plot was asked for and gnuplot was
  * found on the PATH at open. A missing gnuplot is not an error; this is how to tell. */
-int pdk_output_will_plot(const pdk_output *o);
+PDK_EXPORT int pdk_output_will_plot(const pdk_output *o);
 /* Number of field outputs and history records written so far. */
-int pdk_output_num_field_steps(const pdk_output *o);
-long pdk_output_num_history_rows(const pdk_output *o);
+PDK_EXPORT int pdk_output_num_field_steps(const pdk_output *o);
+PDK_EXPORT long pdk_output_num_history_rows(const pdk_output *o);
 /* The step of the last history record and of the last field output so far (also those kept by
  * opts.append); -1 when there is none. */
-long pdk_output_last_history_step(const pdk_output *o);
-long pdk_output_last_field_step(const pdk_output *o);
+PDK_EXPORT long pdk_output_last_history_step(const pdk_output *o);
+PDK_EXPORT long pdk_output_last_field_step(const pdk_output *o);
 /* success = 1: finish the XDMF, CSVs and PNGs and rename every file to its final name;
  * success = 0: remove the temporary files. Always frees (accepts NULL). If gnuplot runs but
  * fails, the data files are still completed and renamed, that PNG is not left, and the error
  * (PDK_ERR_EXTERNAL) names the script to rerun. */
-int pdk_output_close(pdk_output **o, int success);
+PDK_EXPORT int pdk_output_close(pdk_output **o, int success);
 /* Makes a file the caller completed under the temporary name part one of the output's set: the
  * closing phase syncs it, removes the previous file at final with the previous run's files and
  * renames part to final with the new ones (before the .xmf), so a kill leaves it beside files of
  * its own run only. Closing without success removes part. One such file per output; pdk run
  * gives it the checkpoint written at the end of a run or at Ctrl-C. */
-int pdk_output_adopt(pdk_output *o, const char *part, const char *final);
+PDK_EXPORT int pdk_output_adopt(pdk_output *o, const char *part, const char *final);
 
 /* Checkpoint: every registered particle field, the model's bond state and counters, and the
  * solver's scalars (time, step, dt, strain energy, external work), in one HDF5 file (written as
@@ -160,7 +162,8 @@ int pdk_output_adopt(pdk_output *o, const char *part, const char *final);
  * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and
  * ul_bond_j i32; /fields/<name> [num_comp][n] in the field's type, attributes type (pdk_type)
  * and components. */
-int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text);
+PDK_EXPORT int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e,
+                                    const char *scene_text);
 /* Verifies the checkpoint first: a file that is missing, not HDF5, not a pdk checkpoint, of
  * another format (format 1, without a checksum, included) or that does not match its checksum
  * (damaged) is refused (PDK_ERR_IO, PDK_ERR_UNSUPPORTED for the format) with one line naming the
@@ -169,12 +172,12 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
  * nothing when they differ: the error (PDK_ERR_ARG) names what differs. Fields in the checkpoint
  * that the simulation lacks are added. The checkpoint's dt is restored as it was; a scene-level
  * restart that reconciles it with the scene's step and end is pdk_sim_restart (pdk/scene.h). */
-int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
+PDK_EXPORT int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e);
 /* What a checkpoint holds before anything is built from it: its step and time, and the scene
  * text it was written with (malloc'd, free() it; NULL when none was stored). Any output pointer
  * may be NULL. The file is verified as by pdk_checkpoint_read. */
-int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
-                        char **scene_text);
+PDK_EXPORT int pdk_checkpoint_info(pdk_ctx *ctx, const char *path, long *step, double *time,
+                                   char **scene_text);
 
 #ifdef __cplusplus
 }

@@ -3,6 +3,7 @@
 #define PDK_PDK_H
 
 #include "pdk/version.h"
+#include "pdk/export.h"
 #include "pdk/ctx.h"
 #include "pdk/particles.h"
 #include "pdk/geometry.h"

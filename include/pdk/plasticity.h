@@ -37,6 +37,7 @@
 #ifndef PDK_PLASTICITY_H
 #define PDK_PLASTICITY_H
 
+#include "pdk/export.h"
 #include "pdk/ctx.h"
 
 #ifdef __cplusplus
@@ -92,11 +93,11 @@ typedef struct pdk_jc_params {
  * the optional terms are Johnson-Cook's 4340 steel ones, ready to switch on: ref_rate 1/s,
  * m 1.03, T_room 293 K, T_melt 1793 K, T_initial = T_room, beta 0.9, c_p 477 J/(kg K);
  * (C = 0.014, D4 = 0.002, D5 = 0.61 in Johnson & Cook 1983/1985, left at 0 here). */
-pdk_jc_params pdk_jc_params_default(void);
+PDK_EXPORT pdk_jc_params pdk_jc_params_default(void);
 
 /* Checks every parameter; on failure records a message naming the parameter, its value and the
  * allowed range in ctx and returns PDK_ERR_ARG. */
-int pdk_jc_params_check(pdk_ctx *ctx, const pdk_jc_params *params);
+PDK_EXPORT int pdk_jc_params_check(pdk_ctx *ctx, const pdk_jc_params *params);
 
 /* History of one material point. */
 typedef struct pdk_jc_state {
@@ -109,7 +110,7 @@ typedef struct pdk_jc_state {
 } pdk_jc_state;
 
 /* Virgin state: C_p^-1 = 1, eps_p = D = temp_rise = 0, not failed. */
-pdk_jc_state pdk_jc_state_initial(void);
+PDK_EXPORT pdk_jc_state pdk_jc_state_initial(void);
 
 /* What a step produced besides P and the history. Energies per unit reference volume. */
 typedef struct pdk_jc_result {
@@ -144,8 +145,9 @@ typedef struct pdk_jc_result {
  * Returns 0, or PDK_ERR_ARG (dim not 2 or 3, dt <= 0 with a rate term), or PDK_ERR_NUMERIC
  * (F not finite or det F <= 0); on error nothing is written. A failed point (in->failed) returns
  * P = 0 (or the compressive pressure) and copies the history unchanged. */
-int pdk_jc_update(const pdk_jc_params *params, int dim, const double F[3][3], double dt,
-                  const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res);
+PDK_EXPORT int pdk_jc_update(const pdk_jc_params *params, int dim, const double F[3][3], double dt,
+                             const pdk_jc_state *in, pdk_jc_state *out, double P[3][3],
+                             pdk_jc_result *res);
 
 /* The same step with the damage triaxiality taken from a given mean stress instead of the
  * point's own: eta = sigma_m_avg J / q (q the von Mises Kirchhoff stress of the returned effective
@@ -154,9 +156,9 @@ int pdk_jc_update(const pdk_jc_params *params, int dim, const double F[3][3], do
  * family average of its neighbours' sigma_m_eff from the previous step (pdk_model_opts
  * damage_triaxiality). Everything else is pdk_jc_update's; with sigma_m_avg equal to the point's
  * own sigma_m_eff the two agree to round-off. */
-int pdk_jc_update_avg(const pdk_jc_params *params, int dim, const double F[3][3], double dt,
-                      double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
-                      double P[3][3], pdk_jc_result *res);
+PDK_EXPORT int pdk_jc_update_avg(const pdk_jc_params *params, int dim, const double F[3][3],
+                                 double dt, double sigma_m_avg, const pdk_jc_state *in,
+                                 pdk_jc_state *out, double P[3][3], pdk_jc_result *res);
 
 /* Remap of the history when the deformation gradient of a point changes for a reason other than
  * motion (a correspondence particle's family lost bonds, so its fitted F jumped from F_old to
@@ -166,15 +168,16 @@ int pdk_jc_update_avg(const pdk_jc_params *params, int dim, const double F[3][3]
  * volume change), and later plastic steps keep it. eps_p, D and the temperature are unchanged; a
  * failed point is left alone. Returns PDK_ERR_NUMERIC (s unchanged) for a non-finite F or
  * det F <= 0. */
-int pdk_jc_remap(int dim, const double F_old[3][3], const double F_new[3][3], pdk_jc_state *s);
+PDK_EXPORT int pdk_jc_remap(int dim, const double F_old[3][3], const double F_new[3][3],
+                            pdk_jc_state *s);
 
 /* The law's pieces, for outputs and tests: the flow stress at plastic strain eps_p, rate
  * factor argument rate_star (ignored unless C != 0) and homologous temperature T_star (ignored
  * unless thermal); the failure strain at triaxiality eta. Both apply the clamps of the update. */
-double pdk_jc_flow_stress(const pdk_jc_params *params, double eps_p, double rate_star,
-                          double T_star);
-double pdk_jc_failure_strain(const pdk_jc_params *params, double eta, double rate_star,
-                             double T_star);
+PDK_EXPORT double pdk_jc_flow_stress(const pdk_jc_params *params, double eps_p, double rate_star,
+                                     double T_star);
+PDK_EXPORT double pdk_jc_failure_strain(const pdk_jc_params *params, double eta, double rate_star,
+                                        double T_star);
 
 #ifdef __cplusplus
 }

@@ -12,6 +12,7 @@
 #ifndef PDK_SCENE_H
 #define PDK_SCENE_H
 
+#include "pdk/export.h"
 #include "pdk/explicit.h"
 #include "pdk/static.h"
 
@@ -21,15 +22,16 @@ extern "C" {
 
 typedef struct pdk_scene pdk_scene;
 
-int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides, int num_overrides,
-                   pdk_scene **out);
-void pdk_scene_destroy(pdk_scene **s);
+PDK_EXPORT int pdk_scene_load(pdk_ctx *ctx, const char *path, const char *const *overrides,
+                              int num_overrides, pdk_scene **out);
+PDK_EXPORT void pdk_scene_destroy(pdk_scene **s);
 
-const char *pdk_scene_path(const pdk_scene *s);
-const char *pdk_scene_name(const pdk_scene *s); /* "name" key, default: file stem */
-const char *pdk_scene_text(const pdk_scene *s); /* the scene after overrides, as YAML text */
-int pdk_scene_threads(const pdk_scene *s);      /* solver.threads, 0 = default */
-int pdk_scene_dimension(const pdk_scene *s);    /* 2 or 3 */
+PDK_EXPORT const char *pdk_scene_path(const pdk_scene *s);
+PDK_EXPORT const char *pdk_scene_name(const pdk_scene *s); /* "name" key, default: file stem */
+/* The scene after overrides, as YAML text. */
+PDK_EXPORT const char *pdk_scene_text(const pdk_scene *s);
+PDK_EXPORT int pdk_scene_threads(const pdk_scene *s);   /* solver.threads, 0 = default */
+PDK_EXPORT int pdk_scene_dimension(const pdk_scene *s); /* 2 or 3 */
 
 /* solver.type */
 typedef enum pdk_solver_type {
@@ -37,19 +39,20 @@ typedef enum pdk_solver_type {
   PDK_SOLVER_ADR = 1,   /* quasi-static load steps by adaptive dynamic relaxation (pdk/static.h) */
   PDK_SOLVER_NEWTON = 2 /* static load steps by Newton-Raphson (pdk/static.h) */
 } pdk_solver_type;
-pdk_solver_type pdk_scene_solver_type(const pdk_scene *s);
-const char *pdk_solver_type_name(pdk_solver_type type);
+PDK_EXPORT pdk_solver_type pdk_scene_solver_type(const pdk_scene *s);
+PDK_EXPORT const char *pdk_solver_type_name(pdk_solver_type type);
 
 /* Where a key of the scene was given: "<file>:<line>", or "<file>: --set <key.path>=<value>" when
  * an override set it. An absent key (a default) gives the location of its nearest present parent.
  * Key paths join mapping keys with '.' and index lists from 0: "boundary_conditions[1].y". */
-void pdk_scene_key_location(const pdk_scene *s, const char *key_path, char *buf, size_t len);
+PDK_EXPORT void pdk_scene_key_location(const pdk_scene *s, const char *key_path, char *buf,
+                                       size_t len);
 /* Records, in the context, a message about a scene key in the scene's form
  *   <file>:<line>: <key.path>: <what is wrong>; <what is allowed>
  * (the caller's fmt supplies the part after the key path) and returns code. For applications that
  * find a problem with a scene after loading it (the `pdk` command, output writers). */
-int pdk_scene_error(const pdk_scene *s, pdk_ctx *ctx, int code, const char *key_path,
-                    const char *fmt, ...)
+PDK_EXPORT int pdk_scene_error(const pdk_scene *s, pdk_ctx *ctx, int code, const char *key_path,
+                               const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 5, 6)))
 #endif
@@ -68,22 +71,22 @@ typedef struct pdk_scene_output {
   const char *units; /* output.units: "SI", "mm-N-s-tonne" or NULL (none): pdk_output_opts.units */
 } pdk_scene_output;
 
-const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s);
+PDK_EXPORT const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s);
 
 /* A built simulation. */
 typedef struct pdk_sim pdk_sim;
 
-int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out);
-void pdk_sim_destroy(pdk_sim **sim);
+PDK_EXPORT int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out);
+PDK_EXPORT void pdk_sim_destroy(pdk_sim **sim);
 
-pdk_particles *pdk_sim_particles(pdk_sim *sim);
-pdk_families *pdk_sim_families(pdk_sim *sim);
-pdk_model *pdk_sim_model(pdk_sim *sim);
-pdk_explicit *pdk_sim_explicit(pdk_sim *sim); /* NULL for a static solver */
+PDK_EXPORT pdk_particles *pdk_sim_particles(pdk_sim *sim);
+PDK_EXPORT pdk_families *pdk_sim_families(pdk_sim *sim);
+PDK_EXPORT pdk_model *pdk_sim_model(pdk_sim *sim);
+PDK_EXPORT pdk_explicit *pdk_sim_explicit(pdk_sim *sim); /* NULL for a static solver */
 /* explicit: solver.steps, or ceil(end_time / dt) (after a solver.dt_update lowered dt at step s0,
  * time t0: s0 + ceil((end_time - t0) / dt), so the count can grow during a run); static: the
  * number of load steps */
-long pdk_sim_num_steps(const pdk_sim *sim);
+PDK_EXPORT long pdk_sim_num_steps(const pdk_sim *sim);
 
 /* Restart of an explicit run from the checkpoint at `path` (pdk/output.h), into a simulation
  * freshly built from the scene s. The checkpoint is verified and checked against the simulation
@@ -106,7 +109,8 @@ typedef struct pdk_sim_restart_info {
   double dt_before;         /* the checkpoint's dt */
   double dt_created_before; /* the step the checkpoint's run was created with */
 } pdk_sim_restart_info;
-int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path, pdk_sim_restart_info *info);
+PDK_EXPORT int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path,
+                               pdk_sim_restart_info *info);
 
 /* Static solvers (solver.type adr or newton). A static run is a sequence of load steps; each is
  * solved to equilibrium (with its re-solves while bonds break) and gives one history record:
@@ -117,16 +121,16 @@ int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path, pdk_sim_
  *                   after the committing pass
  *   external_work   work of the supports and body forces along the load path (trapezoidal over
  *                   the load steps; see pdk/static.h)                                          */
-pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim);
-pdk_static *pdk_sim_static(pdk_sim *sim); /* NULL for the explicit solver */
+PDK_EXPORT pdk_solver_type pdk_sim_solver_type(const pdk_sim *sim);
+PDK_EXPORT pdk_static *pdk_sim_static(pdk_sim *sim); /* NULL for the explicit solver */
 /* Solves the next load step and fills h (may be NULL) with its record. */
-int pdk_sim_static_step(pdk_sim *sim, pdk_history *h);
+PDK_EXPORT int pdk_sim_static_step(pdk_sim *sim, pdk_history *h);
 /* The record of the current state (the last load step solved, or the unloaded state). */
-int pdk_sim_static_history(pdk_sim *sim, pdk_history *h);
+PDK_EXPORT int pdk_sim_static_history(pdk_sim *sim, pdk_history *h);
 
 /* Refreshes derived output fields before a field output: displacement "u" = x - X, and
  * "von_mises" (the von Mises Cauchy stress of a correspondence model; see src/sim.c). */
-int pdk_sim_update_output_fields(pdk_sim *sim);
+PDK_EXPORT int pdk_sim_update_output_fields(pdk_sim *sim);
 
 #ifdef __cplusplus
 }

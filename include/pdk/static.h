@@ -122,6 +122,7 @@
 #ifndef PDK_STATIC_H
 #define PDK_STATIC_H
 
+#include "pdk/export.h"
 #include "pdk/explicit.h"
 
 #ifdef __cplusplus
@@ -222,7 +223,7 @@ typedef struct pdk_static_opts {
 } pdk_static_opts;
 
 /* Defaults for a method (tolerances and iteration limits differ). */
-pdk_static_opts pdk_static_opts_default(pdk_static_method method);
+PDK_EXPORT pdk_static_opts pdk_static_opts_default(pdk_static_method method);
 
 /* Work and memory of a solve, accumulated over pdk_static_solve calls. Times are wall seconds. */
 typedef struct pdk_static_stats {
@@ -276,32 +277,32 @@ typedef struct pdk_static_stats {
 typedef struct pdk_static pdk_static;
 
 /* Checks options and conditions and prepares the solver over model m (which it borrows). */
-int pdk_static_create(pdk_model *m, const pdk_static_opts *opts, pdk_static **out);
-void pdk_static_destroy(pdk_static **s);
+PDK_EXPORT int pdk_static_create(pdk_model *m, const pdk_static_opts *opts, pdk_static **out);
+PDK_EXPORT void pdk_static_destroy(pdk_static **s);
 
 /* Solves every load level not solved yet. On success the particles' "x" holds the equilibrium of
  * the last level and "f" its internal forces. On failure the message names the level, the round
  * and why. */
-int pdk_static_solve(pdk_static *s);
+PDK_EXPORT int pdk_static_solve(pdk_static *s);
 /* Solves the next load level only (with its re-solve rounds), so a caller can write output after
  * each one; pdk_static_solve is a loop over it. Refused (PDK_ERR_ARG) when every level is done. */
-int pdk_static_solve_level(pdk_static *s);
+PDK_EXPORT int pdk_static_solve_level(pdk_static *s);
 /* Load levels in all, and how many are solved. */
-int pdk_static_num_levels(const pdk_static *s);
-int pdk_static_levels_solved(const pdk_static *s);
+PDK_EXPORT int pdk_static_num_levels(const pdk_static *s);
+PDK_EXPORT int pdk_static_levels_solved(const pdk_static *s);
 /* opts.total_time: > 0 in time mode, 0 in scale mode. */
-double pdk_static_total_time(const pdk_static *s);
+PDK_EXPORT double pdk_static_total_time(const pdk_static *s);
 /* Pseudo-time of level k (time mode), or its load factor (scale mode); 0 for k < 0. */
-double pdk_static_level_time(const pdk_static *s, int k);
+PDK_EXPORT double pdk_static_level_time(const pdk_static *s, int k);
 /* The last COMMITTED event (the equilibrium after the last solved level, every field of it), or
  * the unloaded state (level -1, everything 0 but broken) before the first level. */
-const pdk_static_event *pdk_static_last_event(const pdk_static *s);
+PDK_EXPORT const pdk_static_event *pdk_static_last_event(const pdk_static *s);
 
-const pdk_static_stats *pdk_static_stats_get(const pdk_static *s);
-const char *pdk_static_method_name(pdk_static_method method);
+PDK_EXPORT const pdk_static_stats *pdk_static_stats_get(const pdk_static *s);
+PDK_EXPORT const char *pdk_static_method_name(pdk_static_method method);
 
 /* Prints the stats in a few lines (memory in MiB, times in seconds). */
-void pdk_static_stats_print(const pdk_static_stats *st, FILE *out);
+PDK_EXPORT void pdk_static_stats_print(const pdk_static_stats *st, FILE *out);
 
 #ifdef __cplusplus
 }

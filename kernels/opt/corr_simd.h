@@ -43,7 +43,6 @@
 #include <math.h>
 
 #include "kernels.h"
-#include "pdk/model.h"
 #include "ref/corr_law.h"
 
 #define CORR_CAT2(a, b) a##b
@@ -198,7 +197,7 @@ CORR_INLINE void rp1_bond(const int d, const pdk_corr_arrays *a, pdk_bond_index 
 CORR_INLINE void rows_store(const int d, const int fl, const pdk_corr_consts *k,
                             const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
                             const corr_v4 *acc, const double A[3][3], const double F[3][3]) {
-  const int silling = k->stab == PDK_STAB_SILLING;
+  const int silling = k->stab == PDK_KERNEL_STAB_SILLING;
   const double ki = pdk_corr_kst(k, a, i);
   double B[3][3] = {{0}};
   for (int r = 0; r < d; ++r)
@@ -249,7 +248,7 @@ CORR_INLINE void rows_end(const int d, const int fl, const pdk_corr_consts *k,
                           const pdk_corr_arrays *a, pdk_index i, const double D[3][3],
                           const corr_v4 *acc) {
   double A[3][3] = {{0}}, F[3][3] = {{0}};
-  if (k->law == PDK_LAW_JC || (a->flag[i] & PDK_CORR_FLAG_SPAN) || a->kst || a->Bf[0]) {
+  if (k->law == PDK_KERNEL_LAW_JC || (a->flag[i] & PDK_CORR_FLAG_SPAN) || a->kst || a->Bf[0]) {
     pdk_kernel_corr_point_disp_ref(k, a, i, D);
     for (int r = 0; r < d; ++r)
       for (int c = 0; c < d; ++c) {
@@ -363,7 +362,7 @@ static void rows_pass1(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_i
 
 static void rows_pass2(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index i0,
                        pdk_index i1) {
-  const int fl = a->rowf != NULL, st = k->stab == PDK_STAB_SILLING;
+  const int fl = a->rowf != NULL, st = k->stab == PDK_KERNEL_STAB_SILLING;
   if (k->dim == 2) {
     if (fl)
       st ? rp2_rows(2, 1, 1, k, a, i0, i1) : rp2_rows(2, 1, 0, k, a, i0, i1);
@@ -437,7 +436,7 @@ CORR_INLINE void pass1_rows(const int d, const pdk_corr_consts *k, const pdk_cor
 
 void CORR_FN(pdk_kernel_corr_pass1_)(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                      pdk_index i0, pdk_index i1) {
-  if (a->own && k->stab != PDK_STAB_HOURGLASS)
+  if (a->own && k->stab != PDK_KERNEL_STAB_HOURGLASS)
     rows_pass1(k, a, i0, i1);
   else if (k->dim == 2)
     pass1_rows(2, k, a, i0, i1);
@@ -611,11 +610,11 @@ CORR_INLINE void pass2_rows(const int stab, const pdk_corr_consts *k, const pdk_
 
 void CORR_FN(pdk_kernel_corr_pass2_)(const pdk_corr_consts *k, const pdk_corr_arrays *a,
                                      pdk_index i0, pdk_index i1) {
-  if (a->own && k->stab != PDK_STAB_HOURGLASS)
+  if (a->own && k->stab != PDK_KERNEL_STAB_HOURGLASS)
     rows_pass2(k, a, i0, i1);
-  else if (k->stab == PDK_STAB_SILLING)
+  else if (k->stab == PDK_KERNEL_STAB_SILLING)
     pass2_rows(1, k, a, i0, i1);
-  else if (k->stab == PDK_STAB_HOURGLASS)
+  else if (k->stab == PDK_KERNEL_STAB_HOURGLASS)
     pass2_rows(2, k, a, i0, i1);
   else
     pass2_rows(0, k, a, i0, i1);

@@ -2,7 +2,6 @@
  * CPU): 2 sites per vector; the body is kernels/opt/corr_stencil.h (layout, method, agreement with
  * the general path there). */
 #include "kernels.h"
-#include "pdk/model.h"
 
 #define SC_W 2
 #define SC_U 2

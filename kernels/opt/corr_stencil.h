@@ -123,7 +123,7 @@ SC_INLINE void sc_corr1_block(const int nu, const int d, const int has_mask, con
     /* the per-particle end: inline for the elastic laws (F, A stay in registers), the
      * reference's otherwise, as the packed-row path's rows_end */
     double A[3][3] = {{0}}, F[3][3] = {{0}};
-    if (k->law == PDK_LAW_JC || (c->flag[p] & PDK_CORR_FLAG_SPAN)) {
+    if (k->law == PDK_KERNEL_LAW_JC || (c->flag[p] & PDK_CORR_FLAG_SPAN)) {
       pdk_kernel_corr_point_disp_ref(k, c, p, Dp);
       for (int r = 0; r < d; ++r)
         for (int q = 0; q < d; ++q) {
@@ -241,7 +241,7 @@ SC_INLINE void sc_corr_rows(const int pass, const int d, const int has_mask, con
   (a->cBf[0] ? sc_corr_rows(pass, d, mk, si, 1, k, c, a, r0, r1)                                   \
              : sc_corr_rows(pass, d, mk, si, 0, k, c, a, r0, r1))
 #define SC_CS(pass, d, mk)                                                                         \
-  (k->stab == PDK_STAB_SILLING ? SC_CF(pass, d, mk, 1) : SC_CF(pass, d, mk, 0))
+  (k->stab == PDK_KERNEL_STAB_SILLING ? SC_CF(pass, d, mk, 1) : SC_CF(pass, d, mk, 0))
 #define SC_CM(pass, d) (a->mask ? SC_CS(pass, d, 1) : SC_CS(pass, d, 0))
 
 void SC_NAME(pdk_kernel_corr_stencil_pass1)(const pdk_corr_consts *k, const pdk_corr_arrays *c,

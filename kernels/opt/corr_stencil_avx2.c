@@ -3,7 +3,6 @@
  * registers); the body is kernels/opt/corr_stencil.h. src/kernels.c installs it only on CPUs with
  * AVX2. */
 #include "kernels.h"
-#include "pdk/model.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #pragma GCC target("avx2,fma")

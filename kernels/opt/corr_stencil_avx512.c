@@ -2,7 +2,6 @@
  * vector per block; the body is kernels/opt/corr_stencil.h. src/kernels.c installs it only on CPUs
  * with AVX-512. */
 #include "kernels.h"
-#include "pdk/model.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")

@@ -117,7 +117,6 @@
 #include <math.h>
 
 #include "kernels.h"
-#include "pdk/model.h" /* pdk_law, pdk_stabilization, pdk_jc_update */
 #include "ref/corr_law.h"
 
 /* ---- small dense tensors and the elastic laws: ref/corr_law.h ------------------------------- */
@@ -303,9 +302,10 @@ static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_
 static void store_pair(const int d, const pdk_corr_consts *k, const pdk_corr_arrays *a,
                        pdk_index i) {
   if (!a->kst && !a->Bf[0]) return;
-  const double ki = k->stab == PDK_STAB_NONE ? 0.0 : stab_coef(k, a, i);
+  const double ki = k->stab == PDK_KERNEL_STAB_NONE ? 0.0 : stab_coef(k, a, i);
   if (a->kst) a->kst[i] = ki;
-  const int silling = k->stab == PDK_STAB_SILLING, hourglass = k->stab == PDK_STAB_HOURGLASS;
+  const int silling = k->stab == PDK_KERNEL_STAB_SILLING,
+            hourglass = k->stab == PDK_KERNEL_STAB_HOURGLASS;
   for (int t = 0; t < d * d; ++t) {
     const double A = a->A[t][i], kF = ki * (a->F[t][i] - (t % (d + 1) == 0 ? 1.0 : 0.0));
     const double B = silling ? A - kF : A;
@@ -331,7 +331,7 @@ static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_in
     store_zero_d(d, a->F, i);
     store_zero_d(d, a->A, i);
     a->W[i] = 0.0;
-    if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
+    if (k->law == PDK_KERNEL_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
     store_pair(d, k, a, i);
     return;
   }
@@ -342,7 +342,7 @@ static void point_end(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_in
     for (int c = 0; c < d; ++c)
       F[c][c] += 1.0;
   store_d(d, a->F, i, F);
-  if (k->law == PDK_LAW_JC) {
+  if (k->law == PDK_KERNEL_LAW_JC) {
     pass1_jc(d, k, a, i, F, Kinv);
   } else if (law_eval(k, F, P, &W)) {
     pdk_corr_mul_d(d, P, Kinv, A);
@@ -415,8 +415,8 @@ static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_arra
   const double *restrict omega = a->bond_omega;
   const uint8_t *restrict alive = a->bond_alive;
   const double *restrict volume = a->volume;
-  const int stab = k->stab != PDK_STAB_NONE;
-  const int silling = k->stab == PDK_STAB_SILLING;
+  const int stab = k->stab != PDK_KERNEL_STAB_NONE;
+  const int silling = k->stab == PDK_KERNEL_STAB_SILLING;
   double Ai[3][3], Fi[3][3];
   load_d(d, a->A, i, Ai);
   load_d(d, a->F, i, Fi);
@@ -502,7 +502,8 @@ static void pass2_one_float(const int d, const pdk_corr_consts *k, const pdk_cor
   const double *restrict omega = a->bond_omega;
   const uint8_t *restrict alive = a->bond_alive;
   const double *restrict volume = a->volume;
-  const int silling = k->stab == PDK_STAB_SILLING, hourglass = k->stab == PDK_STAB_HOURGLASS;
+  const int silling = k->stab == PDK_KERNEL_STAB_SILLING,
+            hourglass = k->stab == PDK_KERNEL_STAB_HOURGLASS;
   double Ai[3][3], Fi[3][3];
   load_d(d, a->A, i, Ai);
   load_d(d, a->F, i, Fi);
@@ -680,7 +681,7 @@ static void remap_one(const int d, const pdk_corr_arrays *a, pdk_index i, const 
   load_d(d, a->F, i, Fo);
   pdk_jc_state s;
   jc_load(a, i, &s);
-  if (pdk_jc_remap(d, Fo, Fn, &s) == PDK_SUCCESS)
+  if (pdk_jc_remap_kernel(d, Fo, Fn, &s) == PDK_SUCCESS)
     for (int c = 0; c < 6; ++c)
       a->cp_inv[c][i] = s.cp_inv[c];
 }
@@ -701,7 +702,7 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   if (a->flag[i] & PDK_CORR_FLAG_SPAN) return 0.0;
   double P[3][3], e = 0.0;
   int stress_free = 0;
-  if (k->law == PDK_LAW_JC) {
+  if (k->law == PDK_KERNEL_LAW_JC) {
     pdk_jc_state in, out;
     pdk_jc_result res;
     jc_load(a, i, &in);
@@ -711,7 +712,7 @@ static double energy_one(const int d, const pdk_corr_consts *k, const pdk_corr_a
   } else if (!law_eval(k, F, P, &e)) {
     return 0.0;
   }
-  if (k->stab == PDK_STAB_SILLING && !stress_free && a->m[i] > 0.0) {
+  if (k->stab == PDK_KERNEL_STAB_SILLING && !stress_free && a->m[i] > 0.0) {
     double zz = 0.0;
     for (pdk_bond_index b = bond_start[i]; b < bond_start[i + 1]; ++b) {
       if (!alive[b]) continue;

@@ -10,7 +10,6 @@
 #include <math.h>
 
 #include "kernels.h"
-#include "pdk/model.h" /* pdk_law */
 #include "ref/tensor_d.h"
 
 static inline void pdk_corr_mul_d(const int d, const double S[3][3], const double T[3][3],
@@ -30,7 +29,7 @@ static inline int pdk_corr_law_eval_d(const int d, const pdk_corr_consts *k, con
                                       double P[3][3], double *W) {
   const double lambda = k->lambda, mu = k->mu;
   switch (k->law) {
-  case PDK_LAW_LINEAR_ELASTIC: {
+  case PDK_KERNEL_LAW_LINEAR_ELASTIC: {
     double eps[3][3], tr = 0.0, ee = 0.0;
     for (int a = 0; a < d; ++a)
       for (int c = 0; c < d; ++c) {
@@ -45,7 +44,7 @@ static inline int pdk_corr_law_eval_d(const int d, const pdk_corr_consts *k, con
     *W = 0.5 * lambda * tr * tr + mu * ee;
     return 1;
   }
-  case PDK_LAW_SVK: {
+  case PDK_KERNEL_LAW_SVK: {
     double E[3][3], S[3][3], tr = 0.0, ee = 0.0;
     for (int a = 0; a < d; ++a)
       for (int c = 0; c < d; ++c) {
@@ -64,7 +63,7 @@ static inline int pdk_corr_law_eval_d(const int d, const pdk_corr_consts *k, con
     *W = 0.5 * lambda * tr * tr + mu * ee;
     return 1;
   }
-  case PDK_LAW_NEO_HOOKE: {
+  case PDK_KERNEL_LAW_NEO_HOOKE: {
     const double J = pdk_det_d(d, F);
     if (!(J > 0.0) || !isfinite(J)) return 0;
     double Finv[3][3], ff = 0.0;

@@ -70,7 +70,6 @@
 #include <math.h>
 
 #include "kernels.h"
-#include "pdk/model.h" /* pdk_law, pdk_stabilization, pdk_jc_update */
 #include "ref/tensor_d.h" /* pdk_det_d, pdk_inv_d */
 
 /* ---- small dense tensors (row-major, d x d in the top-left of 3 x 3; det and inverse:
@@ -171,7 +170,7 @@ static void mark_inverted(const int d, const pdk_corr_consts *k, const pdk_corr_
   store_zero_d(d, a->A, i);
   a->W[i] = 0.0;
   a->flag[i] = (uint8_t)(a->flag[i] | PDK_CORR_FLAG_INVERTED);
-  if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
+  if (k->law == PDK_KERNEL_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
 }
 
 /* Johnson-Cook stress at the total F: as kernels/ref/corr.c pass1_jc, with A from tau. */
@@ -224,7 +223,7 @@ static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_a
     if (ua->F_inc[0]) store_zero_d(d, ua->F_inc, i);
     store_zero_d(d, a->A, i);
     a->W[i] = 0.0;
-    if (k->law == PDK_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
+    if (k->law == PDK_KERNEL_LAW_JC && k->commit) a->eps_p_rate[i] = 0.0;
     return;
   }
   double N[3][3] = {{0}}, M[3][3] = {{0}};
@@ -270,7 +269,7 @@ static void pass1_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_a
   store_d(d, a->F, i, F);
   if (ua->F_inc[0]) store_d(d, ua->F_inc, i, Finc);
   const double J_ref = ua->J_ref[i];
-  if (k->law == PDK_LAW_JC) {
+  if (k->law == PDK_KERNEL_LAW_JC) {
     pass1_jc(d, k, a, i, F, Minv, J_ref);
     return;
   }
@@ -298,7 +297,7 @@ void pdk_kernel_corr_ul_pass1_ref(const pdk_corr_consts *k, const pdk_corr_ul_ar
  */
 
 static double stab_coef(const pdk_corr_consts *k, const pdk_corr_arrays *a, pdk_index p) {
-  if (k->stab == PDK_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
+  if (k->stab == PDK_KERNEL_STAB_NONE || a->flag[p] || !(a->m[p] > 0.0)) return 0.0;
   return (k->stab_p ? k->stab_p[p] : k->stab_modulus) / a->m[p];
 }
 
@@ -309,8 +308,8 @@ static void pass2_one(const int d, const pdk_corr_consts *k, const pdk_corr_ul_a
   const pdk_index *restrict bond_j = a->bond_j;
   const double *restrict omega = a->bond_omega;
   const double *restrict volume = a->volume;
-  const int stab = k->stab != PDK_STAB_NONE;
-  const int silling = k->stab == PDK_STAB_SILLING;
+  const int stab = k->stab != PDK_KERNEL_STAB_NONE;
+  const int silling = k->stab == PDK_KERNEL_STAB_SILLING;
   double Ai[3][3], Fi[3][3] = {{0}};
   load_d(d, a->A, i, Ai);
   if (stab) load_d(d, ua->F_inc, i, Fi);

@@ -1,4 +1,5 @@
-/* Johnson-Cook plasticity and damage at one material point (pdk_jc_update), finite strain.
+/* Johnson-Cook plasticity and damage at one material point (pdk_jc_update), finite strain: the
+ * kernels behind the functions of pdk/plasticity.h (src/plasticity.c calls them; kernels.h).
  *
  * Formulation (Simo 1992, CMAME 99:61-112; Eterovic & Bathe 1990, IJNME 30:1099-1114; Simo &
  * Hughes 1998 ch. 9; the exponential-map return of Bode 2021 eq. 4.41):
@@ -95,8 +96,7 @@
 #include <float.h>
 #include <math.h>
 
-#include "kernels.h" /* pdk_jc_update_kernel */
-#include "pdk/plasticity.h"
+#include "kernels.h"      /* the entry points below, pdk_jc_* types */
 #include "ref/tensor_d.h" /* pdk_det_d, pdk_inv_d */
 
 /* ---- small dense helpers (3 x 3, row-major; determinant and inverse: ref/tensor_d.h) ---------- */
@@ -282,7 +282,8 @@ static double flow_stress_step(const pdk_jc_params *p, double ep_n, double dg, d
   return sy;
 }
 
-double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star, double T_star) {
+double pdk_jc_flow_stress_kernel(const pdk_jc_params *p, double eps_p, double rate_star,
+                                 double T_star) {
   if (!p) return NAN;
   double sy = hardening(p, eps_p);
   if (p->C != 0.0 && rate_star > 1.0) sy = sy * (1.0 + p->C * log(rate_star));
@@ -293,7 +294,8 @@ double pdk_jc_flow_stress(const pdk_jc_params *p, double eps_p, double rate_star
   return sy;
 }
 
-double pdk_jc_failure_strain(const pdk_jc_params *p, double eta, double rate_star, double T_star) {
+double pdk_jc_failure_strain_kernel(const pdk_jc_params *p, double eta, double rate_star,
+                                    double T_star) {
   if (!p) return NAN;
   double ef = p->D1 + p->D2 * exp(p->D3 * eta);
   if (p->D4 != 0.0) ef = ef * (1.0 + p->D4 * log(rate_star > 1.0 ? rate_star : 1.0));
@@ -447,7 +449,7 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
       const double tm = sigma_m_avg ? *sigma_m_avg * J : tau_m;
       const double eta = q > 0.0 ? tm / q : 0.0;
       const double rate_star = p->D4 != 0.0 ? dg / (dt * p->ref_rate) : 1.0;
-      const double ef = pdk_jc_failure_strain(p, eta, rate_star, T_star);
+      const double ef = pdk_jc_failure_strain_kernel(p, eta, rate_star, T_star);
       triaxiality = eta;
       failure_strain = ef;
       D = ef > 0.0 ? D_n + dg / ef : (D_n > p->D_c ? D_n : p->D_c);
@@ -560,17 +562,11 @@ static int jc_update(const pdk_jc_params *p, int dim, const double F_in[3][3], d
   return 0;
 }
 
-int pdk_jc_update(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
-                  const pdk_jc_state *in, pdk_jc_state *out, double P[3][3], pdk_jc_result *res) {
-  if (!p || !F || !in || !out || !P) return PDK_ERR_ARG;
-  return jc_update(p, dim, F, dt, NULL, in, out, P, res, 1);
-}
-
-int pdk_jc_update_avg(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
-                      double sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
-                      double P[3][3], pdk_jc_result *res) {
-  if (!p || !F || !in || !out || !P || !isfinite(sigma_m_avg)) return PDK_ERR_ARG;
-  return jc_update(p, dim, F, dt, &sigma_m_avg, in, out, P, res, 1);
+int pdk_jc_update_full_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
+                              const double *sigma_m_avg, const pdk_jc_state *in, pdk_jc_state *out,
+                              double P[3][3], pdk_jc_result *res) {
+  if (sigma_m_avg && !isfinite(*sigma_m_avg)) return PDK_ERR_ARG;
+  return jc_update(p, dim, F, dt, sigma_m_avg, in, out, P, res, 1);
 }
 
 int pdk_jc_update_kernel(const pdk_jc_params *p, int dim, const double F[3][3], double dt,
@@ -585,8 +581,8 @@ int pdk_jc_update_kernel(const pdk_jc_params *p, int dim, const double F[3][3], 
  * stress, q and the stored energy do not jump. det C_p^-1 becomes (J_old / J_new)^2 det C_p^-1:
  * the jump of the fitted volume is not an elastic volume change. eps_p, D and the temperature are
  * not touched. */
-int pdk_jc_remap(int dim, const double F_old_in[3][3], const double F_new_in[3][3],
-                 pdk_jc_state *s) {
+int pdk_jc_remap_kernel(int dim, const double F_old_in[3][3], const double F_new_in[3][3],
+                        pdk_jc_state *s) {
   if ((dim != 2 && dim != 3) || !F_old_in || !F_new_in || !s) return PDK_ERR_ARG;
   if (s->failed) return PDK_SUCCESS;
   double Fo[3][3], Fn[3][3];

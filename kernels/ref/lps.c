@@ -84,23 +84,6 @@ lps_m_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *res
   }
 }
 
-void pdk_kernel_lps_weighted_volume3_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j, const double *restrict X,
-                                         const double *restrict Y, const double *restrict Z,
-                                         const double *restrict volume, const pdk_lps_consts *k,
-                                         double *restrict m) {
-  lps_m_range(3, i0, i1, bond_start, bond_j, X, Y, Z, volume, NULL, k, m);
-}
-
-void pdk_kernel_lps_weighted_volume2_ref(pdk_index i0, pdk_index i1,
-                                         const pdk_bond_index *restrict bond_start,
-                                         const pdk_index *restrict bond_j, const double *restrict X,
-                                         const double *restrict Y, const double *restrict volume,
-                                         const pdk_lps_consts *k, double *restrict m) {
-  lps_m_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, volume, NULL, k, m);
-}
-
 void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1, double *restrict m) {
   lps_m_range(a->dim, i0, i1, a->bond_start, a->bond_j, a->X[0], a->X[1], a->X[2], a->volume,
@@ -135,37 +118,6 @@ lps_theta_range(const int dim, const int has_state, pdk_index i0, pdk_index i1,
     }
     theta[i] = d * inv_m[i] * sum;
   }
-}
-
-void pdk_kernel_lps_dilation3_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict Z,
-                                  const double *restrict x, const double *restrict y,
-                                  const double *restrict z, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta) {
-  if (bond_alive)
-    lps_theta_range(3, 1, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k,
-                    bond_alive, inv_m, theta);
-  else
-    lps_theta_range(3, 0, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, NULL,
-                    inv_m, theta);
-}
-
-void pdk_kernel_lps_dilation2_ref(pdk_index i0, pdk_index i1,
-                                  const pdk_bond_index *restrict bond_start,
-                                  const pdk_index *restrict bond_j, const double *restrict X,
-                                  const double *restrict Y, const double *restrict x,
-                                  const double *restrict y, const double *restrict volume,
-                                  const pdk_lps_consts *k, const uint8_t *restrict bond_alive,
-                                  const double *restrict inv_m, double *restrict theta) {
-  if (bond_alive)
-    lps_theta_range(2, 1, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
-                    bond_alive, inv_m, theta);
-  else
-    lps_theta_range(2, 0, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k, NULL,
-                    inv_m, theta);
 }
 
 void pdk_kernel_lps_dilation_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a, pdk_index i0,
@@ -270,29 +222,6 @@ lps_force_range(const int dim, pdk_index i0, pdk_index i1,
   const int want_energy = w != NULL;
   PDK_BOND_RANGE_DISPATCH(LPS_RANGE, dim, has_state, commit, want_energy);
   return broken;
-}
-
-pdk_bond_index pdk_kernel_lps_force3_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict Z, const double *restrict x, const double *restrict y,
-    const double *restrict z, const double *restrict volume, const pdk_lps_consts *k,
-    const double *restrict theta, const double *restrict inv_m, uint8_t *restrict bond_alive,
-    const double *restrict s0, double *restrict s0_next, double *restrict fx, double *restrict fy,
-    double *restrict fz, double *restrict w) {
-  return lps_force_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, theta,
-                         inv_m, bond_alive, s0, s0_next, fx, fy, fz, w);
-}
-
-pdk_bond_index pdk_kernel_lps_force2_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict x, const double *restrict y, const double *restrict volume,
-    const pdk_lps_consts *k, const double *restrict theta, const double *restrict inv_m,
-    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-    double *restrict fx, double *restrict fy, double *restrict w) {
-  return lps_force_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
-                         theta, inv_m, bond_alive, s0, s0_next, fx, fy, NULL, w);
 }
 
 pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,

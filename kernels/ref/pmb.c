@@ -144,27 +144,6 @@ pmb_range(const int dim, pdk_index i0, pdk_index i1, const pdk_bond_index *restr
   return broken;
 }
 
-pdk_bond_index pdk_kernel_pmb_force3_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict Z, const double *restrict x, const double *restrict y,
-    const double *restrict z, const double *restrict volume, const pdk_pmb_consts *k,
-    uint8_t *restrict bond_alive, const double *restrict s0, double *restrict s0_next,
-    double *restrict fx, double *restrict fy, double *restrict fz, double *restrict w) {
-  return pmb_range(3, i0, i1, bond_start, bond_j, X, Y, Z, x, y, z, volume, NULL, k, bond_alive,
-                   s0, s0_next, fx, fy, fz, w);
-}
-
-pdk_bond_index pdk_kernel_pmb_force2_ref(
-    pdk_index i0, pdk_index i1, const pdk_bond_index *restrict bond_start,
-    const pdk_index *restrict bond_j, const double *restrict X, const double *restrict Y,
-    const double *restrict x, const double *restrict y, const double *restrict volume,
-    const pdk_pmb_consts *k, uint8_t *restrict bond_alive, const double *restrict s0,
-    double *restrict s0_next, double *restrict fx, double *restrict fy, double *restrict w) {
-  return pmb_range(2, i0, i1, bond_start, bond_j, X, Y, NULL, x, y, NULL, volume, NULL, k,
-                   bond_alive, s0, s0_next, fx, fy, NULL, w);
-}
-
 /* Table entry: the SoA arrays of a, and bond_r0 (float storage) when set. */
 pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1) {
