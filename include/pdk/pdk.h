@@ -13,5 +13,6 @@
 #include "pdk/output.h"
 #include "pdk/plasticity.h"
 #include "pdk/static.h"
+#include "pdk/run.h"
 
 #endif
