@@ -3,20 +3,18 @@
  *
  * What makes a run continue bitwise after a restart: the state a step reads is exactly
  *   - every registered particle field (x, v, f, the model's fields, sets, ...), generic over the
- *     registry, stored [num_comp][n] in the field's own type;
- *   - the model's bond state bond_alive [num_bonds] and critical stretches s0 [n], and its
- *     counters num_broken, num_flagged; for the ul connectivity the families of the last rebuild
- *     (ul_bond_start [n+1], ul_bond_j) and the rebuild count (their weights and shape are
- *     recomputed from the restored "ul_X" and "ul_volume", the data they were computed from);
- *   - the solver's time, step, dt, strain energy of the last pass and accumulated external work,
- *     and its dt_update state (latest stable estimate, where dt last changed, the last estimate's
- *     step and broken-bond count, the counters).
- * Everything else is rebuilt identically from the scene (families, constraint maps, reaction
- * masks) or is scratch that the next force pass overwrites (PMB/LPS s0_next, correspondence W).
- * The correspondence model's private num_alive (intact bonds when K^-1 was last computed) is not
- * stored: after a restore it holds the full family counts, so the next pass recomputes K^-1 for
- * every particle with broken bonds, from the same bond state, giving the same bits as the stored
- * "Kinv" field it overwrites.
+ *     registry, stored [num_comp][n] in the field's own type (here);
+ *   - the model's part /model: its bond state and counters, and its kind's own state (for the ul
+ *     connectivity the families of the last rebuild), saved and loaded by the model
+ *     (src/model_state.c, the kind's pdk_model_ops.state_*);
+ *   - the solver's part /solver: time, step, dt, strain energy of the last pass, accumulated
+ *     external work and the dt_update state, saved and loaded by the solver
+ *     (src/explicit_state.c).
+ * Each object writes and reads its part through a pdk_state (src/state.h), a group of named
+ * scalars (attributes) and arrays (datasets) that this file implements on HDF5; this file owns
+ * the format, the checksum, the particle fields and the order of the parts. Everything else is
+ * rebuilt identically from the scene (families, constraint maps, reaction masks) or is scratch
+ * that the next force pass overwrites.
  *
  * Reading checks everything before it changes anything: that the file is an HDF5 file and a pdk
  * checkpoint of this format, its checksum (below), dimension, particle and bond counts, model
@@ -44,11 +42,10 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "checkpoint_impl.h"
-#include "explicit_impl.h"
-#include "families_impl.h"
 #include "h5io.h"
 #include "pdk/output.h"
+#include "pdk_impl.h"
+#include "state.h"
 
 #define CKPT_KIND "pdk checkpoint"
 #define CKPT_FORMAT 2
@@ -175,6 +172,109 @@ cleanup:
   return err;
 }
 
+/* ---- an object's part: a group of attributes (scalars) and 1-D datasets (arrays) ---------------
+ */
+
+struct pdk_state {
+  pdk_ctx *ctx;
+  hid_t g;           /* the group */
+  const char *group; /* its name, for messages */
+  const char *path;  /* the checkpoint file, for messages */
+};
+
+static pdk_state state_of(pdk_ctx *ctx, hid_t g, const char *group, const char *path) {
+  pdk_state s = {ctx, g, group, path};
+  return s;
+}
+
+pdk_ctx *pdk_state_ctx(const pdk_state *s) { return s->ctx; }
+
+int pdk_state_put_i64(pdk_state *s, const char *name, int64_t value) {
+  return pdk_h5_attr_write_i64(s->ctx, s->g, name, value);
+}
+
+int pdk_state_put_f64(pdk_state *s, const char *name, double value) {
+  return pdk_h5_attr_write_f64(s->ctx, s->g, name, value);
+}
+
+int pdk_state_put_array(pdk_state *s, const char *name, pdk_type type, size_t count,
+                        const void *data) {
+  int err = PDK_SUCCESS;
+  pdk_ctx *ctx = s->ctx;
+  hid_t space = -1, d = -1;
+  herr_t st;
+  const hsize_t dims[1] = {(hsize_t)count};
+  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, dims, NULL));
+  PDK_H5_CALL_GOTO(
+      ctx, d,
+      H5Dcreate2(s->g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
+  if (count)
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Dwrite(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
+cleanup:
+  if (d >= 0) H5Dclose(d);
+  if (space >= 0) H5Sclose(space);
+  return err;
+}
+
+int pdk_state_has(const pdk_state *s, const char *name) {
+  return pdk_h5_attr_exists(s->g, name) || H5Lexists(s->g, name, H5P_DEFAULT) > 0;
+}
+
+int pdk_state_get_i64(pdk_state *s, const char *name, int64_t *value) {
+  return pdk_h5_attr_read_i64(s->ctx, s->g, name, value);
+}
+
+int pdk_state_get_f64(pdk_state *s, const char *name, double *value) {
+  return pdk_h5_attr_read_f64(s->ctx, s->g, name, value);
+}
+
+int pdk_state_get_array(pdk_state *s, const char *name, pdk_type type, size_t count, void *data) {
+  int err = PDK_SUCCESS;
+  pdk_ctx *ctx = s->ctx;
+  hid_t d = -1, space = -1;
+  herr_t st;
+  hsize_t dims[1] = {0};
+  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(s->g, name, H5P_DEFAULT));
+  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
+  PDK_CHECK_GOTO(H5Sget_simple_extent_ndims(space) == 1, ctx, PDK_ERR_IO, "'%s' is not 1-D", name);
+  H5Sget_simple_extent_dims(space, dims, NULL);
+  PDK_CHECK_GOTO(dims[0] == (hsize_t)count, ctx, PDK_ERR_IO, "'%s' has %llu entries, expected %llu",
+                 name, (unsigned long long)dims[0], (unsigned long long)count);
+  if (count)
+    PDK_H5_CALL_GOTO(ctx, st,
+                     H5Dread(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
+cleanup:
+  if (space >= 0) H5Sclose(space);
+  if (d >= 0) H5Dclose(d);
+  return err;
+}
+
+/* The message of a checkpoint that does not fit the simulation. */
+static int mismatch_v(pdk_ctx *ctx, const char *where, const char *path, const char *fmt,
+                      va_list ap) {
+  char what[512];
+  vsnprintf(what, sizeof what, fmt, ap);
+  return pdk_ctx_error_set(ctx, PDK_ERR_ARG, where,
+                           "checkpoint '%s' does not fit this simulation: %s; the scene changed "
+                           "since the checkpoint was written (restart with the scene stored in "
+                           "its 'scene' attribute, or start afresh)",
+                           path, what);
+}
+
+int pdk_state_mismatch(pdk_state *s, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  const int err = mismatch_v(s->ctx, "pdk_checkpoint_restore", s->path, fmt, ap);
+  va_end(ap);
+  return err;
+}
+
+int pdk_state_missing(pdk_state *s, const char *name) {
+  return pdk_ctx_error_set(s->ctx, PDK_ERR_IO, "pdk_checkpoint_restore",
+                           "checkpoint '%s' lacks /%s/%s", s->path, s->group, name);
+}
+
 /* Writes field `name` of p as /fields/<name> [num_comp][n]. */
 static int write_field(pdk_ctx *ctx, hid_t g, pdk_particles *p, const char *name) {
   int err = PDK_SUCCESS;
@@ -209,25 +309,6 @@ cleanup:
   return err;
 }
 
-/* Writes a 1-D dataset `name` of `count` entries of `type` from data. */
-static int write_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count,
-                       const void *data) {
-  int err = PDK_SUCCESS;
-  hid_t space = -1, d = -1;
-  herr_t st;
-  PDK_H5_CALL_GOTO(ctx, space, H5Screate_simple(1, &count, NULL));
-  PDK_H5_CALL_GOTO(
-      ctx, d,
-      H5Dcreate2(g, name, pdk_h5_file_type(type), space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  if (count)
-    PDK_H5_CALL_GOTO(ctx, st,
-                     H5Dwrite(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data));
-cleanup:
-  if (d >= 0) H5Dclose(d);
-  if (space >= 0) H5Sclose(space);
-  return err;
-}
-
 int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const char *scene_text) {
   int err = PDK_SUCCESS;
   hid_t file = -1, g = -1, fcpl = -1;
@@ -236,10 +317,10 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to checkpoint");
-  pdk_model *m = e->m;
-  pdk_particles *p = e->p;
+  pdk_model *m = pdk_explicit_model(e);
+  pdk_particles *p = pdk_model_particles(m);
   const pdk_index n = pdk_particles_count(p);
-  const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
+  const pdk_bond_index nb = pdk_families_num_bonds(pdk_model_families(m));
   part = pdk_str_printf("%s.part", path);
   PDK_CHECK(part, ctx, PDK_ERR_MEMORY, "out of memory");
   PDK_H5_CALL_GOTO(ctx, fcpl, H5Pcreate(H5P_FILE_CREATE));
@@ -250,46 +331,22 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "dimension", pdk_particles_dim(p)));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_particles", n));
   PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, file, "num_bonds", nb));
-  PDK_CALL_GOTO(
-      pdk_h5_attr_write_string(ctx, file, "model_kind", pdk_model_kind_name(m->opts.kind)));
+  PDK_CALL_GOTO(pdk_h5_attr_write_string(ctx, file, "model_kind",
+                                         pdk_model_kind_name(pdk_model_opts_get(m)->kind)));
   if (scene_text) PDK_CALL_GOTO(pdk_h5_text_write(ctx, file, "scene", scene_text));
 
   PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "time", e->time));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "step", e->step));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt", e->dt));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt_created", e->dt_created));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "strain", e->strain));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "external_work", e->external_work));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt_stable", e->dt_stable));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "dt_step0", e->dt_step0));
-  PDK_CALL_GOTO(pdk_h5_attr_write_f64(ctx, g, "dt_time0", e->dt_time0));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "est_step", e->est_step));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "est_broken", e->est_broken));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_estimates", e->num_estimates));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_dt_changes", e->num_dt_changes));
+  {
+    pdk_state st = state_of(ctx, g, "solver", part);
+    PDK_CALL_GOTO(pdk_explicit_state_save(e, &st));
+  }
   H5Gclose(g);
   g = -1;
 
   PDK_H5_CALL_GOTO(ctx, g, H5Gcreate2(file, "model", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_broken", m->num_broken));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "num_flagged", m->num_flagged));
-  PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "has_bond_state", m->bond_alive != NULL));
-  if (m->bond_alive)
-    PDK_CALL_GOTO(write_array(ctx, g, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
-  if (m->s0) PDK_CALL_GOTO(write_array(ctx, g, "s0", PDK_F64, (hsize_t)n, m->s0));
-  if (m->ops == &pdk_model_ops_corr_ul) {
-    /* UL: the families of the last rebuild (none before the first) and the rebuild count. */
-    pdk_families *cur = pdk_model_current_families(m);
-    const int rebuilt = cur != m->fam;
-    PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "ul_rebuilt", rebuilt));
-    PDK_CALL_GOTO(pdk_h5_attr_write_i64(ctx, g, "ul_num_rebuilds", m->num_rebuilds));
-    if (rebuilt) {
-      PDK_CALL_GOTO(write_array(ctx, g, "ul_bond_start", PDK_I64, (hsize_t)n + 1,
-                                pdk_families_bond_start(cur)));
-      PDK_CALL_GOTO(write_array(ctx, g, "ul_bond_j", PDK_I32,
-                                (hsize_t)pdk_families_num_bonds(cur), pdk_families_bond_j(cur)));
-    }
+  {
+    pdk_state st = state_of(ctx, g, "model", part);
+    PDK_CALL_GOTO(pdk_model_state_save(m, &st));
   }
   H5Gclose(g);
   g = -1;
@@ -430,16 +487,22 @@ cleanup:
   return err;
 }
 
-/* The error for a checkpoint that does not fit the simulation. */
+/* The error for a checkpoint that does not fit the simulation (pdk_state_mismatch's message). */
+static int ckpt_mismatch(pdk_ctx *ctx, const char *where, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static int ckpt_mismatch(pdk_ctx *ctx, const char *where, const char *path, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  const int err = mismatch_v(ctx, where, path, fmt, ap);
+  va_end(ap);
+  return err;
+}
 #define CKPT_MISMATCH(ctx, path, ...)                                                              \
   do {                                                                                             \
-    char what_[512];                                                                               \
-    snprintf(what_, sizeof what_, __VA_ARGS__);                                                    \
-    err = pdk_ctx_error_set((ctx), PDK_ERR_ARG, __func__,                                          \
-                            "checkpoint '%s' does not fit this simulation: %s; the scene changed " \
-                            "since the checkpoint was written (restart with the scene stored in "  \
-                            "its 'scene' attribute, or start afresh)",                             \
-                            (path), what_);                                                        \
+    err = ckpt_mismatch((ctx), __func__, (path), __VA_ARGS__);                                     \
     goto cleanup;                                                                                  \
   } while (0)
 
@@ -479,54 +542,6 @@ static int read_component(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type
   return pdk_h5_read_block(ctx, g, name, pdk_h5_mem_type(type), 2, start, count, dst);
 }
 
-static int read_array(pdk_ctx *ctx, hid_t g, const char *name, pdk_type type, hsize_t count,
-                      void *dst) {
-  int err = PDK_SUCCESS;
-  hid_t d = -1, space = -1;
-  herr_t st;
-  hsize_t dims[1] = {0};
-  PDK_H5_CALL_GOTO(ctx, d, H5Dopen2(g, name, H5P_DEFAULT));
-  PDK_H5_CALL_GOTO(ctx, space, H5Dget_space(d));
-  PDK_CHECK_GOTO(H5Sget_simple_extent_ndims(space) == 1, ctx, PDK_ERR_IO, "'%s' is not 1-D", name);
-  H5Sget_simple_extent_dims(space, dims, NULL);
-  PDK_CHECK_GOTO(dims[0] == count, ctx, PDK_ERR_IO, "'%s' has %llu entries, expected %llu", name,
-                 (unsigned long long)dims[0], (unsigned long long)count);
-  if (count)
-    PDK_H5_CALL_GOTO(ctx, st,
-                     H5Dread(d, pdk_h5_mem_type(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, dst));
-cleanup:
-  if (space >= 0) H5Sclose(space);
-  if (d >= 0) H5Dclose(d);
-  return err;
-}
-
-/* UL: the families of the last rebuild from /model/ul_bond_start and ul_bond_j (after the fields,
- * whose "ul_X" the weights are computed from), or the initial families when none was stored. */
-static int restore_ul(pdk_ctx *ctx, hid_t gm, pdk_model *m, int64_t rebuilt, int64_t num_rebuilds) {
-  int err = PDK_SUCCESS;
-  pdk_bond_index *bs = NULL;
-  pdk_index *bj = NULL;
-  pdk_families *fam = NULL;
-  const pdk_index n = pdk_particles_count(m->p);
-  if (rebuilt) {
-    bs = malloc(((size_t)n + 1) * sizeof *bs);
-    PDK_CHECK_GOTO(bs, ctx, PDK_ERR_MEMORY, "out of memory reading ul families");
-    PDK_CALL_GOTO(read_array(ctx, gm, "ul_bond_start", PDK_I64, (hsize_t)n + 1, bs));
-    PDK_CHECK_GOTO(bs[n] >= 0, ctx, PDK_ERR_IO, "checkpoint: ul_bond_start ends at %lld",
-                   (long long)bs[n]);
-    bj = malloc(((size_t)bs[n] + 1) * sizeof *bj);
-    PDK_CHECK_GOTO(bj, ctx, PDK_ERR_MEMORY, "out of memory reading %lld ul bonds",
-                   (long long)bs[n]);
-    PDK_CALL_GOTO(read_array(ctx, gm, "ul_bond_j", PDK_I32, (hsize_t)bs[n], bj));
-    PDK_CALL_GOTO(pdk_families_from_csr(ctx, n, pdk_families_horizon(m->fam), bs, bj, &fam));
-  }
-  err = pdk_model_corr_ul_restore(m, fam, (long)num_rebuilds); /* takes fam */
-cleanup:
-  free(bs);
-  free(bj);
-  return err;
-}
-
 /* Particle geometry that must match bit for bit: the checkpoint's id, X and volume against p's. */
 static int check_geometry(pdk_ctx *ctx, const char *path, hid_t g, pdk_particles *p) {
   static const char *const names[3] = {"id", "X", "volume"};
@@ -560,40 +575,27 @@ cleanup:
   return err;
 }
 
-/* The solver's scalars of /solver (group gs), for the caller's decision before the restore. */
-static int read_solver_info(pdk_ctx *ctx, hid_t gs, pdk_checkpoint_solver *out) {
-  int64_t s;
-  memset(out, 0, sizeof *out);
-  PDK_CALL(pdk_h5_attr_read_i64(ctx, gs, "step", &s));
-  out->step = (long)s;
-  PDK_CALL(pdk_h5_attr_read_f64(ctx, gs, "time", &out->time));
-  PDK_CALL(pdk_h5_attr_read_f64(ctx, gs, "dt", &out->dt));
-  PDK_CALL(pdk_h5_attr_read_f64(ctx, gs, "dt_created", &out->dt_created));
-  PDK_CALL(pdk_h5_attr_read_f64(ctx, gs, "dt_stable", &out->dt_stable));
-  PDK_CALL(pdk_h5_attr_read_i64(ctx, gs, "dt_step0", &s));
-  out->dt_step0 = (long)s;
-  PDK_CALL(pdk_h5_attr_read_f64(ctx, gs, "dt_time0", &out->dt_time0));
-  return PDK_SUCCESS;
-}
-
 int pdk_checkpoint_read(pdk_ctx *ctx, const char *path, pdk_explicit *e) {
-  return pdk_checkpoint_restore(ctx, path, e, NULL, NULL);
+  return pdk_checkpoint_restore(ctx, path, e, NULL, NULL, NULL);
 }
 
 int pdk_checkpoint_restore(pdk_ctx *ctx, const char *path, pdk_explicit *e,
-                           int (*decide)(void *arg, const pdk_checkpoint_solver *cs), void *arg) {
+                           int (*decide)(void *arg, const pdk_checkpoint_solver *cs), void *arg,
+                           char **scene_text) {
   int err = PDK_SUCCESS;
   hid_t file = -1, gs = -1, gm = -1, gf = -1;
   char *model_kind = NULL;
   char(*extra)[PDK_FIELD_NAME_MAX] = NULL; /* checkpoint fields the simulation lacks */
   int num_extra = 0;
+  if (scene_text) *scene_text = NULL;
   PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to restore into");
-  pdk_model *m = e->m;
-  pdk_particles *p = e->p;
+  pdk_model *m = pdk_explicit_model(e);
+  pdk_particles *p = pdk_model_particles(m);
   const pdk_index n = pdk_particles_count(p);
   const int dim = pdk_particles_dim(p);
-  const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
+  const pdk_bond_index nb = pdk_families_num_bonds(pdk_model_families(m));
+  const char *kind = pdk_model_kind_name(pdk_model_opts_get(m)->kind);
   PDK_CALL(open_checkpoint(ctx, path, &file));
 
   /* 1. Check everything; change nothing. */
@@ -611,28 +613,11 @@ int pdk_checkpoint_restore(pdk_ctx *ctx, const char *path, pdk_explicit *e,
                   "lattice or pre-crack)",
                   (long long)v, (long long)nb);
   PDK_CALL_GOTO(pdk_h5_attr_read_string(ctx, file, "model_kind", &model_kind));
-  if (strcmp(model_kind, pdk_model_kind_name(m->opts.kind)))
-    CKPT_MISMATCH(ctx, path, "its model is '%s', this simulation's is '%s'", model_kind,
-                  pdk_model_kind_name(m->opts.kind));
+  if (strcmp(model_kind, kind))
+    CKPT_MISMATCH(ctx, path, "its model is '%s', this simulation's is '%s'", model_kind, kind);
   PDK_H5_CALL_GOTO(ctx, gm, H5Gopen2(file, "model", H5P_DEFAULT));
-  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "has_bond_state", &v));
-  if ((v != 0) != (m->bond_alive != NULL))
-    CKPT_MISMATCH(ctx, path, "bonds %s break in the checkpoint but %s here (critical stretch)",
-                  v ? "can" : "cannot", m->bond_alive ? "can" : "cannot");
-  PDK_CHECK_GOTO(!m->s0 || H5Lexists(gm, "s0", H5P_DEFAULT) > 0, ctx, PDK_ERR_IO,
-                 "checkpoint '%s' lacks /model/s0", path);
-  const int is_ul = m->ops == &pdk_model_ops_corr_ul;
-  int64_t ul_rebuilt = 0, ul_num_rebuilds = 0;
-  if (pdk_h5_attr_exists(gm, "ul_rebuilt")) {
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "ul_rebuilt", &ul_rebuilt));
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "ul_num_rebuilds", &ul_num_rebuilds));
-    if (!is_ul)
-      CKPT_MISMATCH(ctx, path, "it is of a ul (updated-Lagrangian) model, this simulation's "
-                               "connectivity is not ul");
-  } else if (is_ul) {
-    CKPT_MISMATCH(ctx, path, "this simulation's model is ul (updated-Lagrangian), the checkpoint's "
-                             "is not");
-  }
+  pdk_state model_state = state_of(ctx, gm, "model", path);
+  PDK_CALL_GOTO(pdk_model_state_check(m, &model_state));
 
   PDK_H5_CALL_GOTO(ctx, gf, H5Gopen2(file, "fields", H5P_DEFAULT));
   for (int k = 0; k < pdk_particles_num_fields(p); ++k) {
@@ -675,11 +660,13 @@ int pdk_checkpoint_restore(pdk_ctx *ctx, const char *path, pdk_explicit *e,
   }
   PDK_CALL_GOTO(check_geometry(ctx, path, gf, p));
   PDK_H5_CALL_GOTO(ctx, gs, H5Gopen2(file, "solver", H5P_DEFAULT));
+  pdk_state solver_state = state_of(ctx, gs, "solver", path);
   if (decide) {
     pdk_checkpoint_solver cs;
-    PDK_CALL_GOTO(read_solver_info(ctx, gs, &cs));
+    PDK_CALL_GOTO(pdk_explicit_state_info(&solver_state, &cs));
     PDK_CALL_GOTO(decide(arg, &cs));
   }
+  if (scene_text) PDK_CALL_GOTO(pdk_h5_text_read(ctx, file, "scene", scene_text));
 
   /* 2. Restore. */
   for (int k = 0; k < num_extra; ++k) {
@@ -698,37 +685,13 @@ int pdk_checkpoint_restore(pdk_ctx *ctx, const char *path, pdk_explicit *e,
       PDK_CALL_GOTO(
           read_component(ctx, gf, name, type, c, (hsize_t)n, pdk_particles_field_data(p, name, c)));
   }
-  if (m->bond_alive) {
-    ++m->bond_state_version; /* a kind's own copy of the state is stale from here on */
-    PDK_CALL_GOTO(read_array(ctx, gm, "bond_alive", PDK_U8, (hsize_t)nb, m->bond_alive));
-  }
-  if (m->s0) PDK_CALL_GOTO(read_array(ctx, gm, "s0", PDK_F64, (hsize_t)n, m->s0));
-  if (is_ul) PDK_CALL_GOTO(restore_ul(ctx, gm, m, ul_rebuilt, ul_num_rebuilds));
-  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_broken", &v));
-  m->num_broken = (pdk_bond_index)v;
-  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gm, "num_flagged", &v));
-  m->num_flagged = (pdk_index)v;
-  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "time", &e->time));
-  PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "step", &v));
-  e->step = (long)v;
-  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt", &e->dt));
-  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "strain", &e->strain));
-  PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "external_work", &e->external_work));
-  if (pdk_h5_attr_exists(gs, "dt_step0")) { /* the dt_update state (files before it: none) */
-    PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt_stable", &e->dt_stable));
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "dt_step0", &v));
-    e->dt_step0 = (long)v;
-    PDK_CALL_GOTO(pdk_h5_attr_read_f64(ctx, gs, "dt_time0", &e->dt_time0));
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "est_step", &v));
-    e->est_step = (long)v;
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "est_broken", &v));
-    e->est_broken = (pdk_bond_index)v;
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "num_estimates", &v));
-    e->num_estimates = (int)v;
-    PDK_CALL_GOTO(pdk_h5_attr_read_i64(ctx, gs, "num_dt_changes", &v));
-    e->num_dt_changes = (int)v;
-  }
+  PDK_CALL_GOTO(pdk_model_state_load(m, &model_state));
+  PDK_CALL_GOTO(pdk_explicit_state_load(e, &solver_state));
 cleanup:
+  if (err && scene_text) {
+    free(*scene_text);
+    *scene_text = NULL;
+  }
   free(extra);
   free(model_kind);
   if (gs >= 0) H5Gclose(gs);

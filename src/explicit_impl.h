@@ -1,4 +1,4 @@
-/* Private: the explicit solver's state, shared with checkpoint/restart (src/output.c). */
+/* Private: the explicit solver's state (src/explicit.c; checkpoint part: explicit_state.c). */
 #ifndef PDK_EXPLICIT_IMPL_H
 #define PDK_EXPLICIT_IMPL_H
 

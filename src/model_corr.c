@@ -93,6 +93,7 @@
 #include "kernels.h"
 #include "model_impl.h"
 #include "model_stencil.h"
+#include "state.h"
 
 /* Particles per block: the unit of work of both passes and of the energy reduction. A constant,
  * not the thread count, so the reduction order never depends on how many threads run. */
@@ -904,4 +905,17 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
-const pdk_model_ops pdk_model_ops_corr = {corr_setup, corr_force, corr_destroy, NULL, NULL};
+/* Checkpoints: no state of its own beyond the bond state (src/model_state.c); a checkpoint of the
+ * updated-Lagrangian connectivity (its rebuild state, src/model_corr_ul.c) does not fit. */
+static int corr_state_check(const pdk_model *m, pdk_state *s) {
+  (void)m;
+  if (pdk_state_has(s, "ul_rebuilt"))
+    return pdk_state_mismatch(s, "it is of a ul (updated-Lagrangian) model, this simulation's "
+                                 "connectivity is not ul");
+  return PDK_SUCCESS;
+}
+
+const pdk_model_ops pdk_model_ops_corr = {.setup = corr_setup,
+                                          .force = corr_force,
+                                          .destroy = corr_destroy,
+                                          .state_check = corr_state_check};

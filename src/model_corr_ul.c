@@ -54,9 +54,10 @@
  * Pre-cracks: the families keep the pre-cracks they were built with (in the initial
  * configuration); a rebuild removes every new bond whose initial segment X_i X_j crosses one
  * (pdk_families_remove_cut), so a pre-crack never heals (tests/t134_ul_precrack_restart.c).
- * Checkpoints: src/checkpoint.c stores the rebuilt families (bond_start, bond_j) and the rebuild
- * count; pdk_model_corr_ul_restore takes them back and recomputes the weights (from "ul_X", the
- * positions they were weighed at) and the rebuild shape, so a restored run continues bitwise.
+ * Checkpoints (the kind's part of /model, src/state.h): the rebuilt families (ul_bond_start,
+ * ul_bond_j; none before the first rebuild) and the rebuild count; ul_state_load takes them back
+ * and recomputes the weights (from "ul_X", the positions they were weighed at) and the rebuild
+ * shape, so a restored run continues bitwise.
  * Not supported (refused at creation or documented): bond breaking (critical stretch, Johnson-
  * Cook failure breaking bonds): a rebuild would re-bond broken pairs; float storage.
  */
@@ -66,6 +67,7 @@
 #include "families_impl.h"
 #include "kernels.h"
 #include "model_impl.h"
+#include "state.h"
 
 /* Particles per block: the unit of work of both passes and of the energy reduction. */
 #define PDK_UL_BLOCK 256
@@ -550,7 +552,9 @@ static int ul_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
-int pdk_model_corr_ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds) {
+/* Makes `fam` (owned from now on; NULL: the families given at creation) the families the passes
+ * walk, as a rebuild left them: weights from "ul_X", rebuild shape; num_rebuilds set. */
+static int ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds) {
   ul_impl *c = m->impl;
   pdk_families *use = fam ? fam : m->fam;
   const pdk_bond_index nb = pdk_families_num_bonds(use);
@@ -583,4 +587,68 @@ int pdk_model_corr_ul_rebuild(pdk_model *m) {
   return ul_rebuild_now(m);
 }
 
-const pdk_model_ops pdk_model_ops_corr_ul = {ul_setup, ul_force, ul_destroy, NULL, NULL};
+/* ---- checkpoint: the families of the last rebuild and the rebuild count ----------------------
+ */
+
+static int ul_state_save(const pdk_model *m, pdk_state *s) {
+  const pdk_families *cur = pdk_model_corr_ul_families(m);
+  const int rebuilt = cur != m->fam;
+  PDK_CALL(pdk_state_put_i64(s, "ul_rebuilt", rebuilt));
+  PDK_CALL(pdk_state_put_i64(s, "ul_num_rebuilds", m->num_rebuilds));
+  if (rebuilt) {
+    const pdk_index n = pdk_particles_count(m->p);
+    PDK_CALL(pdk_state_put_array(s, "ul_bond_start", PDK_I64, (size_t)n + 1,
+                                 pdk_families_bond_start(cur)));
+    PDK_CALL(pdk_state_put_array(s, "ul_bond_j", PDK_I32, (size_t)pdk_families_num_bonds(cur),
+                                 pdk_families_bond_j(cur)));
+  }
+  return PDK_SUCCESS;
+}
+
+static int ul_state_check(const pdk_model *m, pdk_state *s) {
+  int64_t v;
+  (void)m;
+  if (!pdk_state_has(s, "ul_rebuilt"))
+    return pdk_state_mismatch(s, "this simulation's model is ul (updated-Lagrangian), the "
+                                 "checkpoint's is not");
+  PDK_CALL(pdk_state_get_i64(s, "ul_rebuilt", &v));
+  return pdk_state_get_i64(s, "ul_num_rebuilds", &v);
+}
+
+/* After the fields, whose "ul_X" the weights are computed from: the families of the last rebuild,
+ * or the initial families when none was stored. */
+static int ul_state_load(pdk_model *m, pdk_state *s) {
+  int err = PDK_SUCCESS;
+  pdk_bond_index *bs = NULL;
+  pdk_index *bj = NULL;
+  pdk_families *fam = NULL;
+  int64_t rebuilt = 0, num_rebuilds = 0;
+  pdk_ctx *ctx = m->ctx;
+  const pdk_index n = pdk_particles_count(m->p);
+  PDK_CALL(pdk_state_get_i64(s, "ul_rebuilt", &rebuilt));
+  PDK_CALL(pdk_state_get_i64(s, "ul_num_rebuilds", &num_rebuilds));
+  if (rebuilt) {
+    bs = malloc(((size_t)n + 1) * sizeof *bs);
+    PDK_CHECK_GOTO(bs, ctx, PDK_ERR_MEMORY, "out of memory reading ul families");
+    PDK_CALL_GOTO(pdk_state_get_array(s, "ul_bond_start", PDK_I64, (size_t)n + 1, bs));
+    PDK_CHECK_GOTO(bs[n] >= 0, ctx, PDK_ERR_IO, "checkpoint: ul_bond_start ends at %lld",
+                   (long long)bs[n]);
+    bj = malloc(((size_t)bs[n] + 1) * sizeof *bj);
+    PDK_CHECK_GOTO(bj, ctx, PDK_ERR_MEMORY, "out of memory reading %lld ul bonds",
+                   (long long)bs[n]);
+    PDK_CALL_GOTO(pdk_state_get_array(s, "ul_bond_j", PDK_I32, (size_t)bs[n], bj));
+    PDK_CALL_GOTO(pdk_families_from_csr(ctx, n, pdk_families_horizon(m->fam), bs, bj, &fam));
+  }
+  err = ul_restore(m, fam, (long)num_rebuilds); /* takes fam */
+cleanup:
+  free(bs);
+  free(bj);
+  return err;
+}
+
+const pdk_model_ops pdk_model_ops_corr_ul = {.setup = ul_setup,
+                                             .force = ul_force,
+                                             .destroy = ul_destroy,
+                                             .state_save = ul_state_save,
+                                             .state_check = ul_state_check,
+                                             .state_load = ul_state_load};

@@ -420,5 +420,8 @@ static void dil2_tangent_column(const pdk_model *m, pdk_index i, const pdk_index
   }
 }
 
-const pdk_model_ops pdk_model_ops_dil2 = {dil2_setup, dil2_force, dil2_destroy,
-                                          dil2_tangent_prepare, dil2_tangent_column};
+const pdk_model_ops pdk_model_ops_dil2 = {.setup = dil2_setup,
+                                          .force = dil2_force,
+                                          .destroy = dil2_destroy,
+                                          .tangent_prepare = dil2_tangent_prepare,
+                                          .tangent_column = dil2_tangent_column};

@@ -9,6 +9,8 @@
 #include "pdk/model.h"
 #include "pdk_impl.h"
 
+struct pdk_state; /* a checkpoint part (src/state.h) */
+
 typedef struct pdk_model_ops {
   /* Declares the kind's fields and precomputes fixed data; may set m->impl. */
   int (*setup)(pdk_model *m);
@@ -29,6 +31,13 @@ typedef struct pdk_model_ops {
    * is that of the trial pass (bond states as stored, nothing breaks). */
   int (*tangent_prepare)(pdk_model *m);
   void (*tangent_column)(const pdk_model *m, pdk_index i, const pdk_index *loc, double *block);
+  /* The kind's own part of a checkpoint, beside the bond state and counters src/model_state.c
+   * saves for every kind (src/state.h); NULL when the kind has none. state_check says whether a
+   * checkpoint's /model part fits this kind (and names what differs) without changing anything;
+   * state_load runs after the particle fields and the bond state are restored. */
+  int (*state_save)(const pdk_model *m, struct pdk_state *s);
+  int (*state_check)(const pdk_model *m, struct pdk_state *s);
+  int (*state_load)(pdk_model *m, struct pdk_state *s);
 } pdk_model_ops;
 
 struct pdk_model {
@@ -73,10 +82,6 @@ extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connecti
 /* UL only (m->ops == &pdk_model_ops_corr_ul): rebuild the families at the current x now; the
  * families the passes walk now. */
 int pdk_model_corr_ul_rebuild(pdk_model *m);
-/* UL only: make `fam` (owned from now on; NULL: the families given at creation) the families the
- * passes walk, as a rebuild left them: weights from "ul_X", rebuild shape; num_rebuilds set.
- * Used by checkpoint restore after the fields were read. */
-int pdk_model_corr_ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds);
 pdk_families *pdk_model_corr_ul_families(const pdk_model *m);
 /* Correspondence with the Johnson-Cook law, after a committing pass (src/model_corr.c): the
  * particles whose update failed (their count, the first in *first) and the error naming it. */

@@ -456,8 +456,11 @@ static void lps_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
   }
 }
 
-const pdk_model_ops pdk_model_ops_lps = {lps_setup, lps_force, lps_destroy, lps_tangent_prepare,
-                                         lps_tangent_column};
+const pdk_model_ops pdk_model_ops_lps = {.setup = lps_setup,
+                                         .force = lps_force,
+                                         .destroy = lps_destroy,
+                                         .tangent_prepare = lps_tangent_prepare,
+                                         .tangent_column = lps_tangent_column};
 
 double pdk_model_lps_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return 0.0;

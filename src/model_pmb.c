@@ -277,8 +277,10 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
   }
 }
 
-const pdk_model_ops pdk_model_ops_pmb = {pmb_setup, pmb_force, pmb_destroy, NULL,
-                                         pmb_tangent_column};
+const pdk_model_ops pdk_model_ops_pmb = {.setup = pmb_setup,
+                                         .force = pmb_force,
+                                         .destroy = pmb_destroy,
+                                         .tangent_column = pmb_tangent_column};
 
 double pdk_model_pmb_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;

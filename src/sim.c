@@ -49,9 +49,10 @@
 #include <string.h>
 
 #include "checkpoint_impl.h"
-#include "explicit_impl.h" /* the restart sets dt where the checkpoint's run left off */
+#include "state.h"         /* the restart sets dt where the checkpoint's run left off */
 #include "kernels.h"       /* PDK_CORR_FLAG_* */
 #include "model_stencil.h" /* pdk_stencil_corr_refusal */
+#include "run_impl.h"
 #include "scene_impl.h"
 
 struct pdk_sim {
@@ -436,13 +437,13 @@ static int decide_restart(void *arg, const pdk_checkpoint_solver *cs) {
   pdk_sim *sim = rd->sim;
   const pdk_scene *s = rd->s;
   pdk_ctx *ctx = sim->ctx;
-  const double dt_scene = sim->e->dt_created; /* what the scene asks for */
+  const double dt_scene = pdk_explicit_dt_created(sim->e); /* what the scene asks for */
   rd->cs = *cs;
   rd->changed = dt_scene != cs->dt_created;
   char how[160] = "";
   if (s->solver.dt == 0)
     snprintf(how, sizeof how, " (solver.dt 0: solver.safety %g x the stable estimate %g)",
-             s->solver.safety, sim->e->dt_stable);
+             s->solver.safety, pdk_explicit_stable_dt(sim->e));
   if (rd->changed && sim->end_time <= 0)
     return pdk_scene_error(
         s, ctx, PDK_ERR_ARG, "solver.dt",
@@ -481,6 +482,12 @@ static int decide_restart(void *arg, const pdk_checkpoint_solver *cs) {
 
 int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path,
                     pdk_sim_restart_info *info) {
+  return pdk_sim_restart_text(sim, s, path, info, NULL);
+}
+
+int pdk_sim_restart_text(pdk_sim *sim, const pdk_scene *s, const char *path,
+                         pdk_sim_restart_info *info, char **scene_text) {
+  if (scene_text) *scene_text = NULL;
   if (!sim || !s || !info) return PDK_ERR_ARG;
   pdk_ctx *ctx = sim->ctx;
   pdk_explicit *e = sim->e;
@@ -489,25 +496,22 @@ int pdk_sim_restart(pdk_sim *sim, const pdk_scene *s, const char *path,
             "a restart continues explicit runs only; this scene's solver is %s, which writes no "
             "checkpoints",
             pdk_solver_type_name(sim->type));
-  PDK_CHECK(e->step == 0, ctx, PDK_ERR_ARG,
+  PDK_CHECK(pdk_explicit_step(e) == 0, ctx, PDK_ERR_ARG,
             "pdk_sim_restart: the simulation has run %ld steps; restart a freshly built one",
-            e->step);
+            pdk_explicit_step(e));
   restart_decision rd;
   memset(&rd, 0, sizeof rd);
   rd.sim = sim;
   rd.s = s;
   rd.path = path;
-  const double dt_scene = e->dt_created;
-  PDK_CALL(pdk_checkpoint_restore(ctx, path, e, decide_restart, &rd));
-  if (rd.changed) { /* the scene's step from the checkpoint on */
-    e->dt = dt_scene;
-    e->dt_step0 = rd.cs.step;
-    e->dt_time0 = rd.cs.time;
-  }
-  info->step = e->step;
-  info->time = e->time;
+  const double dt_scene = pdk_explicit_dt_created(e);
+  PDK_CALL(pdk_checkpoint_restore(ctx, path, e, decide_restart, &rd, scene_text));
+  if (rd.changed) /* the scene's step from the checkpoint on */
+    pdk_explicit_restart_dt(e, dt_scene, rd.cs.step, rd.cs.time);
+  info->step = pdk_explicit_step(e);
+  info->time = pdk_explicit_time(e);
   info->end_step = pdk_sim_num_steps(sim);
-  info->dt = e->dt;
+  info->dt = pdk_explicit_dt(e);
   info->dt_changed = rd.changed;
   info->dt_before = rd.cs.dt;
   info->dt_created_before = rd.cs.dt_created;

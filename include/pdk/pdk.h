@@ -14,5 +14,6 @@
 #include "pdk/output.h"
 #include "pdk/plasticity.h"
 #include "pdk/static.h"
+#include "pdk/run.h"
 
 #endif

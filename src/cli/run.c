@@ -1,5 +1,7 @@
-/* `pdk run` and `pdk check`: load a scene, build the simulation, run it with progress, write the
- * output files, checkpoint on request and on Ctrl-C. */
+/* `pdk run` and `pdk check`: load a scene, build the simulation, and run it through the library's
+ * run loop (pdk_sim_run, include/pdk/run.h), which writes the output files and checkpoints; here
+ * are the arguments, the signals (Ctrl-C asks the run to stop) and what is printed: the
+ * description, progress, events and the summary. */
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -12,6 +14,7 @@
 
 #include "cli.h"
 #include "pdk/output.h"
+#include "pdk/run.h"
 #include "pdk/scene.h"
 
 #ifndef PATH_MAX
@@ -158,24 +161,6 @@ static int parse_args(const char *prog, int argc, char **argv, run_args *a, cons
   return 0;
 }
 
-static int mkdir_p(const char *path) {
-  char buf[PATH_MAX];
-  size_t len = strlen(path);
-  if (len == 0 || len >= sizeof buf) {
-    errno = len ? ENAMETOOLONG : ENOENT;
-    return -1;
-  }
-  memcpy(buf, path, len + 1);
-  for (char *q = buf + 1; *q; ++q) {
-    if (*q != '/') continue;
-    *q = '\0';
-    if (mkdir(buf, 0777) && errno != EEXIST) return -1;
-    *q = '/';
-  }
-  if (mkdir(buf, 0777) && errno != EEXIST) return -1;
-  return 0;
-}
-
 static void fmt_duration(char *buf, size_t len, double s) {
   if (!isfinite(s) || s < 0)
     snprintf(buf, len, "--");
@@ -290,9 +275,6 @@ int pdk_cli_check(const char *prog, int argc, char **argv) {
   return rc;
 }
 
-/* A static run: one history record per load step (history_interval and field_interval count load
- * steps), a progress line per load step, the solver's statistics at the end. No checkpoints: on
- * Ctrl-C the load steps solved so far are kept (complete files) and the run stops with 130. */
 /* Float storage of bond lengths sets a stretch resolution of 2^-24 (pdk_model.h): when the largest
  * stretch of the finished run is within PDK_FLOAT_STRETCH_WARN of it, round-off rather than
  * discretization sets the forces' error, and the user is told (the run itself succeeded). */
@@ -359,77 +341,6 @@ static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history
   }
 }
 
-static int run_static(pdk_ctx *ctx, const run_args *a, pdk_scene *scene, pdk_sim *sim,
-                      pdk_output **out, const char *dir, double wall0) {
-  pdk_static *st = pdk_sim_static(sim);
-  pdk_particles *p = pdk_sim_particles(sim);
-  const pdk_scene_output *so = pdk_scene_output_get(scene);
-  const long total = pdk_sim_num_steps(sim);
-  const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
-  const long field_every = so->field_interval;
-  const char *method = pdk_solver_type_name(pdk_sim_solver_type(sim));
-  pdk_history h;
-  int err = pdk_sim_static_history(sim, &h);
-  if (!err) err = pdk_output_write_history(*out, &h);
-  if (!err) err = pdk_sim_update_output_fields(sim);
-  if (!err) err = pdk_output_write_fields(*out, p, h.step, h.time, so->fields, so->num_fields);
-  const double run0 = pdk_wtime();
-  long iterations_before = 0;
-  while (!err && h.step < total && !interrupted) {
-    if ((err = pdk_sim_static_step(sim, &h))) break;
-    const long s = h.step;
-    if (s % hist_every == 0 || s == total) err = pdk_output_write_history(*out, &h);
-    if (!err && ((field_every > 0 && s % field_every == 0) || s == total)) {
-      err = pdk_sim_update_output_fields(sim);
-      if (!err) err = pdk_output_write_fields(*out, p, s, h.time, so->fields, so->num_fields);
-    }
-    if (!a->quiet) {
-      const pdk_static_stats *ss = pdk_static_stats_get(st);
-      const pdk_static_event *ev = pdk_static_last_event(st);
-      char w[32];
-      fmt_duration(w, sizeof w, pdk_wtime() - wall0);
-      fprintf(stderr,
-              "%s load step %ld/%ld  %s %.4g  iterations %ld  re-solves %d  residual %.2e  "
-              "broken %lld  wall %s\n",
-              method, s, total, pdk_static_total_time(st) > 0 ? "t" : "load", h.time,
-              ss->iterations - iterations_before, ev->round, ev->residual, (long long)h.broken, w);
-      iterations_before = ss->iterations;
-    }
-  }
-  if (err) {
-    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-    if (pdk_static_levels_solved(st) > 0) {
-      /* keep the load steps that did converge: their records are complete */
-      if (pdk_output_close(out, 1))
-        fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-      else
-        fprintf(stderr, "pdk: the %d load step(s) solved are in %s/%s_history.csv\n",
-                pdk_static_levels_solved(st), dir, pdk_scene_name(scene));
-    }
-    return 1;
-  }
-  if (pdk_output_close(out, 1)) {
-    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-    return 1;
-  }
-  if (interrupted) {
-    fprintf(stderr,
-            "pdk: interrupted after load step %ld of %ld (static runs have no checkpoints; the "
-            "output holds the steps solved)\n",
-            h.step, total);
-    return 130;
-  }
-  if (!a->quiet) pdk_static_stats_print(pdk_static_stats_get(st), stderr);
-  warn_float_roundoff(sim);
-  fprintf(stderr,
-          "done: %ld load steps in %.2f s (%.2f s solving), peak memory %.1f MiB, %lld bonds "
-          "broken\n",
-          h.step, pdk_wtime() - wall0, pdk_wtime() - run0, pdk_peak_memory_bytes() / 1048576.0,
-          (long long)h.broken);
-  print_outputs(dir, pdk_scene_name(scene));
-  return 0;
-}
-
 /* Writes s to f quoted for a POSIX shell: as it is when it holds only characters no shell
  * treats specially, else in single quotes (a ' inside as '\''). */
 static void shell_quote(FILE *f, const char *s) {
@@ -449,25 +360,6 @@ static void shell_quote(FILE *f, const char *s) {
     else
       fputc(*q, f);
   fputc('\'', f);
-}
-
-/* The checkpoint at the end of a run or at Ctrl-C: written complete under a temporary name
- * (<ckpt>.part) and handed to the output, whose closing phase renames it with the run's other
- * files, so a kill in that phase never leaves this run's checkpoint beside an earlier run's
- * output (the periodic checkpoints of solver.checkpoint_interval are committed at once: a
- * killed run must leave one; a restart checks that the output it continues reaches it). */
-static int final_checkpoint(pdk_ctx *ctx, pdk_output *out, const char *ckpt, pdk_explicit *e,
-                            const pdk_scene *scene) {
-  char part[PATH_MAX];
-  int len = snprintf(part, sizeof part, "%s.part", ckpt); /* fits: checked with the names */
-  if (len < 0 || (size_t)len >= sizeof part) {
-    fprintf(stderr, "pdk: the checkpoint's temporary name '%s.part' is too long\n", ckpt);
-    return PDK_ERR_ARG;
-  }
-  int err = pdk_checkpoint_write(ctx, part, e, pdk_scene_text(scene));
-  if (!err) err = pdk_output_adopt(out, part, ckpt);
-  if (err) remove(part);
-  return err;
 }
 
 /* The command that continues this run from its checkpoint: the same program, scene, output
@@ -491,6 +383,190 @@ static void print_continue(FILE *f, const run_args *a, const char *dir, const ch
   fputc('\n', f);
 }
 
+/* What the event handler prints with: the command line, the objects, and the progress clocks. */
+typedef struct run_print {
+  const run_args *a;
+  pdk_ctx *ctx;
+  pdk_scene *scene;
+  pdk_sim *sim;
+  const char *dir;
+  double wall0; /* when pdk run started */
+  int tty;      /* progress as one line updated in place on a terminal */
+  /* not a terminal (a log file, a batch job): a whole line at least every 10% of the steps and
+   * PDK_PROGRESS_SECONDS (default 10) of wall time, so a short run prints none and a long one
+   * about ten */
+  int log_lines;
+  double line_every, last_print, last_line;
+  long last_line_step;
+  long iterations_before; /* static: the solver's iterations before this load step */
+} run_print;
+
+/* The progress of an explicit run after a chunk of steps. */
+static void print_progress(run_print *c, const pdk_run_event *ev) {
+  const long s = ev->step, total = ev->total, start = ev->report->start_step;
+  const pdk_history *h = ev->history;
+  const double now = pdk_wtime();
+  const int in_place = c->tty && (now - c->last_print > 0.25 || s == total);
+  const int line = c->log_lines && s < total && now - c->last_line >= c->line_every &&
+                   10 * (s - c->last_line_step) >= total - start;
+  if (!in_place && !line) return;
+  const double el = now - ev->report->wtime_stepping,
+               frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
+  char w[32], eta[32];
+  fmt_duration(w, sizeof w, now - c->wall0);
+  fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
+  fprintf(stderr, "%sstep %ld/%ld (%.0f%%)  t %.4g  wall %s  ETA %s  broken %lld  E %.4g%s",
+          in_place ? "\r" : "", s, total, 100.0 * (double)s / (double)total, h->time, w, eta,
+          (long long)h->broken, h->kinetic + h->strain, in_place ? "   " : "\n");
+  c->last_print = now;
+  if (line) c->last_line = now, c->last_line_step = s;
+}
+
+/* The line of a static run after a load step. */
+static void print_load_step(run_print *c, const pdk_run_event *ev) {
+  pdk_static *st = pdk_sim_static(c->sim);
+  const pdk_static_stats *ss = pdk_static_stats_get(st);
+  const pdk_static_event *se = pdk_static_last_event(st);
+  char w[32];
+  fmt_duration(w, sizeof w, pdk_wtime() - c->wall0);
+  fprintf(stderr,
+          "%s load step %ld/%ld  %s %.4g  iterations %ld  re-solves %d  residual %.2e  "
+          "broken %lld  wall %s\n",
+          pdk_solver_type_name(pdk_sim_solver_type(c->sim)), ev->step, ev->total,
+          pdk_static_total_time(st) > 0 ? "t" : "load", ev->history->time,
+          ss->iterations - c->iterations_before, se->round, se->residual,
+          (long long)ev->history->broken, w);
+  c->iterations_before = ss->iterations;
+}
+
+static void on_event(void *arg, const pdk_run_event *ev) {
+  run_print *c = arg;
+  const pdk_sim_restart_info *ri = &ev->report->restart;
+  pdk_explicit *e = pdk_sim_explicit(c->sim);
+  switch (ev->kind) {
+  case PDK_RUN_EVENT_RESTARTED:
+    if (ri->dt_changed)
+      fprintf(stderr,
+              "pdk: solver.dt: the restart steps at %.6g from the checkpoint (step %ld, t = "
+              "%.6g) on, where its run stepped at %.6g (created with %.6g): this scene asks for "
+              "another step; %ld steps in all to its end\n",
+              ri->dt, ri->step, ri->time, ri->dt_before, ri->dt_created_before, ri->end_step);
+    break;
+  case PDK_RUN_EVENT_BEGIN:
+    if (!c->a->quiet) describe(stderr, c->ctx, c->scene, c->sim);
+    c->last_line = pdk_wtime();
+    c->last_line_step = ev->report->start_step;
+    break;
+  case PDK_RUN_EVENT_CONTINUING:
+    if (!c->a->quiet)
+      fprintf(stderr,
+              "continuing the output in %s: %ld history rows and %d field outputs up to step %ld "
+              "kept\n",
+              c->dir, ev->report->kept_rows, ev->report->kept_fields, ri->step);
+    break;
+  case PDK_RUN_EVENT_DT_LOWERED:
+    if (!c->a->quiet) {
+      long s0;
+      double t0;
+      pdk_explicit_dt_start(e, &s0, &t0);
+      fprintf(stderr,
+              "%sdt lowered to %.4g at step %ld (t %.4g): stable estimate %.4g (%d estimates so "
+              "far); %ld steps in all now\n",
+              c->tty ? "\r" : "", pdk_explicit_dt(e), s0, t0, pdk_explicit_stable_dt(e),
+              pdk_explicit_num_estimates(e), ev->total);
+    }
+    break;
+  case PDK_RUN_EVENT_STEPPED:
+    if (e)
+      print_progress(c, ev);
+    else if (!c->a->quiet)
+      print_load_step(c, ev);
+    break;
+  }
+}
+
+/* After pdk_sim_run: what happened, and the exit status. */
+static int print_result(run_print *c, int err, const pdk_run_report *rep, const char *ckpt) {
+  const run_args *a = c->a;
+  pdk_sim *sim = c->sim;
+  pdk_explicit *e = pdk_sim_explicit(sim);
+  const char *msg = pdk_ctx_error_message(c->ctx);
+  char sbuf[80];
+  if (c->tty && e && rep->wtime_stepping > 0) fputc('\n', stderr); /* ends the in-place line */
+  if (rep->status == PDK_RUN_NOTHING_TO_DO) {
+    fprintf(stderr,
+            "pdk: checkpoint '%s' is at the end of the run (step %ld, t = %.6g): nothing to do, "
+            "the output is left as it is; to run on, give a later solver.end_time (or more "
+            "solver.steps)\n",
+            a->restart, rep->restart.step, rep->restart.time);
+    return 0;
+  }
+  if (err) {
+    switch (rep->stage) {
+    case PDK_RUN_STAGE_RESTART: fprintf(stderr, "pdk: --restart: %s\n", msg); return 2;
+    case PDK_RUN_STAGE_FOLDER:
+      fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n",
+              shorten(c->dir, sbuf, sizeof sbuf), strerror(rep->os_error));
+      return 1;
+    case PDK_RUN_STAGE_OPEN: fprintf(stderr, "pdk: %s\n", msg); return a->restart ? 2 : 1;
+    case PDK_RUN_STAGE_CONTINUE: fprintf(stderr, "pdk: %s\n", msg); return 2;
+    case PDK_RUN_STAGE_CHECKPOINT:
+      fprintf(stderr, "pdk: %s%s\n", rep->stopped ? "interrupted, and the checkpoint failed: " : "",
+              msg);
+      return 1;
+    default: fprintf(stderr, "pdk: %s\n", msg);
+    }
+    if (rep->keep_error[0])
+      fprintf(stderr, "pdk: %s\n", rep->keep_error);
+    else if (rep->kept_steps > 0)
+      fprintf(stderr, "pdk: the %d load step(s) solved are in %s/%s_history.csv\n", rep->kept_steps,
+              c->dir, pdk_scene_name(c->scene));
+    return 1;
+  }
+  const double wall = pdk_wtime() - c->wall0, run = pdk_wtime() - rep->wtime_stepping;
+  if (!e) { /* static */
+    if (rep->status == PDK_RUN_STOPPED) {
+      fprintf(stderr,
+              "pdk: interrupted after load step %ld of %ld (static runs have no checkpoints; the "
+              "output holds the steps solved)\n",
+              rep->step, rep->total);
+      return 130;
+    }
+    if (!a->quiet) pdk_static_stats_print(pdk_static_stats_get(pdk_sim_static(sim)), stderr);
+    warn_float_roundoff(sim);
+    fprintf(stderr,
+            "done: %ld load steps in %.2f s (%.2f s solving), peak memory %.1f MiB, %lld bonds "
+            "broken\n",
+            rep->last.step, wall, run, pdk_peak_memory_bytes() / 1048576.0,
+            (long long)rep->last.broken);
+    print_outputs(c->dir, pdk_scene_name(c->scene));
+    return 0;
+  }
+  if (rep->status == PDK_RUN_STOPPED) {
+    /* The output holds every step written so far; the checkpoint continues it. */
+    fprintf(stderr, "pdk: interrupted at step %ld of %ld; continue with\n", rep->step, rep->total);
+    print_continue(stderr, a, c->dir, ckpt);
+    return 130;
+  }
+  warn_float_roundoff(sim);
+  report_energy(sim, &rep->first, &rep->last);
+  const long steps = rep->step - rep->start_step;
+  const double bonds = (double)pdk_families_num_bonds(pdk_sim_families(sim)) * (double)steps;
+  fprintf(stderr,
+          "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f "
+          "MiB, %lld bonds broken\n",
+          steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
+          (long long)pdk_model_num_broken(pdk_sim_model(sim)));
+  print_outputs(c->dir, pdk_scene_name(c->scene));
+  if (pdk_explicit_opts_get(e)->dt_update != PDK_DT_UPDATE_NONE)
+    fprintf(stderr,
+            "dt_update: %d estimates of the stable step, dt lowered %d time(s), final dt %.4g "
+            "(latest estimate %.4g)\n",
+            pdk_explicit_num_estimates(e), pdk_explicit_num_dt_changes(e), pdk_explicit_dt(e),
+            pdk_explicit_stable_dt(e));
+  return 0;
+}
+
 int pdk_cli_run(const char *prog, int argc, char **argv) {
   run_args a;
   int rc = parse_args(prog, argc, argv, &a, pdk_cli_usage_run, 1);
@@ -498,12 +574,8 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
   pdk_ctx *ctx = NULL;
   pdk_scene *scene = NULL;
   pdk_sim *sim = NULL;
-  pdk_output *out = NULL;
-  char *ckpt_scene = NULL; /* the scene text stored in the --restart checkpoint */
   char dir[PATH_MAX], ckpt[PATH_MAX], sbuf[80];
-  double wall0 = pdk_wtime();
-  pdk_sim_restart_info ri;
-  memset(&ri, 0, sizeof ri);
+  const double wall0 = pdk_wtime();
   if ((rc = make_ctx(a.threads, &ctx))) return rc;
   if (pdk_scene_load(ctx, a.scene, a.overrides, a.num_overrides, &scene)) {
     fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
@@ -519,7 +591,7 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
     goto done;
   }
   /* the checkpoint before the build: a file that is not one is refused at once */
-  if (a.restart && pdk_checkpoint_info(ctx, a.restart, NULL, NULL, &ckpt_scene)) {
+  if (a.restart && pdk_checkpoint_info(ctx, a.restart, NULL, NULL, NULL)) {
     fprintf(stderr, "pdk: --restart: %s\n", pdk_ctx_error_message(ctx));
     rc = 2;
     goto done;
@@ -529,9 +601,6 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
     rc = 2;
     goto done;
   }
-  pdk_explicit *e = pdk_sim_explicit(sim);
-  pdk_particles *p = pdk_sim_particles(sim);
-  const pdk_scene_output *so = pdk_scene_output_get(scene);
   const char *name = pdk_scene_name(scene);
   int len = a.outdir ? snprintf(dir, sizeof dir, "%s", a.outdir)
                      : snprintf(dir, sizeof dir, "out/%s", name);
@@ -546,214 +615,34 @@ int pdk_cli_run(const char *prog, int argc, char **argv) {
     rc = 2;
     goto done;
   }
-  if (a.restart) {
-    if (pdk_sim_restart(sim, scene, a.restart, &ri)) {
-      fprintf(stderr, "pdk: --restart: %s\n", pdk_ctx_error_message(ctx));
-      rc = 2;
-      goto done;
-    }
-    if (ri.end_step == ri.step) {
-      fprintf(stderr,
-              "pdk: checkpoint '%s' is at the end of the run (step %ld, t = %.6g): nothing to do, "
-              "the output is left as it is; to run on, give a later solver.end_time (or more "
-              "solver.steps)\n",
-              a.restart, ri.step, ri.time);
-      rc = 0;
-      goto done;
-    }
-    if (ri.dt_changed)
-      fprintf(stderr,
-              "pdk: solver.dt: the restart steps at %.6g from the checkpoint (step %ld, t = "
-              "%.6g) on, where its run stepped at %.6g (created with %.6g): this scene asks for "
-              "another step; %ld steps in all to its end\n",
-              ri.dt, ri.step, ri.time, ri.dt_before, ri.dt_created_before, ri.end_step);
-  }
-  if (mkdir_p(dir)) {
-    fprintf(stderr, "pdk: cannot create the output folder '%s': %s\n",
-            shorten(dir, sbuf, sizeof sbuf), strerror(errno));
-    rc = 1;
-    goto done;
-  }
-  if (!a.quiet) describe(stderr, ctx, scene, sim);
-  {
-    pdk_output_opts oo;
-    memset(&oo, 0, sizeof oo);
-    oo.dir = dir;
-    oo.name = pdk_scene_name(scene);
-    oo.scene_text = pdk_scene_text(scene);
-    oo.reaction_sets = so->reaction_sets;
-    oo.num_reaction_sets = so->num_reaction_sets;
-    oo.units = so->units;
-    oo.plot = 1;
-    oo.append = a.restart != NULL;
-    oo.append_step = ri.step;
-    oo.append_scene = ckpt_scene;
-    if (pdk_output_open(ctx, &oo, p, &out)) {
-      fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-      rc = a.restart ? 2 : 1;
-      goto done;
-    }
-  }
-  /* a restart into the folder of its run continues that output: it must reach the checkpoint */
-  const int appended = pdk_output_num_history_rows(out) > 0 || pdk_output_num_field_steps(out) > 0;
-  if (appended) {
-    const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
-    const long need_h = ri.step / hist_every * hist_every;
-    const long need_f =
-        so->field_interval > 0 ? ri.step / so->field_interval * so->field_interval : 0;
-    const long last_h = pdk_output_last_history_step(out), last_f = pdk_output_last_field_step(out);
-    if (last_h < need_h || last_f < need_f) {
-      fprintf(stderr,
-              "pdk: the output in '%s' ends at step %ld (history) and %ld (fields), before the "
-              "checkpoint's step %ld (records due at %ld and %ld): it is not the output of the "
-              "run that wrote the checkpoint (that run may have been killed before its output "
-              "was complete); restart into another folder (-o), or move %s.h5, %s.xmf and "
-              "%s_history.csv out of '%s'\n",
-              dir, last_h, last_f, ri.step, need_h, need_f, name, name, name, dir);
-      rc = 2;
-      goto done;
-    }
-    if (!a.quiet)
-      fprintf(stderr,
-              "continuing the output in %s: %ld history rows and %d field outputs up to step %ld "
-              "kept\n",
-              dir, pdk_output_num_history_rows(out), pdk_output_num_field_steps(out), ri.step);
-  }
+  run_print c;
+  memset(&c, 0, sizeof c);
+  c.a = &a;
+  c.ctx = ctx;
+  c.scene = scene;
+  c.sim = sim;
+  c.dir = dir;
+  c.wall0 = wall0;
+  c.tty = !a.quiet && isatty(STDERR_FILENO);
+  c.log_lines = !a.quiet && !c.tty;
+  const char *env_every = getenv("PDK_PROGRESS_SECONDS");
+  c.line_every = env_every && *env_every ? atof(env_every) : 10.0;
+  pdk_run_opts ro = pdk_run_opts_default();
+  ro.dir = dir;
+  ro.restart = a.restart;
+  ro.stop = &interrupted;
+  ro.on_event = on_event;
+  ro.arg = &c;
+  /* Ctrl-C (and SIGTERM) ask the run to stop: it writes its checkpoint and closes its output */
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_sigint;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
-
-  if (!e) {
-    rc = run_static(ctx, &a, scene, sim, &out, dir, wall0);
-    goto done;
-  }
-  long total = pdk_sim_num_steps(sim); /* grows when a solver.dt_update lowers dt */
-  const long start = pdk_explicit_step(e);
-  int dt_changes = pdk_explicit_num_dt_changes(e);
-  const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
-  const long field_every = so->field_interval;
-  const long ckpt_every = so->checkpoint_interval;
-  const int tty = !a.quiet && isatty(STDERR_FILENO);
-  /* not a terminal (a log file, a batch job): a whole line at least every 10% of the steps and
-   * PDK_PROGRESS_SECONDS (default 10) of wall time, so a short run prints none and a long one
-   * about ten */
-  const int log_lines = !a.quiet && !tty;
-  const char *env_every = getenv("PDK_PROGRESS_SECONDS");
-  const double line_every = env_every && *env_every ? atof(env_every) : 10.0;
-  double last_print = 0.0, last_line = pdk_wtime();
-  long last_line_step = start;
-  pdk_history h;
-  int err = pdk_explicit_run(e, 0, &h);
-  const pdk_history h0 = h;
-  if (!appended) { /* a continued output has the records up to the checkpoint already */
-    if (!err) err = pdk_output_write_history(out, &h);
-    if (!err) err = pdk_sim_update_output_fields(sim);
-    if (!err) err = pdk_output_write_fields(out, p, h.step, h.time, so->fields, so->num_fields);
-  }
-  double run0 = pdk_wtime();
-  while (!err && pdk_explicit_step(e) < total && !interrupted) {
-    long s = pdk_explicit_step(e);
-    long next = total;
-    long cand[3] = {(s / hist_every + 1) * hist_every,
-                    field_every > 0 ? (s / field_every + 1) * field_every : total,
-                    ckpt_every > 0 ? (s / ckpt_every + 1) * ckpt_every : total};
-    for (int k = 0; k < 3; ++k)
-      next = cand[k] < next ? cand[k] : next;
-    /* advance in chunks of at most 100 steps so Ctrl-C and the progress line stay responsive */
-    long chunk = next - s < 100 ? next - s : 100;
-    if ((err = pdk_explicit_run(e, chunk, &h))) break;
-    s = pdk_explicit_step(e);
-    if (pdk_explicit_num_dt_changes(e) != dt_changes) {
-      dt_changes = pdk_explicit_num_dt_changes(e);
-      total = pdk_sim_num_steps(sim);
-      long s0;
-      double t0;
-      pdk_explicit_dt_start(e, &s0, &t0);
-      if (!a.quiet)
-        fprintf(stderr,
-                "%sdt lowered to %.4g at step %ld (t %.4g): stable estimate %.4g (%d estimates so "
-                "far); %ld steps in all now\n",
-                tty ? "\r" : "", pdk_explicit_dt(e), s0, t0, pdk_explicit_stable_dt(e),
-                pdk_explicit_num_estimates(e), total);
-    }
-    if (s % hist_every == 0 || s == total) err = pdk_output_write_history(out, &h);
-    if (!err && ((field_every > 0 && s % field_every == 0) || s == total)) {
-      err = pdk_sim_update_output_fields(sim);
-      if (!err) err = pdk_output_write_fields(out, p, s, h.time, so->fields, so->num_fields);
-    }
-    if (!err && ckpt_every > 0 && s % ckpt_every == 0 && s < total)
-      err = pdk_checkpoint_write(ctx, ckpt, e, pdk_scene_text(scene));
-    double now = pdk_wtime();
-    const int in_place = tty && (now - last_print > 0.25 || s == total);
-    const int line = log_lines && s < total && now - last_line >= line_every &&
-                     10 * (s - last_line_step) >= total - start;
-    if (in_place || line) {
-      double el = now - run0,
-             frac = (double)(s - start) / (double)(total - start > 0 ? total - start : 1);
-      char w[32], eta[32];
-      fmt_duration(w, sizeof w, now - wall0);
-      fmt_duration(eta, sizeof eta, frac > 0 ? el / frac - el : NAN);
-      fprintf(stderr, "%sstep %ld/%ld (%.0f%%)  t %.4g  wall %s  ETA %s  broken %lld  E %.4g%s",
-              in_place ? "\r" : "", s, total, 100.0 * (double)s / (double)total, h.time, w, eta,
-              (long long)h.broken, h.kinetic + h.strain, in_place ? "   " : "\n");
-      last_print = now;
-      if (line) last_line = now, last_line_step = s;
-    }
-  }
-  if (tty) fputc('\n', stderr);
-  if (err) {
-    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-    pdk_output_close(&out, 0);
-    rc = 1;
-    goto done;
-  }
-  if (interrupted) {
-    if (final_checkpoint(ctx, out, ckpt, e, scene)) {
-      fprintf(stderr, "pdk: interrupted, and the checkpoint failed: %s\n",
-              pdk_ctx_error_message(ctx));
-      pdk_output_close(&out, 0);
-      rc = 1;
-      goto done;
-    }
-    /* The output holds every step written so far; a checkpoint continues it. */
-    pdk_output_close(&out, 1);
-    fprintf(stderr, "pdk: interrupted at step %ld of %ld; continue with\n", pdk_explicit_step(e),
-            total);
-    print_continue(stderr, &a, dir, ckpt);
-    rc = 130;
-    goto done;
-  }
-  if (final_checkpoint(ctx, out, ckpt, e, scene) || pdk_output_close(&out, 1)) {
-    fprintf(stderr, "pdk: %s\n", pdk_ctx_error_message(ctx));
-    pdk_output_close(&out, 0);
-    rc = 1;
-    goto done;
-  }
-  {
-    warn_float_roundoff(sim);
-    report_energy(sim, &h0, &h);
-    double wall = pdk_wtime() - wall0, run = pdk_wtime() - run0;
-    long steps = pdk_explicit_step(e) - start;
-    double bonds = (double)pdk_families_num_bonds(pdk_sim_families(sim)) * (double)steps;
-    fprintf(
-        stderr,
-        "done: %ld steps in %.2f s (%.2f s stepping), %.3g bond updates/s, peak memory %.1f MiB, "
-        "%lld bonds broken\n",
-        steps, wall, run, run > 0 ? bonds / run : 0.0, pdk_peak_memory_bytes() / 1048576.0,
-        (long long)pdk_model_num_broken(pdk_sim_model(sim)));
-    print_outputs(dir, pdk_scene_name(scene));
-    if (pdk_explicit_opts_get(e)->dt_update != PDK_DT_UPDATE_NONE)
-      fprintf(stderr,
-              "dt_update: %d estimates of the stable step, dt lowered %d time(s), final dt %.4g "
-              "(latest estimate %.4g)\n",
-              pdk_explicit_num_estimates(e), pdk_explicit_num_dt_changes(e), pdk_explicit_dt(e),
-              pdk_explicit_stable_dt(e));
-  }
+  pdk_run_report rep;
+  const int err = pdk_sim_run(sim, scene, &ro, &rep);
+  rc = print_result(&c, err, &rep, ckpt);
 done:
-  pdk_output_close(&out, 0);
-  free(ckpt_scene);
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&scene);
   pdk_ctx_destroy(&ctx);
