@@ -60,6 +60,7 @@
 
 #include <signal.h>
 
+#include "pdk/export.h"
 #include "pdk/scene.h"
 
 #ifdef __cplusplus
@@ -146,12 +147,12 @@ typedef struct pdk_run_opts {
 } pdk_run_opts;
 
 /* dir NULL, restart NULL, plot 1, stop NULL, on_event NULL. */
-pdk_run_opts pdk_run_opts_default(void);
+PDK_EXPORT pdk_run_opts pdk_run_opts_default(void);
 
 /* Runs sim (built from scene by pdk_sim_create) to the scene's end as described above. opts NULL:
  * the defaults; report may be NULL. */
-int pdk_sim_run(pdk_sim *sim, const pdk_scene *scene, const pdk_run_opts *opts,
-                pdk_run_report *report);
+PDK_EXPORT int pdk_sim_run(pdk_sim *sim, const pdk_scene *scene, const pdk_run_opts *opts,
+                           pdk_run_report *report);
 
 #ifdef __cplusplus
 }
