@@ -12,7 +12,7 @@
  *     the checkpoint (its run was killed after a later checkpoint), is refused with exit 2 and a
  *     message, and its files are left as they were.
  * The CLI is $PDK_BUILD_DIR/pdk; the files go to $PDK_BUILD_DIR/tests/t185_cli_restart_append.work.
- * (h5diff is not needed: the HDF5 files are compared here, object by object.)
+ * (h5diff is not needed: the HDF5 files are compared object by object, tests/h5_same.h.)
  * labels: unit */
 #define _DEFAULT_SOURCE /* fork, kill, usleep */
 #include <errno.h>
@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include "test_util.h"
+#include "h5_same.h"
 
 #define STEPS "6000" /* under a second for this bar */
 #define MAX_ARGS 40
@@ -125,129 +126,6 @@ static int count_lines(const char *path) {
   return n;
 }
 
-/* ---- HDF5 comparison: the same objects, attributes and dataset bytes (what h5diff compares) */
-
-typedef struct names {
-  char **name;
-  int n;
-} names;
-
-static herr_t collect_attr(hid_t loc, const char *name, const H5A_info_t *info, void *data) {
-  (void)loc;
-  (void)info;
-  names *nm = data;
-  nm->name = realloc(nm->name, (size_t)(nm->n + 1) * sizeof *nm->name);
-  nm->name[nm->n++] = strdup(name);
-  return 0;
-}
-
-static void free_names(names *nm) {
-  for (int k = 0; k < nm->n; ++k)
-    free(nm->name[k]);
-  free(nm->name);
-}
-
-/* Same type, extent and bytes of two attributes (is_attr) or datasets. */
-static int same_data(hid_t a, hid_t b, int is_attr, const char *what, char *why, size_t cap) {
-  hid_t ta = is_attr ? H5Aget_type(a) : H5Dget_type(a),
-        tb = is_attr ? H5Aget_type(b) : H5Dget_type(b);
-  hid_t sa = is_attr ? H5Aget_space(a) : H5Dget_space(a),
-        sb = is_attr ? H5Aget_space(b) : H5Dget_space(b);
-  int same = H5Tequal(ta, tb) > 0 && H5Sextent_equal(sa, sb) > 0;
-  if (!same) snprintf(why, cap, "%s: another type or shape", what);
-  if (same) {
-    const size_t bytes = (size_t)H5Sget_simple_extent_npoints(sa) * H5Tget_size(ta);
-    unsigned char *x = malloc(bytes + 1), *y = malloc(bytes + 1);
-    if (bytes) {
-      T_ASSERT(
-          (is_attr ? H5Aread(a, ta, x) : H5Dread(a, ta, H5S_ALL, H5S_ALL, H5P_DEFAULT, x)) >= 0 &&
-              (is_attr ? H5Aread(b, tb, y) : H5Dread(b, tb, H5S_ALL, H5S_ALL, H5P_DEFAULT, y)) >= 0,
-          "%s: cannot read", what);
-    }
-    same = !memcmp(x, y, bytes);
-    if (!same) {
-      size_t k = 0;
-      while (x[k] == y[k])
-        ++k;
-      snprintf(why, cap, "%s: bytes differ from byte %zu of %zu", what, k, bytes);
-    }
-    free(x);
-    free(y);
-  }
-  H5Tclose(ta);
-  H5Tclose(tb);
-  H5Sclose(sa);
-  H5Sclose(sb);
-  return same;
-}
-
-static int same_attrs(hid_t a, hid_t b, const char *path, char *why, size_t cap) {
-  names na = {0}, nb = {0};
-  hsize_t i = 0, j = 0;
-  H5Aiterate2(a, H5_INDEX_NAME, H5_ITER_INC, &i, collect_attr, &na);
-  H5Aiterate2(b, H5_INDEX_NAME, H5_ITER_INC, &j, collect_attr, &nb);
-  int same = na.n == nb.n;
-  if (!same) snprintf(why, cap, "%s: %d attributes against %d", path, na.n, nb.n);
-  for (int k = 0; same && k < na.n; ++k) {
-    char what[1024];
-    snprintf(what, sizeof what, "%s attribute '%s'", path, na.name[k]);
-    same = !strcmp(na.name[k], nb.name[k]);
-    if (!same) {
-      snprintf(why, cap, "%s: attribute '%s' against '%s'", path, na.name[k], nb.name[k]);
-      break;
-    }
-    hid_t x = H5Aopen(a, na.name[k], H5P_DEFAULT), y = H5Aopen(b, nb.name[k], H5P_DEFAULT);
-    same = same_data(x, y, 1, what, why, cap);
-    H5Aclose(x);
-    H5Aclose(y);
-  }
-  free_names(&na);
-  free_names(&nb);
-  return same;
-}
-
-static int same_group(hid_t a, hid_t b, const char *path, char *why, size_t cap) {
-  if (!same_attrs(a, b, path, why, cap)) return 0;
-  H5G_info_t ia, ib;
-  H5Gget_info(a, &ia);
-  H5Gget_info(b, &ib);
-  if (ia.nlinks != ib.nlinks) {
-    snprintf(why, cap, "%s: %llu members against %llu", path, (unsigned long long)ia.nlinks,
-             (unsigned long long)ib.nlinks);
-    return 0;
-  }
-  for (hsize_t k = 0; k < ia.nlinks; ++k) {
-    char na[256], nb[256], child[1024];
-    H5Lget_name_by_idx(a, ".", H5_INDEX_NAME, H5_ITER_INC, k, na, sizeof na, H5P_DEFAULT);
-    H5Lget_name_by_idx(b, ".", H5_INDEX_NAME, H5_ITER_INC, k, nb, sizeof nb, H5P_DEFAULT);
-    snprintf(child, sizeof child, "%s/%s", path, na);
-    if (strcmp(na, nb)) {
-      snprintf(why, cap, "%s: member '%s' against '%s'", path, na, nb);
-      return 0;
-    }
-    hid_t x = H5Oopen(a, na, H5P_DEFAULT), y = H5Oopen(b, nb, H5P_DEFAULT);
-    int same = H5Iget_type(x) == H5Iget_type(y);
-    if (!same) snprintf(why, cap, "%s: another kind of object", child);
-    if (same && H5Iget_type(x) == H5I_GROUP)
-      same = same_group(x, y, child, why, cap);
-    else if (same)
-      same = same_attrs(x, y, child, why, cap) && same_data(x, y, 0, child, why, cap);
-    H5Oclose(x);
-    H5Oclose(y);
-    if (!same) return 0;
-  }
-  return 1;
-}
-
-static int same_h5(const char *a, const char *b, char *why, size_t cap) {
-  hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
-  T_ASSERT(fa >= 0 && fb >= 0, "cannot open %s or %s", a, b);
-  const int same = same_group(fa, fb, "", why, cap);
-  H5Fclose(fa);
-  H5Fclose(fb);
-  return same;
-}
-
 /* The output of folder dir equals A's: CSV and XDMF bytes, HDF5 contents. */
 static void assert_same_as_a(const char *dir, const char *what) {
   char x[1024], why[2048] = "";
@@ -259,8 +137,8 @@ static void assert_same_as_a(const char *dir, const char *what) {
   snprintf(x, sizeof x, "%s/bar.xmf", dir);
   T_ASSERT(same_file("A/bar.xmf", x), "%s: %s differs from A/bar.xmf", what, x);
   snprintf(x, sizeof x, "%s/bar.h5", dir);
-  T_ASSERT(same_h5("A/bar.h5", x, why, sizeof why), "%s: %s differs from A/bar.h5: %s", what, x,
-           why);
+  T_ASSERT(h5s_same_file("A/bar.h5", x, why, sizeof why), "%s: %s differs from A/bar.h5: %s",
+           what, x, why);
 }
 
 /* The files of the output in dir, for "left as they were" checks. */
