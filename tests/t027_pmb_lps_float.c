@@ -151,8 +151,9 @@ static void float_vs_double(pdk_ctx *ctx, int dim, int kind, double origin) {
     }
   T_ASSERT(max_diff > 0, "%d-D %s: float forces equal double ones: float storage not used", dim,
            kind ? "lps" : "pmb");
-  printf("%d-D %-3s origin %-6g: max |f_float - f_double| = %.3e (%.2e of max |f|), max ratio to "
-         "bound %.3f\n", dim, kind ? "lps" : "pmb", origin, max_diff, max_diff / max_f, max_ratio);
+  T_INFO("%d-D %-3s origin %-6g: max |f_float - f_double| = %.3e (%.2e of max |f|), max ratio to "
+         "bound %.3f\n",
+         dim, kind ? "lps" : "pmb", origin, max_diff, max_diff / max_f, max_ratio);
   for (int c = 0; c < dim; ++c) free(fd[c]), free(ff[c]);
   free(bound);
   pdk_families_destroy(&fam);

@@ -70,8 +70,8 @@ int main(void) {
   T_ASSERT(n == 225 && centre >= 0, "15 x 15 plate with a centre particle (n %d)", (int)n);
   const double K = 5.0, s = 1e-3, W_cont = 12.0 / 5.0 * K * s * s;
   const double delta = 3.015, lattice_sum = lattice_energy(K, s, delta);
-  printf("centre W = %.6e, lattice sum %.6e, continuum %.6e (ratio %.4f)\n", W1[centre], lattice_sum,
-         W_cont, lattice_sum / W_cont);
+  T_INFO("centre W = %.6e, lattice sum %.6e, continuum %.6e (ratio %.4f)\n", W1[centre],
+         lattice_sum, W_cont, lattice_sum / W_cont);
   T_NEAR(W1[centre], lattice_sum, 1e-12, 0, "t = 1: centre energy density vs the lattice sum");
   double fmax = 0;
   for (pdk_index i = 0; i < 2 * n; ++i) fmax = fmax > fabs(f1[i]) ? fmax : fabs(f1[i]);

@@ -340,7 +340,7 @@ int main(void) {
   if (on_path("xmllint")) {
     T_ASSERT(system("xmllint --noout " DIR_OUT "/run.xmf") == 0, "xmllint rejects run.xmf");
   } else {
-    printf("t070: xmllint not on the PATH; XML well-formedness not checked\n");
+    T_INFO("t070: xmllint not on the PATH; XML well-formedness not checked\n");
   }
 
   /* 2b. ParaView itself, when pvpython is on the PATH: its XDMF 2 reader and its Xdmf3 reader load
@@ -382,7 +382,7 @@ int main(void) {
       T_FAIL("ParaView could not read run.xmf:\n%s", log);
     }
   } else {
-    printf("t070: pvpython not on the PATH; reading the .xmf with ParaView not checked\n");
+    T_INFO("t070: pvpython not on the PATH; reading the .xmf with ParaView not checked\n");
   }
 
   /* 3. Values round-trip bitwise. */

@@ -76,4 +76,6 @@ get_filename_component(libdir ${pcdir} DIRECTORY)
 run(${CMAKE_C_COMPILER} ${PDK_TEST_DIR}/consumer/main.c ${flags} -Wl,-rpath,${libdir}
     -o ${PDK_TEST_DIR}/consumer/pc_shared)
 run(${PDK_TEST_DIR}/consumer/pc_shared)
-message(STATUS "installed tree works with find_package(pdk) and pkg-config")
+if(DEFINED ENV{PDK_TEST_VERBOSE})
+  message(STATUS "installed tree works with find_package(pdk) and pkg-config")
+endif()

@@ -66,7 +66,7 @@ int main(void) {
       fmax = fmax > fabs(fd[i]) ? fmax : fabs(fd[i]);
       dmax = dmax > fabs(ff[i] - fd[i]) ? dmax : fabs(ff[i] - fd[i]);
     }
-    printf("%s: max |f_float - f_double| = %.3g of max |f| = %.3g\n", kind ? "lps" : "pmb",
+    T_INFO("%s: max |f_float - f_double| = %.3g of max |f| = %.3g\n", kind ? "lps" : "pmb",
            dmax / fmax, fmax);
     T_ASSERT(fmax > 0 && dmax > 0, "%s: float storage gave the double forces exactly (ignored?)",
              kind ? "lps" : "pmb");

@@ -169,7 +169,7 @@ static void check_bound(const char *kernels, int dim, int stab, int N, double s0
   }
   T_ASSERT(dmax > 0.0, "%s d %d stab %d: float storage gave the double forces bit for bit",
            kernels ? kernels : "default", dim, stab);
-  printf("%-7s d %d stab %d s00 %g: max |f_float - f_double| = %.3g = %.3g of max |f|, %.2f of "
+  T_INFO("%-7s d %d stab %d s00 %g: max |f_float - f_double| = %.3g = %.3g of max |f|, %.2f of "
          "the bound\n",
          kernels ? kernels : "default", dim, stab, s00, dmax, dmax / fmax_all, worst);
   free(kst);
@@ -240,7 +240,7 @@ int main(void) {
       }
     T_ASSERT(fmax_all > 0.0 && dmax <= 1e-5 * fmax_all,
              "far body: float storage changes f by %g of %g", dmax, fmax_all);
-    printf("far body (X ~ 1e4): max |f_float - f_double| = %.3g of max |f| %.3g\n", dmax, fmax_all);
+    T_INFO("far body (X ~ 1e4): max |f_float - f_double| = %.3g of max |f| %.3g\n", dmax, fmax_all);
     result_free(&rd), result_free(&rf);
   }
   return 0;

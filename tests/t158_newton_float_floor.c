@@ -116,7 +116,7 @@ int main(void) {
     dmax = fmax(dmax, fabs(uf[k] - ud[k]));
   }
   T_ASSERT(dmax <= 1e-5 * umax, "float vs double: max |du| %.3e, max |u| %.3e", dmax, umax);
-  printf("double: residual %.3e of load %.3e; float: %.3e (%d level(s) at the storage floor); "
+  T_INFO("double: residual %.3e of load %.3e; float: %.3e (%d level(s) at the storage floor); "
          "max |u_f - u_d| / max |u| = %.2e\n",
          sd.residual, sd.load_norm, sf.residual, sf.storage_floor_levels, dmax / umax);
   free(ud);

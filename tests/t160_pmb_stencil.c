@@ -261,7 +261,7 @@ static void awkward_sizes(pdk_ctx *ctx) {
   worst = fmax(worst, compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.02, 0.01, 2, "long rows"));
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
-  printf("%s awkward sizes: largest difference %.3f of the bound\n", KN, worst);
+  T_INFO("%s awkward sizes: largest difference %.3f of the bound\n", KN, worst);
 }
 
 /* A cube in Morton order (particles not in lattice order), double and float storage. */
@@ -271,8 +271,8 @@ static void cube_morton(pdk_ctx *ctx) {
   pdk_families *fam = bm_families(ctx, p, 3.015);
   const double w0 = compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.0, 0.02, 1, "cube double");
   const double w1 = compare(ctx, p, fam, PDK_PRECISION_FLOAT, 0.0, 0.02, 1, "cube float");
-  printf("%s cube (Morton order): largest difference %.3f (double), %.3f (float) of the bound\n", KN, w0,
-         w1);
+  T_INFO("%s cube (Morton order): largest difference %.3f (double), %.3f (float) of the bound\n",
+         KN, w0, w1);
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
 }
@@ -295,7 +295,7 @@ static void plate_hole_precrack(pdk_ctx *ctx) {
            (long long)(nb_whole - pdk_families_num_bonds(fam)));
   const double w1 = compare(ctx, p, fam, PDK_PRECISION_DOUBLE, 0.0, 0.02, 1, "pre-crack");
   const double w2 = compare(ctx, p, fam, PDK_PRECISION_FLOAT, 0.0, 0.02, 1, "pre-crack float");
-  printf("%s plate with a hole: %.3f; with a pre-crack: %.3f (double), %.3f (float) of the bound\n",
+  T_INFO("%s plate with a hole: %.3f; with a pre-crack: %.3f (double), %.3f (float) of the bound\n",
          KN, w0, w1, w2);
   pdk_families_destroy(&fam);
   pdk_particles_destroy(&p);
@@ -315,7 +315,7 @@ static void breaking(pdk_ctx *ctx) {
                what, (long long)g.broken, (long long)g.nb);
       run_free(&g);
       const double w = compare(ctx, p, fam, prec, 0.02, 0.01, 4, what);
-      printf("%s: largest difference %.3f of the bound\n", what, w);
+      T_INFO("%s: largest difference %.3f of the bound\n", what, w);
       pdk_families_destroy(&fam);
       pdk_particles_destroy(&p);
     }
@@ -465,7 +465,7 @@ static void explicit_run(pdk_ctx *ctx) {
     for (pdk_index i = 0; i < n; ++i) worst = fmax(worst, fabs(x[1][c][i] - x[0][c][i]));
   T_ASSERT(worst <= 1e-9 * scale, "explicit run: positions differ by %.3e (displacement scale %.3e)",
            worst, scale);
-  printf("%s explicit run: %lld bonds broke, positions within %.3e of the general path (%.2e of "
+  T_INFO("%s explicit run: %lld bonds broke, positions within %.3e of the general path (%.2e of "
          "the displacement)\n",
          KN, (long long)broken[0], worst, worst / scale);
   for (int k = 0; k < 2; ++k) free(x[k][0]), free(x[k][1]);

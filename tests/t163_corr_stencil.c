@@ -361,7 +361,7 @@ static void awkward_sizes(pdk_ctx *ctx) {
     const body b = {2, rows[k], 7, 1, 0, 0, 0, 0.2, 0};
     worst = fmax(worst, compare(ctx, &b, o, 0.02, 1, 0, "2-D rows of 63 / 65"));
   }
-  printf("awkward sizes: largest difference %.3g of the bound\n", worst);
+  T_INFO("awkward sizes: largest difference %.3g of the bound\n", worst);
 }
 
 /* Every law x influence x stabilization (none, silling), 2-D and 3-D, Morton order. */
@@ -380,7 +380,7 @@ static void laws_influences(pdk_ctx *ctx) {
                                       1, 0, what));
         }
   }
-  printf("laws x influences x stabilizations: largest difference %.3g of the bound\n", worst);
+  T_INFO("laws x influences x stabilizations: largest difference %.3g of the bound\n", worst);
 }
 
 static void hole_precrack_float(pdk_ctx *ctx) {
@@ -398,7 +398,7 @@ static void hole_precrack_float(pdk_ctx *ctx) {
   const double w4 = compare(ctx, &cube, o, 0.02, 1, 0, "cube double");
   const body two = {3, 12, 10, 9, 0, 0, 1, 0.0, 1};
   const double w5 = compare(ctx, &two, o, 0.02, 1, 0, "two materials");
-  printf("hole %.3g, pre-crack %.3g, pre-crack float %.3g, cube float %.3g, cube double %.3g, two "
+  T_INFO("hole %.3g, pre-crack %.3g, pre-crack float %.3g, cube float %.3g, cube double %.3g, two "
          "materials %.3g of the bound\n",
          w0, w1, w2, w3, w4, w5);
 }
@@ -418,15 +418,15 @@ static void breaking_jc(pdk_ctx *ctx) {
       T_ASSERT(g.broken > 0 && g.broken < g.nb / 2, "%s: %lld of %lld bonds broke; want some", what,
                (long long)g.broken, (long long)g.nb);
       res_free(&g);
-      printf("%s: largest difference %.3g of the bound\n", what,
-             compare(ctx, &b, o, 0.01, 4, 1, what));
+      const double w = compare(ctx, &b, o, 0.01, 4, 1, what);
+      T_INFO("%s: largest difference %.3g of the bound\n", what, w);
     }
   pdk_model_opts o = copts(0, PDK_INFLUENCE_INV_R, PDK_STAB_SILLING, 0, 0.0, PDK_STENCIL_OFF);
   o.law = PDK_LAW_JC;
   o.bulk_modulus = o.shear_modulus = o.density = 0.0; /* from o.jc */
   const body b = {3, 9, 8, 7, 0, 0, 0, 0.0, 0};
-  printf("Johnson-Cook: largest difference %.3g of the bound\n",
-         compare(ctx, &b, o, 0.004, 3, 1, "Johnson-Cook"));
+  const double w = compare(ctx, &b, o, 0.004, 3, 1, "Johnson-Cook");
+  T_INFO("Johnson-Cook: largest difference %.3g of the bound\n", w);
 }
 
 /* Every kernel variant the CPU has against the baseline C stencil (the ref family's). */
@@ -456,7 +456,8 @@ static void variants(void) {
       char what[64];
       snprintf(what, sizeof what, "kernels %s against the baseline stencil (%d-D)", names[k],
                c ? 2 : 3);
-      printf("%s: largest difference %.3g of the bound\n", what, check(what, &base[c], &s, &bd));
+      const double w = check(what, &base[c], &s, &bd);
+      T_INFO("%s: largest difference %.3g of the bound\n", what, w);
       free(bd.F), free(bd.f);
       res_free(&s);
     }
@@ -555,7 +556,7 @@ static void explicit_run(pdk_ctx *ctx) {
   T_ASSERT(worst <= 1e-9 * scale,
            "explicit run: positions differ by %.3e (displacement scale %.3e)", worst, scale);
   T_NEAR(energy[1], energy[0], 1e-9, 1e-300, "explicit run: strain energy");
-  printf("explicit run (200 steps): positions within %.3e of the general path (%.2e of the "
+  T_INFO("explicit run (200 steps): positions within %.3e of the general path (%.2e of the "
          "displacement), strain energy %.3e relative\n",
          worst, worst / scale, fabs(energy[1] - energy[0]) / fabs(energy[0]));
   for (int k = 0; k < 2; ++k)

@@ -126,7 +126,7 @@ static void check_path(const pdk_jc_params *p, int with_avg, const char *what) {
   T_ASSERT(plastic > 20 && elastic_after_flow > 5, "%s: %d plastic, %d elastic steps after flow",
            what, plastic, elastic_after_flow);
   if (p->damage) T_ASSERT(failed_at > 0, "%s: the point did not fail", what);
-  printf("%s: %d plastic steps, %d elastic after flow, failed at step %d; plane vs 3-D %.2g\n",
+  T_INFO("%s: %d plastic steps, %d elastic after flow, failed at step %d; plane vs 3-D %.2g\n",
          what, plastic, elastic_after_flow, failed_at, dev_max);
 }
 

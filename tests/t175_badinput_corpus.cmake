@@ -223,8 +223,10 @@ foreach(r IN LISTS PDK_BADINPUT_PENDING_ROWS)
     list(APPEND stale ${r})
   endif()
 endforeach()
-message("${nbases} base scenes valid; ${ncases} cases: ${nfailed} failing, ${npending} failing in "
-        "pending rows; rows with failing cases: ${failing_rows}")
+if(failed OR stale OR DEFINED ENV{PDK_TEST_VERBOSE})
+  message("${nbases} base scenes valid; ${ncases} cases: ${nfailed} failing, ${npending} failing "
+          "in pending rows; rows with failing cases: ${failing_rows}")
+endif()
 if(failed)
   message(FATAL_ERROR "cases that pdk does not refuse as it should: ${failed}")
 endif()

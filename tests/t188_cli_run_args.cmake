@@ -51,6 +51,11 @@ file(MAKE_DIRECTORY ${PDK_TEST_DIR}/folder.h5)
 refused("^pdk: --restart: 'folder.h5' is a folder, not a checkpoint"
         ${PDK_CLI} run ${scene} -o out --restart folder.h5)
 execute_process(COMMAND ${PDK_CLI} run ${scene} -o out -q --set solver.steps=10
-                RESULT_VARIABLE rc WORKING_DIRECTORY ${PDK_TEST_DIR})
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                WORKING_DIRECTORY ${PDK_TEST_DIR})
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the run whose output the next case restarts from failed (exit ${rc}):\n"
+                      "${out}${err}")
+endif()
 refused("^pdk: --restart: 'out/bar.h5' is a 'pdk output' file, not a pdk checkpoint"
         ${PDK_CLI} run ${scene} -o out --restart out/bar.h5)

@@ -61,6 +61,14 @@
     }                                                                                           \
   } while (0)
 
+/* What a passing test measured (margins to its bounds, counts): printed only when
+ * PDK_TEST_VERBOSE is set, so the default suite's passing tests are silent. The arguments are
+ * not evaluated otherwise: compute what must run before. */
+#define T_INFO(...)                                                                                \
+  do {                                                                                             \
+    if (getenv("PDK_TEST_VERBOSE")) printf(__VA_ARGS__);                                           \
+  } while (0)
+
 /* A test that cannot check what it is for on this machine (say, the CPU lacks the instruction set
  * of the kernels it tests) ends with T_SKIP, after whatever it could check has passed: CTest then
  * reports it as skipped, not passed (SKIP_RETURN_CODE, tests/CMakeLists.txt), and the reason is
