@@ -2,14 +2,12 @@
  * run loop (pdk_sim_run, include/pdk/run.h), which writes the output files and checkpoints; here
  * are the arguments, the signals (Ctrl-C asks the run to stop) and what is printed: the
  * description, progress, events and the summary. */
-#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli.h"
