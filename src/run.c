@@ -112,6 +112,7 @@ static int run_explicit(run_state *r, int appended) {
   const long field_every = so->field_interval;
   const long ckpt_every = so->checkpoint_interval;
   pdk_history h;
+  memset(&h, 0, sizeof h);
   int err = pdk_explicit_run(e, 0, &h);
   rep->first = h;
   if (!appended) { /* a continued output has the records up to the checkpoint already */
@@ -178,6 +179,7 @@ static int run_static(run_state *r) {
   const long hist_every = so->history_interval > 0 ? so->history_interval : 1;
   const long field_every = so->field_interval;
   pdk_history h;
+  memset(&h, 0, sizeof h);
   int err = pdk_sim_static_history(sim, &h);
   rep->first = h;
   if (!err) err = pdk_output_write_history(r->out, &h);
