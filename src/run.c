@@ -273,6 +273,7 @@ static int run(run_state *r) {
   oo.reaction_sets = r->so->reaction_sets;
   oo.num_reaction_sets = r->so->num_reaction_sets;
   oo.units = r->so->units;
+  oo.compression = r->so->compression;
   oo.plot = opts->plot;
   oo.append = opts->restart != NULL;
   oo.append_step = rep->restart.step;

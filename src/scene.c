@@ -132,7 +132,7 @@ typedef struct sc_solver {
   bool reuse_tangent;
 } sc_solver;
 typedef struct sc_output {
-  double field_interval, history_interval, checkpoint_interval;
+  double field_interval, history_interval, checkpoint_interval, compression;
   int units;
   char **fields;
   unsigned fields_count;
@@ -450,6 +450,7 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(output, CYAML_FIELD_FLOAT("checkpoint_interval", OPT, sc_output, checkpoint_interval));
   ADD(output,
       CYAML_FIELD_ENUM("units", ENUM_FLAGS, sc_output, units, units_names, N_OF(units_names)));
+  ADD(output, CYAML_FIELD_FLOAT("compression", OPT, sc_output, compression));
 
   ADD(scene, CYAML_FIELD_STRING_PTR("name", OPT, sc_scene, name, 1, 255));
   ADD(scene, CYAML_FIELD_STRING_PTR("description", OPT, sc_scene, description, 0, CYAML_UNLIMITED));
@@ -1983,6 +1984,11 @@ static int resolve_output(loader *ld, const sc_scene *d) {
   PDK_CALL(check_whole(ld, "output.checkpoint_interval", o->checkpoint_interval, 0, 1e15,
                        &out->checkpoint_interval));
   out->units = o->units == UNITS_SI ? "SI" : o->units == UNITS_MM ? "mm-N-s-tonne" : NULL;
+  {
+    long level = 0;
+    PDK_CALL(check_whole(ld, "output.compression", o->compression, 0, 9, &level));
+    out->compression = (int)level;
+  }
 
   const char *default_fields[] = {"u", "v"};
   const int hf = has(ld, "output.fields");

@@ -135,6 +135,8 @@ static const error_case cases[] = {
      AT_BUILD, PDK_ERR_NOT_FOUND, "output.fields[1]", "'stress' is not a field"},
     {"unknown output units", "solver:\n", "output: {units: mm} #<\nsolver:\n", NULL, AT_LOAD,
      PDK_ERR_ARG, "output.units", "allowed: none, SI, mm-N-s-tonne"},
+    {"compression level above 9", "solver:\n", "output: {compression: 12} #<\nsolver:\n", NULL,
+     AT_LOAD, PDK_ERR_ARG, "output.compression", "whole number in [0, 9], got 12"},
     /* YAML syntax */
     {"YAML syntax", "  spacing: 1.0e-3", "  spacing: 1.0e-3: 2 #<", NULL, AT_LOAD, PDK_ERR_ARG,
      "YAML syntax", "mapping values are not allowed"},

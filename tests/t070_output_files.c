@@ -186,6 +186,31 @@ static double *read_f64(hid_t file, const char *path, size_t count) {
   return buf;
 }
 
+/* The "unit" attribute of a dataset, or "" when it has none. */
+static void read_unit(hid_t file, const char *path, char *out, size_t cap) {
+  out[0] = '\0';
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  T_ASSERT(d >= 0, "cannot open %s", path);
+  if (H5Aexists(d, "unit") > 0) {
+    hid_t a = H5Aopen(d, "unit", H5P_DEFAULT), t = H5Aget_type(a);
+    char *v = NULL;
+    if (H5Tis_variable_str(t) > 0) {
+      H5Aread(a, t, &v);
+      snprintf(out, cap, "%s", v ? v : "");
+      H5free_memory(v);
+    } else {
+      size_t len = H5Tget_size(t);
+      char *buf = calloc(len + 1, 1);
+      H5Aread(a, t, buf);
+      snprintf(out, cap, "%s", buf);
+      free(buf);
+    }
+    H5Tclose(t);
+    H5Aclose(a);
+  }
+  H5Dclose(d);
+}
+
 static void check_vector(hid_t file, const char *path, const double *saved, pdk_index n) {
   double *v = read_f64(file, path, (size_t)n * 3);
   for (pdk_index i = 0; i < n; ++i)
@@ -313,7 +338,7 @@ int main(void) {
     T_ASSERT(g && strstr(g, "GeometryType=\"XYZ\""), "grid %d geometry is XYZ", num_grids);
     check_data_item(file, "run.h5", strstr(g, "<DataItem"), path, sizeof path);
     if (num_grids < 2)
-      snprintf(want, sizeof want, "/steps/%d/x", num_grids);
+      snprintf(want, sizeof want, "/steps/%06d/x", num_grids);
     else
       snprintf(want, sizeof want, "/static/X");
     T_ASSERT(!strcmp(path, want), "grid %d geometry %s, expected %s", num_grids, path, want);
@@ -390,10 +415,10 @@ int main(void) {
     const char *names[3] = {"x", "v", "f"};
     for (int q = 0; q < 3; ++q) {
       if (k == 2 && q == 0) continue; /* x not written in the last output */
-      snprintf(path, sizeof path, "/steps/%d/%s", k, names[q]);
+      snprintf(path, sizeof path, "/steps/%06d/%s", k, names[q]);
       check_vector(file, path, saved[k][q], n);
     }
-    snprintf(path, sizeof path, "/steps/%d", k);
+    snprintf(path, sizeof path, "/steps/%06d", k);
     hid_t g = H5Gopen2(file, path, H5P_DEFAULT);
     hid_t a = H5Aopen(g, "step", H5P_DEFAULT);
     long long s;
@@ -402,10 +427,23 @@ int main(void) {
     H5Gclose(g);
     T_ASSERT(s == steps[k], "output %d: step %lld, written %ld", k, s, steps[k]);
   }
-  T_ASSERT(H5Lexists(file, "/steps/2/x", H5P_DEFAULT) == 0,
+  T_ASSERT(H5Lexists(file, "/steps/000002/x", H5P_DEFAULT) == 0,
            "only the fields asked for are written");
   {
-    double *T = read_f64(file, "/steps/1/T", (size_t)n * 9);
+    /* Units: every field pdk knows carries a "unit" attribute in the output's units (SI here);
+     * a caller's own fields (T, odd) and the ids carry none. */
+    const char *const upath[] = {"/steps/000000/x", "/steps/000000/v", "/steps/000000/f",
+                                 "/static/X",       "/static/volume",  "/steps/000001/T",
+                                 "/static/id"};
+    const char *const uwant[] = {"m", "m/s", "N/m^3", "m", "m^3", "", ""};
+    for (int q = 0; q < 7; ++q) {
+      char unit[64];
+      read_unit(file, upath[q], unit, sizeof unit);
+      T_ASSERT(!strcmp(unit, uwant[q]), "%s: unit '%s', expected '%s'", upath[q], unit, uwant[q]);
+    }
+  }
+  {
+    double *T = read_f64(file, "/steps/000001/T", (size_t)n * 9);
     for (pdk_index i = 0; i < n; ++i)
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c) {
@@ -414,7 +452,7 @@ int main(void) {
                    T[9 * i + 3 * a + c], want);
         }
     free(T);
-    double *odd = read_f64(file, "/steps/1/odd", (size_t)n * 5); /* converted by HDF5 */
+    double *odd = read_f64(file, "/steps/000001/odd", (size_t)n * 5); /* converted by HDF5 */
     for (pdk_index i = 0; i < n; ++i)
       for (int t = 0; t < 5; ++t)
         T_ASSERT(odd[5 * i + t] == 7.0 * i - t, "odd[%d][%d]", (int)i, t);
@@ -506,8 +544,8 @@ int main(void) {
                  count_files("nogp") == 4,
              "without gnuplot: .h5, .xmf and the two .csv only");
     file = H5Fopen(DIR_OUT "/nogp.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
-    check_vector(file, "/steps/0/v", saved[2][1], n);
-    hid_t d = H5Dopen2(file, "/steps/0/v", H5P_DEFAULT), dcpl = H5Dget_create_plist(d);
+    check_vector(file, "/steps/000000/v", saved[2][1], n);
+    hid_t d = H5Dopen2(file, "/steps/000000/v", H5P_DEFAULT), dcpl = H5Dget_create_plist(d);
     T_ASSERT(H5Pget_nfilters(dcpl) == 2, "compression 3: shuffle and deflate on the fields");
     H5Pclose(dcpl);
     H5Dclose(d);

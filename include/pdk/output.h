@@ -11,7 +11,9 @@
  *   /static/volume          f64   [n]
  *   /static/sets/<name>     uint8 [n]      membership of every "set:<name>" field at open
  *   /static/connectivity    int32 [n]      0 .. n-1: the XDMF polyvertex cells
- *   /steps/<k>/             k = 0, 1, ... in output order; attributes step (int64), time (f64)
+ *   /steps/<k>/             k = 000000, 000001, ... in output order (six digits, so a listing
+ *                           sorted by name is in output order); attributes step (int64), time
+ *                           (f64)
  *   /steps/<k>/<field>      the field's own type (f64 for the solver's fields):
  *                             1 component         [n]
  *                             dim components      [n][3]  (vectors, z = 0 in 2-D)
@@ -20,6 +22,11 @@
  *                             otherwise           [n][num_comp]
  *                           chunked; shuffled and deflated at opts.compression
  *                           (/static is always deflated at level 1: it is written once)
+ *                           Every field pdk declares (x, X, u, v, f, volume, von_mises, eps_p,
+ *                           damage, ...) has a string attribute "unit" in opts.units ("m",
+ *                           "m/s", "N/m^3", "Pa", "1" for a dimensionless one, ... with SI;
+ *                           "length", "length/time", ... without units); a caller's own fields,
+ *                           ids and set flags have none
  *   /history/<column>       f64 [rows], chunked and extensible; the columns are
  *                             step, time, kinetic, strain, external_work, broken,
  *                             reaction_<set>_<x|y|z>  for every reaction set (dim components),

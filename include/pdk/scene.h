@@ -69,6 +69,7 @@ typedef struct pdk_scene_output {
   int num_reaction_sets;
   const char *const *reaction_sets; /* set names (without "set:") whose reactions are recorded */
   const char *units; /* output.units: "SI", "mm-N-s-tonne" or NULL (none): pdk_output_opts.units */
+  int compression;   /* output.compression: deflate level 0..9 of the field outputs (0: off) */
 } pdk_scene_output;
 
 PDK_EXPORT const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s);
