@@ -959,7 +959,7 @@ static int append_earlier(pdk_output *o, long upto, const char *scene) {
   if (rows > 0 && keep == 0)
     EARLIER_MISFIT(o, "its history starts at step %.0f, after the checkpoint's step %ld", steps[0],
                    upto);
-  /* the field outputs: /steps/0 .. /steps/<n-1>, steps increasing */
+  /* the field outputs: /steps/000000 .. /steps/<n-1> (six digits), steps increasing */
   const long num_groups = group_size(old, "/steps");
   if (num_groups < 0) EARLIER_MISFIT(o, "'%s' has no /steps group", o->final[OUT_H5]);
   gstep = malloc(((size_t)num_groups + 1) * sizeof *gstep);
