@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "ext.h"
+#include "points.h"
 #include "scene_impl.h"
 
 #define SC_MAX_FIELDS 32    /* keys per mapping, + 1 terminator (johnson_cook has 23) */
@@ -75,6 +76,7 @@ typedef struct sc_precrack {
 typedef struct sc_geometry {
   int lattice;
   double spacing, horizon_factor, jitter, seed, thickness;
+  char *points;
   sc_box box;
   sc_region *holes;
   unsigned holes_count;
@@ -321,7 +323,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(geometry, CYAML_FIELD_FLOAT("jitter", OPT, sc_geometry, jitter));
   ADD(geometry, CYAML_FIELD_FLOAT("seed", OPT, sc_geometry, seed));
   ADD(geometry, CYAML_FIELD_FLOAT("thickness", OPT, sc_geometry, thickness));
-  ADD(geometry, CYAML_FIELD_MAPPING("box", 0, sc_geometry, box, sc->box));
+  ADD(geometry, CYAML_FIELD_MAPPING("box", OPT, sc_geometry, box, sc->box));
+  ADD(geometry, CYAML_FIELD_STRING_PTR("points", OPT, sc_geometry, points, 1, 4095));
   ADD(geometry,
       CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
   ADD(geometry,
@@ -1030,60 +1033,10 @@ static int hole_check(loader *ld, const pdk_scene_region *h) {
   return PDK_SUCCESS;
 }
 
-static int resolve_geometry(loader *ld, const sc_geometry *g) {
+/* geometry.holes, notches and precracks, over the body (lattice or cloud) resolved before. */
+static int resolve_cuts(loader *ld, const sc_geometry *g) {
   pdk_scene *s = ld->s;
   const int dim = s->dim;
-  pdk_lattice_opts *lo = &s->lattice;
-  *lo = pdk_lattice_opts_default();
-  if (has(ld, "geometry.lattice")) {
-    lo->type = (pdk_lattice_type)g->lattice;
-    REQUIRE(ld, (dim == 3) == (lo->type == PDK_LATTICE_CUBIC), "geometry.lattice",
-            "'%s' is a %d-D lattice but dimension is %d; use %s", lattice_names[g->lattice].str,
-            lo->type == PDK_LATTICE_CUBIC ? 3 : 2, dim, dim == 2 ? "square or hex" : "cubic");
-  } else {
-    lo->type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
-  }
-  REQUIRE(ld, isfinite(g->spacing) && g->spacing > 0, "geometry.spacing",
-          "must be > 0, got %g; the lattice spacing is a length", g->spacing);
-  lo->spacing = g->spacing;
-  s->horizon_factor = has(ld, "geometry.horizon_factor") ? g->horizon_factor : 3.015;
-  REQUIRE(ld, isfinite(s->horizon_factor) && s->horizon_factor > 1, "geometry.horizon_factor",
-          "must be > 1, got %g; the horizon is horizon_factor x spacing (3.015 is usual)",
-          s->horizon_factor);
-  s->horizon = s->horizon_factor * g->spacing;
-  lo->jitter = g->jitter;
-  REQUIRE(ld, isfinite(g->jitter) && g->jitter >= 0 && g->jitter < 0.5, "geometry.jitter",
-          "must be in [0, 0.5) (a fraction of the spacing), got %g", g->jitter);
-  long seed = 1;
-  if (has(ld, "geometry.seed"))
-    PDK_CALL(check_whole(ld, "geometry.seed", g->seed, 0, 9007199254740992.0, &seed));
-  lo->seed = (uint64_t)seed;
-  if (has(ld, "geometry.thickness")) {
-    REQUIRE(ld, dim == 2, "geometry.thickness",
-            "only 2-D scenes have a thickness (dimension is 3); remove it");
-    REQUIRE(ld, isfinite(g->thickness) && g->thickness > 0, "geometry.thickness",
-            "must be > 0, got %g (the out-of-plane thickness, a length)", g->thickness);
-    lo->thickness = g->thickness;
-  }
-  PDK_CALL(check_point(ld, "geometry.box.lo", g->box.lo));
-  PDK_CALL(check_point(ld, "geometry.box.hi", g->box.hi));
-  for (int a = 0; a < dim; ++a)
-    REQUIRE(ld, g->box.hi[a] > g->box.lo[a], "geometry.box.hi",
-            "must exceed lo on every axis; axis %c has lo %g, hi %g", "xyz"[a], g -> box.lo[a],
-            g->box.hi[a]);
-  memcpy(lo->lo, g->box.lo, sizeof lo->lo);
-  memcpy(lo->hi, g->box.hi, sizeof lo->hi);
-  pdk_index count = 0;
-  int err = pdk_lattice_count(ld->ctx, lo, &count);
-  s->num_points = count;
-  if (err) {
-    /* Too many points: the spacing is the usual culprit; too few: the box. */
-    double cells = 1;
-    for (int a = 0; a < dim; ++a)
-      cells *= (g->box.hi[a] - g->box.lo[a]) / g->spacing;
-    return pdk_scene_blame(s, ld->ctx, err, cells > 1e9 ? "geometry.spacing" : "geometry.box");
-  }
-
   s->num_holes = (int)g->holes_count;
   s->num_notches = (int)g->notches_count;
   s->holes = calloc(g->holes_count + 1, sizeof *s->holes);
@@ -1142,6 +1095,98 @@ static int resolve_geometry(loader *ld, const sc_geometry *g) {
     v += (size_t)np * (size_t)dim;
   }
   return PDK_SUCCESS;
+}
+
+/* geometry.points: the body is the particles of a CSV file (src/points.h), its path relative to
+ * the scene's folder. geometry.spacing stays the nominal spacing (horizon = horizon_factor x
+ * spacing); box, lattice, jitter and seed describe a lattice and are refused. */
+static int resolve_points(loader *ld, const sc_geometry *g) {
+  pdk_scene *s = ld->s;
+  const char *lattice_keys[] = {"geometry.box", "geometry.lattice", "geometry.jitter",
+                                "geometry.seed"};
+  for (int k = 0; k < 4; ++k)
+    REQUIRE(ld, !has(ld, lattice_keys[k]), lattice_keys[k],
+            "describes a lattice, but geometry.points gives the particles; remove one of them");
+  char path[8192];
+  if (g->points[0] == '/' || !strchr(s->path, '/'))
+    snprintf(path, sizeof path, "%s", g->points);
+  else
+    snprintf(path, sizeof path, "%.*s/%s", (int)(strrchr(s->path, '/') - s->path), s->path,
+             g->points);
+  s->points = calloc(1, sizeof *s->points);
+  if (!s->points) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
+  const double thickness = s->dim == 2 ? s->lattice.thickness : 1.0;
+  int err = pdk_points_read_csv(ld->ctx, path, s->dim, thickness, s->points);
+  if (err) {
+    free(s->points);
+    s->points = NULL;
+    return pdk_scene_blame(s, ld->ctx, err, "geometry.points");
+  }
+  s->num_points = s->points->n;
+  memcpy(s->lattice.lo, s->points->lo, sizeof s->lattice.lo);
+  memcpy(s->lattice.hi, s->points->hi, sizeof s->lattice.hi);
+  return resolve_cuts(ld, g);
+}
+
+static int resolve_geometry(loader *ld, const sc_geometry *g) {
+  pdk_scene *s = ld->s;
+  const int dim = s->dim;
+  pdk_lattice_opts *lo = &s->lattice;
+  *lo = pdk_lattice_opts_default();
+  if (has(ld, "geometry.lattice")) {
+    lo->type = (pdk_lattice_type)g->lattice;
+    REQUIRE(ld, (dim == 3) == (lo->type == PDK_LATTICE_CUBIC), "geometry.lattice",
+            "'%s' is a %d-D lattice but dimension is %d; use %s", lattice_names[g->lattice].str,
+            lo->type == PDK_LATTICE_CUBIC ? 3 : 2, dim, dim == 2 ? "square or hex" : "cubic");
+  } else {
+    lo->type = dim == 2 ? PDK_LATTICE_SQUARE : PDK_LATTICE_CUBIC;
+  }
+  REQUIRE(ld, isfinite(g->spacing) && g->spacing > 0, "geometry.spacing",
+          "must be > 0, got %g; the lattice spacing is a length", g->spacing);
+  lo->spacing = g->spacing;
+  s->horizon_factor = has(ld, "geometry.horizon_factor") ? g->horizon_factor : 3.015;
+  REQUIRE(ld, isfinite(s->horizon_factor) && s->horizon_factor > 1, "geometry.horizon_factor",
+          "must be > 1, got %g; the horizon is horizon_factor x spacing (3.015 is usual)",
+          s->horizon_factor);
+  s->horizon = s->horizon_factor * g->spacing;
+  lo->jitter = g->jitter;
+  REQUIRE(ld, isfinite(g->jitter) && g->jitter >= 0 && g->jitter < 0.5, "geometry.jitter",
+          "must be in [0, 0.5) (a fraction of the spacing), got %g", g->jitter);
+  long seed = 1;
+  if (has(ld, "geometry.seed"))
+    PDK_CALL(check_whole(ld, "geometry.seed", g->seed, 0, 9007199254740992.0, &seed));
+  lo->seed = (uint64_t)seed;
+  if (has(ld, "geometry.thickness")) {
+    REQUIRE(ld, dim == 2, "geometry.thickness",
+            "only 2-D scenes have a thickness (dimension is 3); remove it");
+    REQUIRE(ld, isfinite(g->thickness) && g->thickness > 0, "geometry.thickness",
+            "must be > 0, got %g (the out-of-plane thickness, a length)", g->thickness);
+    lo->thickness = g->thickness;
+  }
+  if (has(ld, "geometry.points")) return resolve_points(ld, g);
+  REQUIRE(ld, has(ld, "geometry.box"), "geometry",
+          "has no body: give geometry.box (a lattice over the box) or geometry.points (a point "
+          "cloud file)");
+  PDK_CALL(check_point(ld, "geometry.box.lo", g->box.lo));
+  PDK_CALL(check_point(ld, "geometry.box.hi", g->box.hi));
+  for (int a = 0; a < dim; ++a)
+    REQUIRE(ld, g->box.hi[a] > g->box.lo[a], "geometry.box.hi",
+            "must exceed lo on every axis; axis %c has lo %g, hi %g", "xyz"[a], g -> box.lo[a],
+            g->box.hi[a]);
+  memcpy(lo->lo, g->box.lo, sizeof lo->lo);
+  memcpy(lo->hi, g->box.hi, sizeof lo->hi);
+  pdk_index count = 0;
+  int err = pdk_lattice_count(ld->ctx, lo, &count);
+  s->num_points = count;
+  if (err) {
+    /* Too many points: the spacing is the usual culprit; too few: the box. */
+    double cells = 1;
+    for (int a = 0; a < dim; ++a)
+      cells *= (g->box.hi[a] - g->box.lo[a]) / g->spacing;
+    return pdk_scene_blame(s, ld->ctx, err, cells > 1e9 ? "geometry.spacing" : "geometry.box");
+  }
+
+  return resolve_cuts(ld, g);
 }
 
 /* A Johnson-Cook key that the chosen options do not use is an error naming what would use it. */
@@ -1532,7 +1577,8 @@ static void list_sets(const pdk_scene *s, char *buf, size_t len) {
 
 static int resolve_sets(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
-  s->sets = calloc(d->sets_count + 1, sizeof *s->sets);
+  s->sets = calloc(d->sets_count + (s->points ? (size_t)s->points->num_sets : 0) + 1,
+                   sizeof *s->sets);
   if (!s->sets)
     return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
   for (int k = 0; k < (int)d->sets_count; ++k) {
@@ -1558,6 +1604,35 @@ static int resolve_sets(loader *ld, const sc_scene *d) {
     PDK_CALL(region_resolve(ld, r, K(ld, "sets[%d]", k), 1, out));
     /* The set's messages name the set entry, whose line is the start of "- name: ...". */
     snprintf(out->key, sizeof out->key, "sets[%d]", k);
+  }
+  /* then the set:<name> columns of a point cloud */
+  const pdk_points *pts = s->points;
+  for (int k = 0; pts && k < pts->num_sets; ++k) {
+    const char *name = pts->set_name[k];
+    REQUIRE(ld, valid_name(name) && strcmp(name, "all"), "geometry.points",
+            "the column set:%s names no valid set ('all' is reserved; 1 to %d letters, digits, "
+            "'_', '-' or '.')",
+            name, SC_NAME_MAX);
+    const int prev = find_set(s, name);
+    REQUIRE(ld, prev < 0, "geometry.points",
+            "the column set:%s defines the set that sets[%d] defines too; rename one", name, prev);
+    pdk_index count = 0;
+    for (pdk_index i = 0; i < pts->n; ++i)
+      count += pts->set[k][i];
+    REQUIRE(ld, count > 0, "geometry.points",
+            "the column set:%s selects no particle (every value is 0); remove it or mark members",
+            name);
+    pdk_scene_region *out = &s->sets[s->num_sets];
+    memset(out, 0, sizeof *out);
+    out->name = strdup(name);
+    const size_t flen = strlen(name) + 5;
+    out->field = malloc(flen);
+    if (out->field) snprintf(out->field, flen, "set:%s", name);
+    out->from_points = 1;
+    s->num_sets++;
+    if (!out->name || !out->field)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
+    snprintf(out->key, sizeof out->key, "geometry.points");
   }
   return PDK_SUCCESS;
 }
@@ -2323,6 +2398,8 @@ void pdk_scene_destroy(pdk_scene **sp) {
   free(s->materials);
   free(s->precracks);
   free(s->crack_vertices);
+  if (s->points) pdk_points_free(s->points);
+  free(s->points);
   free(s->bcs);
   free(s->load_levels);
   strings_free(s->bc_fields, s->num_bcs);

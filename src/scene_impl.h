@@ -38,6 +38,7 @@ typedef struct pdk_scene_region {
   char *name;       /* sets: the set name; NULL for holes and notches */
   char *field;      /* sets: "set:<name>"; NULL otherwise */
   char key[64];     /* key path of the region's kind, e.g. "geometry.holes[0].disk", "sets[2]" */
+  int from_points;  /* sets: a set:<name> column of geometry.points (region unused) */
 } pdk_scene_region;
 
 struct pdk_scene {
@@ -54,8 +55,9 @@ struct pdk_scene {
   char **overrides; /* [num_overrides] copies of the "key.path=value" strings */
   int num_overrides;
 
-  pdk_lattice_opts lattice;
-  pdk_index num_points; /* lattice points before holes and notches */
+  pdk_lattice_opts lattice; /* lo, hi: the cloud's bounding box when points is set */
+  pdk_index num_points; /* lattice points (or the cloud's) before holes and notches */
+  struct pdk_points *points; /* geometry.points: the body as read (NULL for a lattice) */
   double horizon_factor;
   double horizon; /* horizon_factor * spacing */
   pdk_scene_region *holes, *notches, *sets;

@@ -53,6 +53,7 @@
 #include "kernels.h"       /* PDK_CORR_FLAG_* */
 #include "model_stencil.h" /* pdk_stencil_corr_refusal */
 #include "run_impl.h"
+#include "points.h"
 #include "scene_impl.h"
 
 struct pdk_sim {
@@ -216,6 +217,27 @@ static int create_static(pdk_sim *sim, const pdk_scene *s) {
   return PDK_SUCCESS;
 }
 
+/* The particles of a point cloud: positions, volumes and its set columns as "set:<name>". */
+static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, pdk_particles **out) {
+  int err = PDK_SUCCESS;
+  pdk_particles *p = NULL;
+  PDK_CALL(pdk_particles_create(ctx, pts->dim, pts->n, &p));
+  for (int a = 0; a < pts->dim; ++a)
+    memcpy(pdk_particles_X(p, a), pts->X[a], (size_t)pts->n * sizeof(double));
+  memcpy(pdk_particles_volume(p), pts->volume, (size_t)pts->n * sizeof(double));
+  for (int k = 0; k < pts->num_sets; ++k) {
+    char field[PDK_FIELD_NAME_MAX];
+    snprintf(field, sizeof field, "set:%s", pts->set_name[k]);
+    PDK_CALL_GOTO(pdk_particles_field_add(p, field, PDK_U8, 1));
+    memcpy(pdk_particles_field_data(p, field, 0), pts->set[k], (size_t)pts->n);
+  }
+  *out = p;
+  return PDK_SUCCESS;
+cleanup:
+  pdk_particles_destroy(&p);
+  return err;
+}
+
 int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   int err = PDK_SUCCESS;
   pdk_sim *sim = NULL;
@@ -234,15 +256,19 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
     }
   }
 
-  /* Body: lattice, holes, notches, sets. */
-  err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
+  /* Body: lattice (or point cloud), holes, notches, sets. */
+  if (s->points)
+    err = body_from_points(ctx, s->points, &sim->p);
+  else
+    err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
   if (err) {
-    err = pdk_scene_blame(s, ctx, err, "geometry");
+    err = pdk_scene_blame(s, ctx, err, s->points ? "geometry.points" : "geometry");
     goto cleanup;
   }
   PDK_CALL_GOTO(cut_regions(sim, s, s->holes, s->num_holes, 1));
   PDK_CALL_GOTO(cut_regions(sim, s, s->notches, s->num_notches, 0));
   for (int k = 0; k < s->num_sets; ++k) {
+    if (s->sets[k].from_points) continue; /* a column of the cloud: made with the body */
     err = pdk_particles_set_define(sim->p, s->sets[k].name, &s->sets[k].region, NULL);
     if (err) {
       err = pdk_scene_blame(s, ctx, err, s->sets[k].key);
@@ -287,7 +313,7 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   }
   const int rows = s->model.kind == PDK_MODEL_CORRESPONDENCE &&
                    s->model.stencil != PDK_STENCIL_OFF && !pdk_stencil_corr_refusal(&s->model) &&
-                   s->lattice.type != PDK_LATTICE_HEX && s->lattice.jitter == 0.0;
+                   s->lattice.type != PDK_LATTICE_HEX && s->lattice.jitter == 0.0 && !s->points;
   if (rows)
     PDK_CALL_GOTO(pdk_particles_reorder_rows(sim->p, s->lattice.spacing, NULL));
   else
