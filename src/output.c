@@ -98,6 +98,7 @@ struct pdk_output {
   char (*set_field)[OUT_NAME_MAX]; /* [num_sets] their field names, "set:<name>" */
   const char *unit_time, *unit_energy, *unit_force, *unit_length;
   const char *unit_stress, *unit_temperature; /* and these for the fields' unit attributes */
+  double thickness; /* 2-D: the out-of-plane thickness the volumes include (0: not given) */
 };
 
 pdk_output_opts pdk_output_opts_default(void) {
@@ -1131,6 +1132,8 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
               (unsigned)(unsigned char)*q, (int)(q - opts.name));
   PDK_CHECK(opts.compression >= 0 && opts.compression <= 9, ctx, PDK_ERR_ARG,
             "output compression must be a deflate level 0..9, got %d", opts.compression);
+  PDK_CHECK(isfinite(opts.thickness) && opts.thickness >= 0, ctx, PDK_ERR_ARG,
+            "output thickness must be >= 0 (0: not said), got %g", opts.thickness);
   PDK_CHECK(opts.num_reaction_sets >= 0 && opts.num_reaction_sets <= OUT_MAX_REACTION &&
                 (opts.num_reaction_sets == 0 || opts.reaction_sets),
             ctx, PDK_ERR_ARG, "0 to %d reaction sets can be recorded, got %d", OUT_MAX_REACTION,
@@ -1142,6 +1145,7 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   o->dim = pdk_particles_dim(p);
   o->n = pdk_particles_count(p);
   o->compression = opts.compression;
+  o->thickness = opts.thickness;
   o->file = o->history = -1;
   for (int k = 0; k < OUT_MAX_COLS; ++k)
     o->col_dset[k] = -1;
@@ -1417,26 +1421,47 @@ static int write_plot_script(pdk_output *o) {
   fprintf(f, "if (!exists(\"outfile\")) outfile = '%s_history.png'\n", stem);
   fprintf(f,
           "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-          "  set terminal pngcairo size %d,450 noenhanced\n} else {\n"
-          "  set terminal png size %d,450 noenhanced\n}\n",
-          500 * panels, 500 * panels);
-  fprintf(f, "set output outfile\nset datafile separator ','\nset grid\nset key top left\n"
+          "  set terminal pngcairo size %d,%d noenhanced\n} else {\n"
+          "  set terminal png size %d,%d noenhanced\n}\n",
+          500 * panels, 580, 500 * panels, 580); /* 580: room for the legends below */
+  fprintf(f, "set output outfile\nset datafile separator ','\nset grid\n"
+             "set key below\n" /* legends under the panels, clear of the curves */
              "set format x '%%g'\nset format y '%%g'\nset xtics rotate by 30 right\n");
+  /* Time in the unit that fits the run (seconds: ms below 1 s, us below 1 ms): the column
+   * $2 times tscale. */
+  double tscale = 1.0;
+  const char *tunit = o->unit_time;
+  if (!strcmp(o->unit_time, "s") && o->col_absmax[1] > 0) {
+    if (o->col_absmax[1] < 1e-3)
+      tscale = 1e6, tunit = "us";
+    else if (o->col_absmax[1] < 1.0)
+      tscale = 1e3, tunit = "ms";
+  }
+  fprintf(f, "tscale = %g\n", tscale);
+  /* 2-D: forces are those on the body's thickness (volumes are area x thickness) */
+  char rlabel[128];
+  if (o->dim == 2 && o->thickness > 0)
+    snprintf(rlabel, sizeof rlabel, "reaction [%s] on the thickness %g %s", o->unit_force,
+             o->thickness, o->unit_length);
+  else if (o->dim == 2)
+    snprintf(rlabel, sizeof rlabel, "reaction [%s] on the thickness of the body", o->unit_force);
+  else
+    snprintf(rlabel, sizeof rlabel, "reaction [%s]", o->unit_force);
   fprintf(f, "if (!exists(\"data\")) data = '%s_history.csv'\n", stem);
   fprintf(f, "set multiplot layout 1,%d title '%s'\n", panels, stem);
   if (o->num_reaction > 0) {
-    fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'reaction [%s]'\nplot ", o->unit_time,
-            o->unit_force);
+    fprintf(f, "set xlabel 'time [%s]'\nset ylabel '%s'\nplot ", tunit, rlabel);
     for (int k = 0; k < o->num_reaction; ++k) {
       int c = main_component(o, k);
-      fprintf(f, "%sdata skip 1 using 2:%d with lines title '%s %s'", k ? ", \\\n     " : "",
+      fprintf(f, "%sdata skip 1 using ($2*tscale):%d with lines title '%s %s'",
+              k ? ", \\\n     " : "",
               o->reaction_col[k] + c + 1, o->reaction_name[k], axis_name[c]);
     }
     fprintf(f, "\n");
   }
   if (num_disp > 0) {
-    fprintf(f, "set xlabel 'mean displacement of the set [%s]'\nset ylabel 'reaction [%s]'\nplot ",
-            o->unit_length, o->unit_force);
+    fprintf(f, "set xlabel 'mean displacement of the set [%s]'\nset ylabel '%s'\nplot ",
+            o->unit_length, rlabel);
     int first = 1;
     for (int k = 0; k < o->num_reaction; ++k) {
       if (!moved(o, k)) continue;
@@ -1448,33 +1473,36 @@ static int write_plot_script(pdk_output *o) {
     }
     fprintf(f, "\n");
   }
-  fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'energy [%s]'\n", o->unit_time, o->unit_energy);
-  fprintf(f, "plot data skip 1 using 2:3 with lines title 'kinetic', \\\n"
-             "     data skip 1 using 2:4 with lines title 'strain', \\\n");
+  fprintf(f, "set xlabel 'time [%s]'\nset ylabel 'energy [%s]'\n", tunit, o->unit_energy);
+  fprintf(f, "plot data skip 1 using ($2*tscale):3 with lines title 'kinetic', \\\n"
+             "     data skip 1 using ($2*tscale):4 with lines title 'strain', \\\n");
   /* Dissipation curves only when the run dissipated: plastic, damage, bond breaking. */
   const char *work_title[3] = {"plastic work", "damage", "bond breaking"};
   int any_work = 0;
   for (int k = 0; k < 3; ++k) {
     if (!(o->col_absmax[o->work_col + k] > 0)) continue;
-    fprintf(f, "     data skip 1 using 2:%d with lines title '%s', \\\n", o->work_col + k + 1,
+    fprintf(f, "     data skip 1 using ($2*tscale):%d with lines title '%s', \\\n",
+            o->work_col + k + 1,
             work_title[k]);
     any_work = 1;
   }
   if (any_work)
     fprintf(f,
-            "     data skip 1 using 2:($3+$4+$%d+$%d+$%d) with lines title 'kinetic + strain + "
+            "     data skip 1 using ($2*tscale):($3+$4+$%d+$%d+$%d) with lines title 'kinetic + "
+            "strain + "
             "dissipated', \\\n",
             o->work_col + 1, o->work_col + 2, o->work_col + 3);
   else
-    fprintf(f, "     data skip 1 using 2:($3+$4) with lines title 'kinetic + strain', \\\n");
-  fprintf(f, "     data skip 1 using 2:5 with lines dashtype 2 title 'external work'\n");
+    fprintf(f, "     data skip 1 using ($2*tscale):($3+$4) with lines title 'kinetic + strain', "
+               "\\\n");
+  fprintf(f, "     data skip 1 using ($2*tscale):5 with lines dashtype 2 title 'external work'\n");
   if (damage_panel)
     fprintf(f,
             "set xlabel 'time [%s]'\nset ylabel 'failed particles'\nset y2label 'largest damage'\n"
             "set y2tics\nset ytics nomirror\nset yrange [0:*]\nset y2range [0:*]\n"
-            "plot data skip 1 using 2:%d with lines title 'failed particles', \\\n"
-            "     data skip 1 using 2:%d axes x1y2 with lines title 'largest damage'\n",
-            o->unit_time, fail_col + 1, dmax_col + 1);
+            "plot data skip 1 using ($2*tscale):%d with lines title 'failed particles', \\\n"
+            "     data skip 1 using ($2*tscale):%d axes x1y2 with lines title 'largest damage'\n",
+            tunit, fail_col + 1, dmax_col + 1);
   fprintf(f, "unset multiplot\nset output\n");
   PDK_CHECK_GOTO(fflush(f) == 0 && !ferror(f), ctx, PDK_ERR_IO, "cannot write '%s': %s",
                  o->part[OUT_GP], strerror(errno));
@@ -1609,6 +1637,7 @@ typedef struct out_snapshot {
   int pos_add[2];
   int num_panels;
   char title[SNAP_MAX_PANELS][OUT_NAME_MAX + 8];
+  char unit[SNAP_MAX_PANELS][64]; /* the panel's unit (field_unit), "" when unknown */
   int col[SNAP_MAX_PANELS]; /* value column; norm[k] > 0: the length of that many from col */
   int norm[SNAP_MAX_PANELS];
   /* Over the particles that have not failed (all when "failed" is not written): the positions'
@@ -1701,6 +1730,9 @@ static int write_snapshot_csv(pdk_output *o, out_snapshot *snap) {
       snap->col[q] = col;
       snap->norm[q] = layout[k] == OUT_VECTOR ? dim : 0;
       snprintf(snap->title[q], sizeof snap->title[q], snap->norm[q] ? "|%s|" : "%s", dn);
+      char ubuf[64];
+      const char *unit = field_unit(o, o->last_field[k], ubuf, sizeof ubuf);
+      snprintf(snap->unit[q], sizeof snap->unit[q], "%s", unit ? unit : "");
     }
     for (int c = 0; c < ncomp[k]; ++c, ++col) {
       if (layout[k] == OUT_SCALAR)
@@ -1890,7 +1922,15 @@ static int write_snapshot_script(pdk_output *o, const out_snapshot *snap) {
               fc, ps, fc, ps, view);
       continue;
     }
-    fprintf(f, "set title '%s'\n", pt);
+    /* the panel's title carries the colour scale's unit ("1": dimensionless, none) */
+    if (snap->unit[q][0] && strcmp(snap->unit[q], "1")) {
+      char *u = gnuplot_quote(snap->unit[q]);
+      PDK_CHECK_GOTO(u, ctx, PDK_ERR_MEMORY, "out of memory");
+      fprintf(f, "set title '%s [%s]'\n", pt, u);
+      free(u);
+    } else {
+      fprintf(f, "set title '%s'\n", pt);
+    }
     free(pt);
     if (have_box && snap->vhi[q] > snap->vlo[q])
       fprintf(f, "set cbrange [%.10g:%.10g]\n", snap->vlo[q], snap->vhi[q]);

@@ -274,6 +274,8 @@ static int run(run_state *r) {
   oo.num_reaction_sets = r->so->num_reaction_sets;
   oo.units = r->so->units;
   oo.compression = r->so->compression;
+  if (pdk_particles_dim(pdk_sim_particles(sim)) == 2)
+    oo.thickness = pdk_model_opts_get(pdk_sim_model(sim))->thickness;
   oo.plot = opts->plot;
   oo.append = opts->restart != NULL;
   oo.append_step = rep->restart.step;

@@ -373,9 +373,9 @@ static void check_failure_panel(pdk_ctx *ctx, pdk_particles *p, double damage_ma
     free(csv);
     char *gp = slurp("t062_out/panel_history.gp");
     char want[96];
-    snprintf(want, sizeof want, "using 2:%d with lines title 'failed particles'", cols - 1);
+    snprintf(want, sizeof want, "using ($2*tscale):%d with lines title 'failed particles'", cols - 1);
     const int has = strstr(gp, want) != NULL;
-    snprintf(want, sizeof want, "using 2:%d axes x1y2 with lines title 'largest damage'", cols);
+    snprintf(want, sizeof want, "using ($2*tscale):%d axes x1y2 with lines title 'largest damage'", cols);
     const int has2 = strstr(gp, want) != NULL;
     T_ASSERT(damage_max > 0.0 ? has && has2 : !has && !strstr(gp, "largest damage"),
              "largest damage %g: failure panel %s / %s in the script:\n%s", damage_max,

@@ -318,6 +318,20 @@ int main(void) {
     char *png = read_text("run_history.png");
     T_ASSERT(!memcmp(png, "\x89PNG", 4), "run_history.png is a PNG");
     free(png);
+    /* time axes in the unit that fits the run's last time (SI seconds: us below 1 ms, ms below
+     * 1 s), the column scaled to match; legends below the panels */
+    const double tmax = times[NUM_OUT - 1];
+    const char *tu = tmax < 1e-3 ? "us" : tmax < 1.0 ? "ms" : "s";
+    const double ts = tmax < 1e-3 ? 1e6 : tmax < 1.0 ? 1e3 : 1.0;
+    char *gp = read_text("run_history.gp"), want[64];
+    snprintf(want, sizeof want, "set xlabel 'time [%s]'", tu);
+    T_ASSERT(strstr(gp, want) != NULL, "the time axis is in %s (last time %g s):\n%s", tu, tmax,
+             gp);
+    const char *tl = strstr(gp, "tscale = ");
+    T_ASSERT(tl && strtod(tl + strlen("tscale = "), NULL) == ts && strstr(gp, "($2*tscale)") &&
+                 strstr(gp, "set key below"),
+             "times scaled by %g, legends below:\n%s", ts, gp);
+    free(gp);
   }
 
   /* 2. The XDMF against the HDF5 file. */

@@ -99,6 +99,9 @@ typedef struct pdk_output_opts {
   /* Unit labels in the CSV header: NULL: dimensions ("time [time]", "kinetic [energy]");
    * "SI": s, J, N, m; "mm-N-s-tonne": s, mJ, N, mm. Anything else is an error. */
   const char *units;
+  /* 2-D: the out-of-plane thickness the particle volumes include (the plots say the reactions
+   * act on it); 0: not said. */
+  double thickness;
   /* Restart (append = 1): continue the output of an earlier run in dir instead of starting
    * afresh. When <name>.h5, <name>.xmf and <name>_history.csv are there, the new files start with
    * their history rows and field outputs up to and including step append_step (the checkpoint's)
