@@ -9,9 +9,10 @@ Goals (ns per directed bond per core, 1 thread): PMB <= 1.3, LPS <= 2.6, corresp
 (Neo-Hooke, Silling C_s 0.1) <= 5.0 in double and <= 3.0 with float storage or on the lattice
 (stencil) path; 2 threads >= 1.8x one. A row says "met" when its median is within the goal.
 
-The machine is shared: the header records the load average before and after, and the triad
-bandwidth bench_forces measures; compare rows of one run, and read absolute numbers with the
-load. --quick: one round, repeat 3, the 97k cube only (a smoke run, minutes).
+The machine is shared: the header records the host (CPU model, logical CPUs, vector ISA, caches:
+the force loops' bounds differ between CPU kinds, bench/README.md), the load average before and
+after, and the triad bandwidth bench_forces measures; compare rows of one run, and read absolute
+numbers with the load. --quick: one round, repeat 3, the 97k cube only (a smoke run, minutes).
 Standard library only; bench_forces prints whitespace columns (its header line names them)."""
 import argparse
 import datetime
@@ -28,6 +29,40 @@ def corr_goal(prec, layout):
     if layout == "stencil" or prec == "float":
         return 3.0
     return 5.0
+
+
+def host():
+    """One line naming the CPU: model, logical CPUs, widest vector ISA, cache sizes (Linux /proc
+    and /sys; '?' where they are not readable)."""
+    model, flags = "?", set()
+    try:
+        for line in open("/proc/cpuinfo"):
+            key, _, val = line.partition(":")
+            if key.strip() == "model name" and model == "?":
+                model = " ".join(val.split())
+            elif key.strip() == "flags" and not flags:
+                flags = set(val.split())
+    except OSError:
+        pass
+    isa = ("AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags
+           else "SSE2" if "sse2" in flags else "?")
+    caches = []
+    base = "/sys/devices/system/cpu/cpu0/cache"
+    try:
+        for idx in sorted(os.listdir(base)):
+            d = os.path.join(base, idx)
+            try:
+                level = open(os.path.join(d, "level")).read().strip()
+                kind = open(os.path.join(d, "type")).read().strip()
+                size = open(os.path.join(d, "size")).read().strip()
+            except OSError:
+                continue
+            tag = {"Data": "d", "Instruction": "i"}.get(kind, "")
+            caches.append("L%s%s %s" % (level, tag, size))
+    except OSError:
+        pass
+    return "%s, %d logical CPUs, %s, caches per core / shared: %s" % (
+        model, os.cpu_count() or 0, isa, ", ".join(caches) or "?")
 
 
 def run(cmd):
@@ -102,6 +137,8 @@ def main():
           % (t0.strftime("%Y-%m-%d %H:%M"), commit, a.rounds, a.repeat, " ".join(load0),
              " ".join(load1), statistics.median(triads[1] or [0]),
              statistics.median(triads[2] or [0])))
+    print()
+    print("Host: %s." % host())
     print()
     print("| model | layout | storage | particles | ns/bond 1 thr | cpu ns/bond | goal | "
           "verdict | ns/bond/core 2 thr | speed-up | ≥ 1.8 |")

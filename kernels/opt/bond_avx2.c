@@ -30,6 +30,7 @@ PDK_KERNEL_FP_EXACT
   } while (0)
 #define BS_SQRT(v) ((bs_vd)_mm256_sqrt_pd((__m256d)(v)))
 #define BS_SET1(a) ((bs_vd)_mm256_set1_pd(a))
+#define BS_MIN(a, b) ((bs_vd)_mm256_min_pd((__m256d)(a), (__m256d)(b)))
 #define BS_GATHER(p, j)                                                                            \
   ((bs_vd)_mm256_i32gather_pd((p), _mm_load_si128((const __m128i *)(const void *)(j)), 8))
 #define BS_CVT_F(p) ((bs_vd)_mm256_cvtps_pd(_mm_loadu_ps(p)))

@@ -34,6 +34,7 @@ PDK_KERNEL_FP_EXACT
   } while (0)
 #define BS_SQRT(v) ((bs_vd)_mm512_sqrt_pd((__m512d)(v)))
 #define BS_SET1(a) ((bs_vd)_mm512_set1_pd(a))
+#define BS_MIN(a, b) ((bs_vd)_mm512_min_pd((__m512d)(a), (__m512d)(b)))
 #define BS_GATHER(p, j)                                                                            \
   ((bs_vd)_mm512_i32gather_pd(_mm256_load_si256((const __m256i *)(const void *)(j)), (p), 8))
 #define BS_CVT_F(p) ((bs_vd)_mm512_cvtps_pd(_mm256_loadu_ps(p)))

@@ -7,6 +7,7 @@
  *   BS_GATHER(p, j)      lane l = p[j[l]]
  *   BS_CVT_F(p)          lane l = (double)p[l] (floats)
  *   BS_SET1(a)           every lane a
+ *   BS_MIN(a, b)         lane-wise a < b ? a : b (vminpd)
  * and compile the file for their ISA (target pragma), so the baseline build runs anywhere and
  * src/kernels.c installs the variants only when the CPU has the ISA.
  *
@@ -36,7 +37,9 @@ BS_INLINE bs_vd bs_set1(double a) { return BS_SET1(a); }
 BS_INLINE bs_vd bs_sel(bs_vl m, bs_vd a, bs_vd b) { return (bs_vd)(((bs_vl)a & m) | ((bs_vl)b & ~m)); }
 BS_INLINE bs_vd bs_min1(bs_vd t) { /* t < 1 ? t : 1 (NaN gives 1) */
   const bs_vd one = bs_set1(1.0);
-  return bs_sel(t < one, t, one);
+  /* BS_MIN(a, b) = a < b ? a : b lane-wise (vminpd): the same result for every input, NaN and
+   * signed zeros included, in one instruction instead of a comparison and a selection */
+  return BS_MIN(t, one);
 }
 BS_INLINE double bs_hsum(bs_vd v) {
   double s = v[0];

@@ -47,8 +47,7 @@ SC_INLINE void sc_lps_theta_block(const int nu, const int dim, const int stored,
       if (stored) {
         beta = beta_o;
       } else {
-        const sc_vd t = (vs_a - r0) * vs_b;
-        beta = sc_sel(t < one, t, one);
+        beta = sc_min1((vs_a - r0) * vs_b);
       }
       const sc_vd pv = sc_ld(a->volume + j) * beta;
       if (has_mask) {
@@ -122,8 +121,7 @@ SC_INLINE pdk_bond_index sc_lps_force_block(const int nu, const int dim, const i
       if (stored) {
         beta = beta_o;
       } else {
-        const sc_vd t = (vs_a - r0) * vs_b;
-        beta = sc_sel(t < one, t, one);
+        beta = sc_min1((vs_a - r0) * vs_b);
       }
       const sc_vd on =
           has_mask ? sc_mask_lanes(a->mask + (int64_t)o * ns + s + u * SC_W, len - u * SC_W) : one;

@@ -12,6 +12,7 @@ PDK_KERNEL_FP_EXACT
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #define SC_SQRT(v) ((sc_vd)_mm_sqrt_pd((__m128d)(v)))
+#define SC_MIN(a, b) ((sc_vd)_mm_min_pd((__m128d)(a), (__m128d)(b)))
 #else
 #define SC_SQRT(v)                                                                                 \
   ({                                                                                               \

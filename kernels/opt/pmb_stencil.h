@@ -104,8 +104,7 @@ SC_INLINE pdk_bond_index sc_block(const int nu, const int dim, const int stored,
       if (stored) {
         beta = beta_o;
       } else {
-        const sc_vd t = (vs_a - r0) * vs_b;
-        beta = sc_sel(t < one, t, one);
+        beta = sc_min1((vs_a - r0) * vs_b);
       }
       const sc_vd vol = sc_ld(a->volume + j) * beta;
       const sc_vd on =

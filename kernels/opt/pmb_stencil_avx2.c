@@ -13,6 +13,7 @@ PDK_KERNEL_FP_EXACT
 #define SC_W 4
 #define SC_U 2
 #define SC_SQRT(v) ((sc_vd)_mm256_sqrt_pd((__m256d)(v)))
+#define SC_MIN(a, b) ((sc_vd)_mm256_min_pd((__m256d)(a), (__m256d)(b)))
 #define SC_NAME(base) base##_avx2
 #include "opt/pmb_stencil.h"
 #include "opt/lps_stencil.h"

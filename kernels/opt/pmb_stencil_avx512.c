@@ -13,6 +13,7 @@ PDK_KERNEL_FP_EXACT
 #define SC_W 8
 #define SC_U 2
 #define SC_SQRT(v) ((sc_vd)_mm512_sqrt_pd((__m512d)(v)))
+#define SC_MIN(a, b) ((sc_vd)_mm512_min_pd((__m512d)(a), (__m512d)(b)))
 #define SC_NAME(base) base##_avx512
 #include "opt/pmb_stencil.h"
 #include "opt/lps_stencil.h"

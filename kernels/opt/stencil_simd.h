@@ -27,6 +27,18 @@ SC_INLINE sc_vd sc_ld(const double *p) { /* unaligned load */
 SC_INLINE sc_vd sc_sel(sc_vl m, sc_vd a, sc_vd b) { /* m ? a : b per lane */
   return (sc_vd)(((sc_vl)a & m) | ((sc_vl)b & ~m));
 }
+/* t < 1 ? t : 1 per lane (NaN gives 1): the partial-volume factor's min(1, t). SC_MIN(a, b), when
+ * the including file defines it, is the ISA's minimum instruction (vminpd: a < b ? a : b, the same
+ * result for every input, NaN and signed zeros included), one instruction where the comparison
+ * and selection take three or four. */
+SC_INLINE sc_vd sc_min1(sc_vd t) {
+  const sc_vd one = sc_set1(1.0);
+#ifdef SC_MIN
+  return SC_MIN(t, one);
+#else
+  return sc_sel(t < one, t, one);
+#endif
+}
 /* Mask bytes of one vector as 0.0 / 1.0, only the first nv lanes read (0 beyond): the sites past
  * a row may belong to another thread's rows, whose mask a committing pass is writing. */
 SC_INLINE sc_vd sc_mask_lanes(const uint8_t *mk, int nv) {
