@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L /* getline, strndup */
 #include "points.h"
 
+#include "h5io.h"
+
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -193,6 +195,117 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
 cleanup:
   free(line);
   fclose(f);
+  if (err) pdk_points_free(out);
+  return err;
+}
+
+/* ---- HDF5 ------------------------------------------------------------------------------------ */
+
+/* The dims of dataset `name` under g (rank <= 2), or -1 when it is not there. */
+static int dset_dims(hid_t g, const char *name, hsize_t dims[2]) {
+  if (H5Lexists(g, name, H5P_DEFAULT) <= 0) return -1;
+  hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+  if (d < 0) return -1;
+  hid_t sp = H5Dget_space(d);
+  int rank = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+  dims[0] = dims[1] = 1;
+  if (rank >= 1 && rank <= 2)
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+  else
+    rank = -2;
+  if (sp >= 0) H5Sclose(sp);
+  H5Dclose(d);
+  return rank;
+}
+
+int pdk_points_read_h5(pdk_ctx *ctx, const char *path, int dim, pdk_points *out) {
+  int err = PDK_SUCCESS;
+  memset(out, 0, sizeof *out);
+  out->dim = dim;
+  hid_t f = -1, g = -1, gs = -1;
+  double *xyz = NULL;
+  f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+  PDK_CHECK(f >= 0, ctx, PDK_ERR_IO, "cannot open the point cloud '%s' as an HDF5 file", path);
+  /* X and volume at the root, or under /static (a pdk output file: its reference positions) */
+  hsize_t dx[2], dv[2];
+  const char *where = "/";
+  g = H5Gopen2(f, "/", H5P_DEFAULT);
+  if (dset_dims(g, "X", dx) < 0 && H5Lexists(f, "static", H5P_DEFAULT) > 0) {
+    H5Gclose(g);
+    g = H5Gopen2(f, "static", H5P_DEFAULT);
+    where = "/static/";
+  }
+  const int rx = dset_dims(g, "X", dx), rv = dset_dims(g, "volume", dv);
+  PDK_CHECK_GOTO(rx == 2 && (dx[1] == (hsize_t)dim || dx[1] == 3) && dx[0] >= 1, ctx, PDK_ERR_ARG,
+                 "%s: needs a dataset X of shape [n][%d] (or [n][3]) with the reference positions, "
+                 "at the root or under /static (a pdk output file)",
+                 path, dim);
+  PDK_CHECK_GOTO(rv == 1 && dv[0] == dx[0], ctx, PDK_ERR_ARG,
+                 "%s: needs a dataset %svolume of shape [%llu] beside %sX (the particle volumes)",
+                 path, where, (unsigned long long)dx[0], where);
+  PDK_CHECK_GOTO(dx[0] <= INT32_MAX, ctx, PDK_ERR_ARG, "%s: %llu particles is more than pdk holds",
+                 path, (unsigned long long)dx[0]);
+  const pdk_index n = (pdk_index)dx[0];
+  const int cols = (int)dx[1];
+  out->n = n;
+  xyz = malloc((size_t)n * (size_t)cols * sizeof(double));
+  PDK_CHECK_GOTO(xyz && !grow(out, n), ctx, PDK_ERR_MEMORY, "out of memory for %ld particles",
+                 (long)n);
+  {
+    const hsize_t start[2] = {0, 0}, count[2] = {dx[0], dx[1]};
+    PDK_CALL_GOTO(pdk_h5_read_block(ctx, g, "X", H5T_NATIVE_DOUBLE, 2, start, count, xyz));
+    PDK_CALL_GOTO(
+        pdk_h5_read_block(ctx, g, "volume", H5T_NATIVE_DOUBLE, 1, start, count, out->volume));
+  }
+  for (int a = 0; a < 3; ++a)
+    out->lo[a] = INFINITY, out->hi[a] = -INFINITY;
+  if (dim == 2) out->lo[2] = out->hi[2] = 0.0;
+  for (pdk_index i = 0; i < n; ++i) {
+    for (int a = 0; a < dim; ++a) {
+      const double v = xyz[(size_t)i * (size_t)cols + (size_t)a];
+      PDK_CHECK_GOTO(isfinite(v), ctx, PDK_ERR_ARG, "%s: %sX[%ld][%d] is %g, not finite", path,
+                     where, (long)i, a, v);
+      out->X[a][i] = v;
+      out->lo[a] = fmin(out->lo[a], v);
+      out->hi[a] = fmax(out->hi[a], v);
+    }
+    PDK_CHECK_GOTO(out->volume[i] > 0 && isfinite(out->volume[i]), ctx, PDK_ERR_ARG,
+                   "%s: %svolume[%ld] is %g; volumes must be > 0", path, where, (long)i,
+                   out->volume[i]);
+  }
+  /* sets: every dataset of shape [n] in the group sets, 0 or 1 */
+  if (H5Lexists(g, "sets", H5P_DEFAULT) > 0) {
+    gs = H5Gopen2(g, "sets", H5P_DEFAULT);
+    H5G_info_t info;
+    PDK_CHECK_GOTO(gs >= 0 && H5Gget_info(gs, &info) >= 0, ctx, PDK_ERR_ARG,
+                   "%s: cannot read the group %ssets", path, where);
+    for (hsize_t k = 0; k < info.nlinks; ++k) {
+      char name[PDK_FIELD_NAME_MAX];
+      H5Lget_name_by_idx(gs, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT);
+      hsize_t ds[2];
+      PDK_CHECK_GOTO(dset_dims(gs, name, ds) == 1 && ds[0] == dx[0], ctx, PDK_ERR_ARG,
+                     "%s: %ssets/%s is not a dataset of %ld values (0 or 1 per particle)", path,
+                     where, name, (long)n);
+      PDK_CHECK_GOTO(out->num_sets < PDK_POINTS_MAX_SETS, ctx, PDK_ERR_ARG,
+                     "%s: more than %d sets", path, PDK_POINTS_MAX_SETS);
+      const int s = out->num_sets;
+      out->set_name[s] = strdup(name);
+      out->set[s] = malloc((size_t)n);
+      out->num_sets++;
+      PDK_CHECK_GOTO(out->set_name[s] && out->set[s], ctx, PDK_ERR_MEMORY, "out of memory");
+      const hsize_t start[1] = {0}, count[1] = {dx[0]};
+      PDK_CALL_GOTO(pdk_h5_read_block(ctx, gs, name, H5T_NATIVE_UINT8, 1, start, count, out->set[s]));
+      for (pdk_index i = 0; i < n; ++i)
+        PDK_CHECK_GOTO(out->set[s][i] <= 1, ctx, PDK_ERR_ARG,
+                       "%s: %ssets/%s[%ld] is %d; a set holds 0 or 1", path, where, name, (long)i,
+                       out->set[s][i]);
+    }
+  }
+cleanup:
+  free(xyz);
+  if (gs >= 0) H5Gclose(gs);
+  if (g >= 0) H5Gclose(g);
+  if (f >= 0) H5Fclose(f);
   if (err) pdk_points_free(out);
   return err;
 }

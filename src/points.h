@@ -25,6 +25,11 @@ typedef struct pdk_points {
  * names the file and line and says what is wrong; *out is then left empty. */
 int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thickness,
                         pdk_points *out);
+/* Reads an HDF5 point cloud: the dataset X ([n][dim] or [n][3], reference positions), volume
+ * ([n], the particle volumes as pdk counts them: in 2-D area x thickness) and, optionally, the
+ * group sets with one dataset [n] of 0 and 1 per set; at the root, or under /static, so the
+ * output file of a pdk run (its reference configuration) is a cloud too. */
+int pdk_points_read_h5(pdk_ctx *ctx, const char *path, int dim, pdk_points *out);
 void pdk_points_free(pdk_points *pts);
 
 #endif

@@ -1116,7 +1116,11 @@ static int resolve_points(loader *ld, const sc_geometry *g) {
   s->points = calloc(1, sizeof *s->points);
   if (!s->points) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
   const double thickness = s->dim == 2 ? s->lattice.thickness : 1.0;
-  int err = pdk_points_read_csv(ld->ctx, path, s->dim, thickness, s->points);
+  const size_t plen = strlen(path);
+  const int h5 = (plen > 3 && !strcmp(path + plen - 3, ".h5")) ||
+                 (plen > 5 && !strcmp(path + plen - 5, ".hdf5"));
+  int err = h5 ? pdk_points_read_h5(ld->ctx, path, s->dim, s->points)
+               : pdk_points_read_csv(ld->ctx, path, s->dim, thickness, s->points);
   if (err) {
     free(s->points);
     s->points = NULL;

@@ -4,6 +4,9 @@
  *    scene that reads it (no sets list: the columns define them; no box): both runs give the same
  *    field outputs, histories and static data bit for bit (tests/h5_same.h) and the same history
  *    CSV byte for byte, so the cloud path builds the very body the lattice path builds.
+ *    The same cloud as an HDF5 file (datasets X [n][2], volume [n], sets/left, sets/right at the
+ *    root) runs bit for bit the same too; the output file of the lattice run (its /static group)
+ *    loads as a cloud with the run's particles and sets.
  * 2. 2-D `area` columns are multiplied by geometry.thickness.
  * 3. Bad clouds fail at load with a message naming the scene key, the CSV file and line, and what
  *    to do: no header, an unknown column, a missing volume, a cell that is no number, a row with
@@ -77,11 +80,40 @@ static void write_cloud(pdk_ctx *ctx, const char *lattice_scene) {
   FILE *f = fopen(path, "w");
   T_ASSERT(f != NULL, "cannot write %s", path);
   fprintf(f, "# the t092 bar's lattice\nx, y, volume, set:left, set:right\n");
+  double *xy = malloc(2 * (size_t)n * sizeof(double)), *vol = malloc((size_t)n * sizeof(double));
+  uint8_t *sl = malloc((size_t)n), *sr = malloc((size_t)n);
   for (pdk_index k = 0; k < n; ++k) {
     const pdk_index i = at[k];
     fprintf(f, "%.17g,%.17g,%.17g,%d,%d\n", X[i], Y[i], V[i], left[i], right[i]);
+    xy[2 * k] = X[i], xy[2 * k + 1] = Y[i], vol[k] = V[i], sl[k] = left[i], sr[k] = right[i];
   }
   T_ASSERT(fclose(f) == 0, "cannot write %s", path);
+  /* the same as HDF5 */
+  snprintf(path, sizeof path, "%s/bar.h5", work);
+  hid_t h = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hsize_t d2[2] = {(hsize_t)n, 2}, d1[1] = {(hsize_t)n};
+  hid_t s2 = H5Screate_simple(2, d2, NULL), s1 = H5Screate_simple(1, d1, NULL);
+  hid_t ds = H5Dcreate2(h, "X", H5T_IEEE_F64LE, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  T_ASSERT(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, xy) >= 0, "write X");
+  H5Dclose(ds);
+  ds = H5Dcreate2(h, "volume", H5T_IEEE_F64LE, s1, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  T_ASSERT(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, vol) >= 0, "write V");
+  H5Dclose(ds);
+  hid_t gs = H5Gcreate2(h, "sets", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ds = H5Dcreate2(gs, "left", H5T_STD_U8LE, s1, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  T_ASSERT(H5Dwrite(ds, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, sl) >= 0, "write left");
+  H5Dclose(ds);
+  ds = H5Dcreate2(gs, "right", H5T_STD_U8LE, s1, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  T_ASSERT(H5Dwrite(ds, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, sr) >= 0, "write right");
+  H5Dclose(ds);
+  H5Gclose(gs);
+  H5Sclose(s1);
+  H5Sclose(s2);
+  H5Fclose(h);
+  free(xy);
+  free(vol);
+  free(sl);
+  free(sr);
   free(at);
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&scene);
@@ -157,6 +189,40 @@ int main(void) {
     H5Fclose(fa);
     H5Fclose(fb);
   }
+  /* the cloud as HDF5: the same run, bit for bit */
+  {
+    snprintf(text, sizeof text, cloud_scene, "bar.h5", "", "");
+    write_file("cloud_h5.yaml", text);
+    char path[1024], dir_h[1024], a[1200], b[1200];
+    snprintf(path, sizeof path, "%s/cloud_h5.yaml", work);
+    snprintf(dir_h, sizeof dir_h, "%s/cloud_h5", work);
+    run_scene(ctx, path, dir_h);
+    snprintf(a, sizeof a, "%s/bar_history.csv", dir_l);
+    snprintf(b, sizeof b, "%s/bar_history.csv", dir_h);
+    char *ta = slurp(a), *tb = slurp(b);
+    T_ASSERT(!strcmp(ta, tb), "the HDF5 cloud's history CSV differs from the lattice's");
+    free(ta);
+    free(tb);
+  }
+  /* the lattice run's output file as a cloud: its /static group */
+  {
+    char rel[1200], path[1024];
+    snprintf(rel, sizeof rel, "lattice/bar.h5");
+    snprintf(text, sizeof text, cloud_scene, rel, "", "");
+    write_file("from_output.yaml", text);
+    snprintf(path, sizeof path, "%s/from_output.yaml", work);
+    pdk_scene *scene = NULL;
+    pdk_sim *sim = NULL;
+    T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, &scene));
+    T_OK(ctx, pdk_sim_create(ctx, scene, &sim));
+    pdk_particles *p = pdk_sim_particles(sim);
+    T_ASSERT(pdk_particles_count(p) == 240 && pdk_particles_field_exists(p, "set:left") &&
+                 pdk_particles_field_exists(p, "set:right"),
+             "the output file as a cloud: %d particles (240), sets left and right",
+             (int)pdk_particles_count(p));
+    pdk_sim_destroy(&sim);
+    pdk_scene_destroy(&scene);
+  }
 
   /* 2. area x thickness */
   {
@@ -202,6 +268,29 @@ int main(void) {
   const char *const k11[] = {"geometry.box", "remove one of them", NULL};
   bad(ctx, "box and points", "x,y,volume,set:left,set:right\n0,0,1,1,0\n1,0,1,0,1\n",
       "  box: {lo: [0, 0], hi: [1, 1]}\n", "", k11);
+  {
+    /* an HDF5 cloud without volumes */
+    char path[1024];
+    snprintf(path, sizeof path, "%s/novol.h5", work);
+    hid_t h = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hsize_t d2[2] = {2, 2};
+    const double xy[4] = {0, 0, 1, 0};
+    hid_t s2 = H5Screate_simple(2, d2, NULL);
+    hid_t ds = H5Dcreate2(h, "X", H5T_IEEE_F64LE, s2, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, xy);
+    H5Dclose(ds);
+    H5Sclose(s2);
+    H5Fclose(h);
+    snprintf(text, sizeof text, cloud_scene, "novol.h5", "", "");
+    write_file("novol.yaml", text);
+    snprintf(path, sizeof path, "%s/novol.yaml", work);
+    pdk_scene *scene = NULL;
+    T_ASSERT(pdk_scene_load(ctx, path, NULL, 0, &scene) != 0, "an HDF5 cloud without volumes loads");
+    const char *msg = pdk_ctx_error_message(ctx);
+    T_ASSERT(strstr(msg, "geometry.points") && strstr(msg, "novol.h5") &&
+                 strstr(msg, "needs a dataset /volume of shape [2]"),
+             "no volumes: %s", msg);
+  }
   const char *const k12[] = {"geometry.points", "cannot open the point cloud", "nowhere.csv",
                              NULL};
   {
