@@ -4,7 +4,8 @@
 
 #include "model_registry.h"
 
-/* The kinds, in the order scenes list them: each defines pdk_model_kind_<name> in its own file. */
+/* The kinds, in the order scenes list them (the first is the scenes' default model.kind): each
+ * defines pdk_model_kind_<name> in its own file. */
 #define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus)
 /* The correspondence laws, each defining pdk_law_<name> in src/law_<name>.c. */
 #define PDK_LAWS(X) X(linear_elastic) X(svk) X(neo_hooke) X(jc)
