@@ -149,9 +149,9 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "layout %d unknown; use csr or sell", (int)o->layout);
   PDK_CHECK(o->sell_sigma >= 0, ctx, PDK_ERR_ARG,
             "sell_sigma must be >= 0 (0: the default window), got %d", o->sell_sigma);
-  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->kind == PDK_MODEL_PMB ||
-                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence),
-            ctx, PDK_ERR_UNSUPPORTED,
+  const pdk_model_kind_info *kind = pdk_model_kind_info_of(o->kind);
+  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || kind->ops_for(o)->layout_sell, ctx,
+            PDK_ERR_UNSUPPORTED,
             "%s model%s: layout sell is implemented for pmb and lps (LAMMPS's omega) only; use "
             "layout csr",
             pdk_model_kind_name(o->kind), o->lps_use_influence ? " with lps_use_influence" : "");
@@ -161,28 +161,15 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             pdk_model_kind_name(o->kind), o->num_materials);
   PDK_CHECK((unsigned)o->stencil <= PDK_STENCIL_ON, ctx, PDK_ERR_ARG,
             "stencil mode %d unknown; use off (0), auto (1) or on (2)", (int)o->stencil);
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind == PDK_MODEL_PMB ||
-                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence) ||
-                o->kind == PDK_MODEL_CORRESPONDENCE,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "%s model%s: the stencil path is implemented for the pmb, lps (with LAMMPS's "
-            "influence function) and correspondence models only; use stencil off or auto",
-            name, o->lps_use_influence ? " with lps_use_influence" : "");
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
-                o->connectivity == PDK_CONNECTIVITY_TL,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "correspondence model with %s connectivity: the stencil path implements tl only (%s); "
-            "use stencil off or auto, or connectivity tl",
-            o->connectivity == PDK_CONNECTIVITY_UL ? "ul" : "semi_tl",
-            o->connectivity == PDK_CONNECTIVITY_UL ? "ul rebuilds its families in the current "
-                                                     "configuration"
-                                                   : "semi_tl compacts its bond list");
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
-                o->stabilization != PDK_STAB_HOURGLASS,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "correspondence model with hourglass stabilization: the stencil path implements "
-            "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
-            "stencil off or auto, or stabilization silling");
+  if (o->stencil == PDK_STENCIL_ON) {
+    PDK_CHECK((kind->caps & PDK_KIND_STENCIL) && !(kind->no_stencil && kind->no_stencil(o)), ctx,
+              PDK_ERR_UNSUPPORTED,
+              "%s model%s: the stencil path is implemented for the pmb, lps (with LAMMPS's "
+              "influence function) and correspondence models only; use stencil off or auto",
+              name, o->lps_use_influence ? " with lps_use_influence" : "");
+    const char *why = kind->stencil_refusal ? kind->stencil_refusal(o) : NULL;
+    PDK_CHECK(!why, ctx, PDK_ERR_UNSUPPORTED, "%s", why);
+  }
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather

@@ -932,6 +932,22 @@ static int corr_stencil_rows(const pdk_model_opts *o) {
   return o->stencil != PDK_STENCIL_OFF && !pdk_stencil_corr_refusal(o);
 }
 
+/* stencil on: the stencil path implements tl connectivity and stabilization none or silling. */
+static const char *corr_stencil_refusal(const pdk_model_opts *o) {
+  if (o->connectivity == PDK_CONNECTIVITY_UL)
+    return "correspondence model with ul connectivity: the stencil path implements tl only (ul "
+           "rebuilds its families in the current configuration); use stencil off or auto, or "
+           "connectivity tl";
+  if (o->connectivity != PDK_CONNECTIVITY_TL)
+    return "correspondence model with semi_tl connectivity: the stencil path implements tl only "
+           "(semi_tl compacts its bond list); use stencil off or auto, or connectivity tl";
+  if (o->stabilization == PDK_STAB_HOURGLASS)
+    return "correspondence model with hourglass stabilization: the stencil path implements "
+           "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
+           "stencil off or auto, or stabilization silling";
+  return NULL;
+}
+
 static int corr_hyperelastic(const pdk_model_opts *o) {
   const pdk_law_info *l = pdk_law_info_of(o->law);
   return l && (l->flags & PDK_LAWF_HYPERELASTIC) && o->stabilization != PDK_STAB_HOURGLASS;
@@ -964,4 +980,5 @@ const pdk_model_kind_info pdk_model_kind_corr = {
     .ops_for = corr_ops_for,
     .stencil_rows = corr_stencil_rows,
     .hyperelastic = corr_hyperelastic,
-    .unstabilized = corr_unstabilized};
+    .unstabilized = corr_unstabilized,
+    .stencil_refusal = corr_stencil_refusal};

@@ -53,6 +53,8 @@ typedef struct pdk_model_ops {
   /* 1: float storage keeps the reference bond lengths as floats (pdk_model_float_stretch_ratio
    * applies). */
   int float_bond_lengths;
+  /* 1: layout sell is implemented. */
+  int layout_sell;
 } pdk_model_ops;
 
 struct pdk_model {

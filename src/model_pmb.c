@@ -282,7 +282,8 @@ const pdk_model_ops pdk_model_ops_pmb = {.setup = pmb_setup,
                                          .destroy = pmb_destroy,
                                          .tangent_column = pmb_tangent_column,
                                          .padding_fraction = pdk_model_pmb_padding_fraction,
-                                         .float_bond_lengths = 1};
+                                         .float_bond_lengths = 1,
+                                         .layout_sell = 1};
 
 double pdk_model_pmb_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;

@@ -22,7 +22,7 @@ struct pdk_model_ops;
 enum {
   PDK_KIND_SCENE = 1u << 0,     /* scenes may name it (model.kind) */
   PDK_KIND_SHEAR = 1u << 1,     /* needs a shear modulus (else the bulk modulus alone) */
-  PDK_KIND_STENCIL = 1u << 2,   /* has a stencil path (model.stencil: on) */
+  PDK_KIND_STENCIL = 1u << 2,   /* has a stencil path (model.stencil: on; see no_stencil) */
   PDK_KIND_MATERIALS = 1u << 3, /* supports several materials */
   PDK_KIND_LAWS = 1u << 4,      /* takes a correspondence law (opts.law) and its options */
   PDK_KIND_FLOAT = 1u << 5,     /* implements float storage (opts.precision) */
@@ -61,6 +61,10 @@ typedef struct pdk_model_kind_info {
   /* 1 when the options leave zero-energy modes uncontrolled (for a solver's diagnosis); NULL:
    * never. */
   int (*unstabilized)(const pdk_model_opts *o);
+  /* PDK_KIND_STENCIL kinds: 1 when these options take a path without a stencil (NULL: never),
+   * and why stencil on is refused with these options (the message; NULL: it is not). */
+  int (*no_stencil)(const pdk_model_opts *o);
+  const char *(*stencil_refusal)(const pdk_model_opts *o);
 } pdk_model_kind_info;
 
 /* Flags of a correspondence law (pdk_law_info.flags). */

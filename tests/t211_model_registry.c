@@ -4,8 +4,9 @@
  * name and what its flags promise (an elastic law its Cauchy stress, a law with history its von
  * Mises); the names scenes accept for model.kind and model.law are the registry's, in its order;
  * and the scene messages built from the registry's capabilities read as they read when scene.c
- * spelled the kinds out (the texts below are those of before the registry). pdk_model_opts_uses
- * answers from the same entries. labels: unit */
+ * spelled the kinds out, as do model creation's refusals decided by the kinds' entries (the texts
+ * below are those of before the registry). pdk_model_opts_uses answers from the same entries.
+ * labels: unit */
 #include "model_impl.h"
 #include "scene_impl.h"
 #include "test_util.h"
@@ -157,6 +158,32 @@ static void check_scenes(pdk_ctx *ctx) {
   }
 }
 
+/* Model creation's refusals that the kinds' entries and operations now decide, with the texts
+ * model.c spelled out before. */
+static void check_refusals(pdk_ctx *ctx) {
+  const char *ul[] = {"model.kind=correspondence", "model.connectivity=ul", "model.stencil=on"};
+  const char *hg[] = {"model.kind=correspondence", "model.stabilization=hourglass",
+                      "model.stencil=on"};
+  const char *sell[] = {"model.kind=correspondence", "model.layout=sell"};
+  const char *const *ov[] = {ul, hg, sell};
+  const char *want[] = {
+      "correspondence model with ul connectivity: the stencil path implements tl only (ul "
+      "rebuilds its families in the current configuration); use stencil off or auto, or "
+      "connectivity tl",
+      "correspondence model with hourglass stabilization: the stencil path implements "
+      "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
+      "stencil off or auto, or stabilization silling",
+      "correspondence model: layout sell is implemented for pmb and lps (LAMMPS's omega) only; "
+      "use layout csr"};
+  for (int k = 0; k < 3; ++k) {
+    pdk_scene *s = NULL;
+    pdk_sim *sim = NULL;
+    load(ctx, elastic, ov[k], k == 2 ? 2 : 3, NULL, &s);
+    T_FAILS(ctx, pdk_sim_create(ctx, s, &sim), PDK_ERR_UNSUPPORTED, want[k]);
+    pdk_scene_destroy(&s);
+  }
+}
+
 static void check_uses(void) {
   pdk_model_opts o = pdk_model_opts_default();
   T_ASSERT(!pdk_model_opts_uses(&o, "law") && !pdk_model_opts_uses(&o, "influence"),
@@ -178,6 +205,7 @@ int main(void) {
   check_kinds(ctx);
   check_laws();
   check_scenes(ctx);
+  check_refusals(ctx);
   check_uses();
   remove("t211.yaml");
   pdk_ctx_destroy(&ctx);
