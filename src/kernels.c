@@ -6,12 +6,8 @@
 #include "kernels.h"
 #include "pdk_impl.h"
 
-/* The drivers copy pdk_law and pdk_stabilization (pdk/model.h) into pdk_corr_consts; the kernels
- * read them as the values of kernels/kernel_types.h. */
-_Static_assert(PDK_KERNEL_LAW_LINEAR_ELASTIC == (int)PDK_LAW_LINEAR_ELASTIC, "law values");
-_Static_assert(PDK_KERNEL_LAW_SVK == (int)PDK_LAW_SVK, "law values");
-_Static_assert(PDK_KERNEL_LAW_NEO_HOOKE == (int)PDK_LAW_NEO_HOOKE, "law values");
-_Static_assert(PDK_KERNEL_LAW_JC == (int)PDK_LAW_JC, "law values");
+/* The drivers copy pdk_stabilization (pdk/model.h) into pdk_corr_consts; the kernels read it as
+ * the values of kernels/kernel_types.h (each law's file, src/law_*.c, checks its pdk_law value). */
 _Static_assert(PDK_KERNEL_STAB_NONE == (int)PDK_STAB_NONE, "stabilization values");
 _Static_assert(PDK_KERNEL_STAB_SILLING == (int)PDK_STAB_SILLING, "stabilization values");
 _Static_assert(PDK_KERNEL_STAB_HOURGLASS == (int)PDK_STAB_HOURGLASS, "stabilization values");

@@ -26,16 +26,6 @@ pdk_model_opts pdk_model_opts_default(void) {
   return o;
 }
 
-const char *pdk_model_kind_name(pdk_model_kind kind) {
-  switch (kind) {
-  case PDK_MODEL_PMB: return "pmb";
-  case PDK_MODEL_LPS: return "lps";
-  case PDK_MODEL_CORRESPONDENCE: return "correspondence";
-  case PDK_MODEL_OTERKUS: return "oterkus";
-  }
-  return "?";
-}
-
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width) {
   /* Families admit r up to delta (1 + PDK_HORIZON_RTOL); q is clamped to 1 so the weights that
    * vanish at the horizon (linear, cubic) never turn negative by round-off. */
@@ -57,7 +47,7 @@ double pdk_influence_eval(pdk_influence kind, double r, double delta, double gau
 }
 
 static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
-  PDK_CHECK((unsigned)o->kind <= PDK_MODEL_OTERKUS, ctx, PDK_ERR_ARG,
+  PDK_CHECK(pdk_model_kind_info_of(o->kind), ctx, PDK_ERR_ARG,
             "model kind %d is not one of pmb (0), lps (1), correspondence (2), oterkus (3)",
             (int)o->kind);
   PDK_CHECK(o->lps_use_influence == 0 || o->lps_use_influence == 1, ctx, PDK_ERR_ARG,
@@ -67,7 +57,7 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "%s model: bulk modulus must be a positive finite pressure, got %g", name, o->bulk_modulus);
   PDK_CHECK(isfinite(o->density) && o->density > 0, ctx, PDK_ERR_ARG,
             "%s model: density must be positive and finite, got %g", name, o->density);
-  if (o->kind != PDK_MODEL_PMB)
+  if (pdk_model_opts_has(o, PDK_KIND_SHEAR))
     PDK_CHECK(isfinite(o->shear_modulus) && o->shear_modulus > 0, ctx, PDK_ERR_ARG,
               "%s model: shear modulus must be a positive finite pressure, got %g", name,
               o->shear_modulus);
@@ -88,13 +78,14 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "stabilization %d unknown; use none, silling or hourglass", (int)o->stabilization);
   PDK_CHECK(isfinite(o->stab_coefficient) && o->stab_coefficient >= 0, ctx, PDK_ERR_ARG,
             "stabilization coefficient must be >= 0, got %g", o->stab_coefficient);
-  PDK_CHECK((unsigned)o->law <= PDK_LAW_JC, ctx, PDK_ERR_ARG,
+  PDK_CHECK(pdk_law_info_of(o->law), ctx, PDK_ERR_ARG,
             "material law %d unknown; use linear_elastic, svk, neo_hooke or jc", (int)o->law);
   PDK_CHECK((unsigned)o->connectivity <= PDK_CONNECTIVITY_UL, ctx, PDK_ERR_ARG,
             "connectivity mode %d unknown; use tl (0), semi_tl (1) or ul (2)",
             (int)o->connectivity);
-  PDK_CHECK(o->connectivity == PDK_CONNECTIVITY_TL || o->kind == PDK_MODEL_CORRESPONDENCE, ctx,
-            PDK_ERR_UNSUPPORTED,
+  PDK_CHECK(o->connectivity == PDK_CONNECTIVITY_TL ||
+                pdk_model_opts_scene_key(o, "model.connectivity"),
+            ctx, PDK_ERR_UNSUPPORTED,
             "%s connectivity is implemented for the correspondence model only (model kind is "
             "%s); use tl",
             o->connectivity == PDK_CONNECTIVITY_UL ? "ul" : "semi_tl", name);
@@ -105,8 +96,8 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             ctx, PDK_ERR_ARG, "compact_fraction must lie in [0, 1], got %g", o->compact_fraction);
   PDK_CHECK(o->failed_keeps_bonds == 0 || o->failed_keeps_bonds == 1, ctx, PDK_ERR_ARG,
             "failed_keeps_bonds must be 0 or 1, got %d", o->failed_keeps_bonds);
-  if (o->law == PDK_LAW_JC) {
-    PDK_CHECK(o->kind == PDK_MODEL_CORRESPONDENCE, ctx, PDK_ERR_ARG,
+  if (pdk_law_info_of(o->law)->flags & PDK_LAWF_PLASTICITY) {
+    PDK_CHECK(pdk_model_opts_has(o, PDK_KIND_LAWS), ctx, PDK_ERR_ARG,
               "the Johnson-Cook law needs the correspondence model (model kind is %s)", name);
     PDK_CALL(pdk_jc_params_check(ctx, &o->jc));
   }
@@ -119,8 +110,7 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
               "stab_softening_floor must lie in (0, 1] (the smallest factor on the stabilization "
               "modulus; the thesis uses 1e-3), got %g",
               o->stab_softening_floor);
-    PDK_CHECK(o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC &&
-                  o->stabilization == PDK_STAB_SILLING,
+    PDK_CHECK(pdk_model_opts_law_has(o, PDK_LAWF_HISTORY) && o->stabilization == PDK_STAB_SILLING,
               ctx, PDK_ERR_UNSUPPORTED,
               "softened stabilization follows the plastic flow: it needs the correspondence "
               "model with law jc and silling stabilization (model kind %s, law %d, "
@@ -131,7 +121,7 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "damage_triaxiality %d unknown; use local (0) or family (1)",
             (int)o->damage_triaxiality);
   PDK_CHECK(o->damage_triaxiality == PDK_TRIAX_LOCAL ||
-                (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC && o->jc.damage),
+                (pdk_model_opts_law_has(o, PDK_LAWF_HISTORY) && o->jc.damage),
             ctx, PDK_ERR_UNSUPPORTED,
             "damage_triaxiality family averages the pressure of the Johnson-Cook damage law: it "
             "needs the correspondence model with law jc and damage on");
@@ -144,7 +134,7 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
   PDK_CHECK((unsigned)o->break_stress <= PDK_BREAK_STRESS_CONTINUOUS, ctx, PDK_ERR_ARG,
             "break_stress %d unknown; use refit (0) or continuous (1)", (int)o->break_stress);
   PDK_CHECK(o->break_stress == PDK_BREAK_STRESS_REFIT ||
-                (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC &&
+                (pdk_model_opts_law_has(o, PDK_LAWF_HISTORY) &&
                  o->connectivity != PDK_CONNECTIVITY_UL),
             ctx, PDK_ERR_UNSUPPORTED,
             "break_stress continuous remaps the Johnson-Cook history of particles whose family "
@@ -159,9 +149,9 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             "layout %d unknown; use csr or sell", (int)o->layout);
   PDK_CHECK(o->sell_sigma >= 0, ctx, PDK_ERR_ARG,
             "sell_sigma must be >= 0 (0: the default window), got %d", o->sell_sigma);
-  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || o->kind == PDK_MODEL_PMB ||
-                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence),
-            ctx, PDK_ERR_UNSUPPORTED,
+  const pdk_model_kind_info *kind = pdk_model_kind_info_of(o->kind);
+  PDK_CHECK(o->layout == PDK_LAYOUT_CSR || kind->ops_for(o)->layout_sell, ctx,
+            PDK_ERR_UNSUPPORTED,
             "%s model%s: layout sell is implemented for pmb and lps (LAMMPS's omega) only; use "
             "layout csr",
             pdk_model_kind_name(o->kind), o->lps_use_influence ? " with lps_use_influence" : "");
@@ -171,35 +161,21 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             pdk_model_kind_name(o->kind), o->num_materials);
   PDK_CHECK((unsigned)o->stencil <= PDK_STENCIL_ON, ctx, PDK_ERR_ARG,
             "stencil mode %d unknown; use off (0), auto (1) or on (2)", (int)o->stencil);
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind == PDK_MODEL_PMB ||
-                (o->kind == PDK_MODEL_LPS && !o->lps_use_influence) ||
-                o->kind == PDK_MODEL_CORRESPONDENCE,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "%s model%s: the stencil path is implemented for the pmb, lps (with LAMMPS's "
-            "influence function) and correspondence models only; use stencil off or auto",
-            name, o->lps_use_influence ? " with lps_use_influence" : "");
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
-                o->connectivity == PDK_CONNECTIVITY_TL,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "correspondence model with %s connectivity: the stencil path implements tl only (%s); "
-            "use stencil off or auto, or connectivity tl",
-            o->connectivity == PDK_CONNECTIVITY_UL ? "ul" : "semi_tl",
-            o->connectivity == PDK_CONNECTIVITY_UL ? "ul rebuilds its families in the current "
-                                                     "configuration"
-                                                   : "semi_tl compacts its bond list");
-  PDK_CHECK(o->stencil != PDK_STENCIL_ON || o->kind != PDK_MODEL_CORRESPONDENCE ||
-                o->stabilization != PDK_STAB_HOURGLASS,
-            ctx, PDK_ERR_UNSUPPORTED,
-            "correspondence model with hourglass stabilization: the stencil path implements "
-            "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
-            "stencil off or auto, or stabilization silling");
+  if (o->stencil == PDK_STENCIL_ON) {
+    PDK_CHECK((kind->caps & PDK_KIND_STENCIL) && !(kind->no_stencil && kind->no_stencil(o)), ctx,
+              PDK_ERR_UNSUPPORTED,
+              "%s model%s: the stencil path is implemented for the pmb, lps (with LAMMPS's "
+              "influence function) and correspondence models only; use stencil off or auto",
+              name, o->lps_use_influence ? " with lps_use_influence" : "");
+    const char *why = kind->stencil_refusal ? kind->stencil_refusal(o) : NULL;
+    PDK_CHECK(!why, ctx, PDK_ERR_UNSUPPORTED, "%s", why);
+  }
   PDK_CHECK((unsigned)o->precision <= PDK_PRECISION_FLOAT, ctx, PDK_ERR_ARG,
             "precision %d unknown; use double or float", (int)o->precision);
   /* Float storage is a speed/accuracy knob; a kind that does not implement it refuses it rather
    * than silently computing in double (PMB, LPS: bond lengths; correspondence TL and semi-TL:
    * pass-2 tensors, UL refuses it in its setup). */
-  PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE || o->kind == PDK_MODEL_PMB ||
-                o->kind == PDK_MODEL_LPS || o->kind == PDK_MODEL_CORRESPONDENCE,
+  PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE || pdk_model_opts_has(o, PDK_KIND_FLOAT),
             ctx, PDK_ERR_UNSUPPORTED,
             "%s model: float storage is not implemented yet; use precision double",
             pdk_model_kind_name(o->kind));
@@ -209,7 +185,7 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
 /* Law JC: the Johnson-Cook parameters are the one source of truth for the elastic constants and
  * the density. Zero model values are taken from them; given values must agree. */
 static int resolve_jc_constants(pdk_ctx *ctx, pdk_model_opts *o) {
-  if (o->law != PDK_LAW_JC) return PDK_SUCCESS;
+  if (!(pdk_law_info_of(o->law)->flags & PDK_LAWF_PLASTICITY)) return PDK_SUCCESS;
   const double E = o->jc.young_modulus, nu = o->jc.poisson_ratio;
   const double K = E / (3.0 * (1.0 - 2.0 * nu)), G = E / (2.0 * (1.0 + nu));
   const double rtol = 1e-9;
@@ -266,7 +242,7 @@ static int setup_materials(pdk_model *m, const pdk_model_opts *in) {
     m->mat_shear[i] = q->shear_modulus;
     m->mat_density[i] = q->density;
   }
-  if (in->kind == PDK_MODEL_CORRESPONDENCE) {
+  if (pdk_model_opts_has(in, PDK_KIND_LAWS)) {
     /* As the one-material drivers compute lambda and the stabilization modulus. */
     const double c_d = pdk_particles_dim(m->p) == 3 ? 72.0 / 5.0 : 36.0 / 5.0;
     m->mat_lambda = pdk_alloc_aligned((size_t)n_pad, sizeof(double));
@@ -288,10 +264,14 @@ static int check_materials(pdk_ctx *ctx, const pdk_model_opts *o) {
   if (o->num_materials == 0) return PDK_SUCCESS;
   PDK_CHECK(o->materials, ctx, PDK_ERR_ARG, "num_materials is %d but materials is NULL",
             o->num_materials);
-  PDK_CHECK(o->kind != PDK_MODEL_LPS, ctx, PDK_ERR_UNSUPPORTED,
-            "lps model: several materials are not implemented; use pmb or correspondence, or one "
-            "material");
-  PDK_CHECK(o->law != PDK_LAW_JC || o->kind != PDK_MODEL_CORRESPONDENCE, ctx, PDK_ERR_UNSUPPORTED,
+  char kinds[128];
+  PDK_CHECK(!pdk_model_kind_info_of(o->kind) || pdk_model_opts_has(o, PDK_KIND_MATERIALS), ctx,
+            PDK_ERR_UNSUPPORTED,
+            "%s model: several materials are not implemented; use %s, or one material",
+            pdk_model_kind_name(o->kind),
+            pdk_model_kinds_list(PDK_KIND_MATERIALS | PDK_KIND_SCENE,
+                                 PDK_KIND_MATERIALS | PDK_KIND_SCENE, " or ", kinds, sizeof kinds));
+  PDK_CHECK(!pdk_model_opts_law_has(o, PDK_LAWF_ONE_MATERIAL), ctx, PDK_ERR_UNSUPPORTED,
             "the Johnson-Cook law takes one material (its parameters); several materials work "
             "with the elastic laws");
   for (int k = 0; k < o->num_materials; ++k) {
@@ -299,7 +279,8 @@ static int check_materials(pdk_ctx *ctx, const pdk_model_opts *o) {
     PDK_CHECK(isfinite(q->bulk_modulus) && q->bulk_modulus > 0, ctx, PDK_ERR_ARG,
               "material %d: bulk modulus must be a positive finite pressure, got %g", k,
               q->bulk_modulus);
-    PDK_CHECK(o->kind == PDK_MODEL_PMB || (isfinite(q->shear_modulus) && q->shear_modulus > 0),
+    PDK_CHECK(!pdk_model_opts_has(o, PDK_KIND_SHEAR) ||
+                  (isfinite(q->shear_modulus) && q->shear_modulus > 0),
               ctx, PDK_ERR_ARG,
               "material %d: shear modulus must be a positive finite pressure, got %g", k,
               q->shear_modulus);
@@ -309,11 +290,9 @@ static int check_materials(pdk_ctx *ctx, const pdk_model_opts *o) {
   return PDK_SUCCESS;
 }
 
-/* Bonds can break: a critical stretch, or failed Johnson-Cook particles that break theirs. */
+/* Bonds can break: a critical stretch, or failed particles of the law that break theirs. */
 static int model_can_break(const pdk_model_opts *o) {
-  return o->critical_stretch > 0 ||
-         (o->kind == PDK_MODEL_CORRESPONDENCE && o->law == PDK_LAW_JC && o->jc.damage &&
-          !o->failed_keeps_bonds);
+  return o->critical_stretch > 0 || pdk_model_opts_law_breaks(o);
 }
 
 int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *opts_in,
@@ -328,7 +307,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   PDK_CHECK_ARG(opts_in, ctx);
   pdk_model_opts resolved = *opts_in;
   const pdk_model_opts *opts = &resolved;
-  if (resolved.law == PDK_LAW_JC && resolved.kind == PDK_MODEL_CORRESPONDENCE) {
+  if (pdk_model_opts_law_has(&resolved, PDK_LAWF_PLASTICITY)) {
     PDK_CALL(pdk_jc_params_check(ctx, &resolved.jc));
     PDK_CALL(resolve_jc_constants(ctx, &resolved));
   }
@@ -348,19 +327,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   m->p = p;
   m->fam = fam;
   m->opts = *opts;
-  switch (opts->kind) {
-  case PDK_MODEL_PMB: m->ops = &pdk_model_ops_pmb; break;
-  case PDK_MODEL_LPS:
-    m->ops = opts->lps_use_influence ? &pdk_model_ops_dil2 : &pdk_model_ops_lps;
-    break;
-  case PDK_MODEL_OTERKUS: m->ops = &pdk_model_ops_dil2; break;
-  case PDK_MODEL_CORRESPONDENCE:
-    m->ops = opts->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul
-                                                       : &pdk_model_ops_corr;
-    if (opts->connectivity == PDK_CONNECTIVITY_UL && opts->stencil != PDK_STENCIL_OFF)
-      snprintf(m->stencil_why, sizeof m->stencil_why, "%s", pdk_stencil_corr_refusal(opts));
-    break;
-  }
+  m->ops = pdk_model_kind_info_of(opts->kind)->ops_for(opts);
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,
                  "model kind '%s' is not part of this build", pdk_model_kind_name(opts->kind));
   PDK_CALL_GOTO(setup_materials(m, opts));
@@ -440,15 +407,12 @@ double pdk_model_damage_max(const pdk_model *m) {
 }
 
 double pdk_model_padding_fraction(const pdk_model *m) {
-  if (!m) return 0.0;
-  return m->ops == &pdk_model_ops_lps ? pdk_model_lps_padding_fraction(m)
-                                      : pdk_model_pmb_padding_fraction(m);
+  if (!m || !m->ops->padding_fraction) return 0.0;
+  return m->ops->padding_fraction(m);
 }
 
 double pdk_model_float_stretch_ratio(const pdk_model *m) {
-  if (!m || m->opts.precision != PDK_PRECISION_FLOAT ||
-      (m->ops != &pdk_model_ops_pmb && m->ops != &pdk_model_ops_lps))
-    return -1.0;
+  if (!m || m->opts.precision != PDK_PRECISION_FLOAT || !m->ops->float_bond_lengths) return -1.0;
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index *bj = pdk_families_bond_j(m->fam);
   const pdk_index n = pdk_families_num_particles(m->fam);
@@ -496,17 +460,17 @@ long pdk_model_num_rebuilds(const pdk_model *m) { return m ? m->num_rebuilds : 0
 
 int pdk_model_rebuild(pdk_model *m) {
   PDK_CHECK_ARG(m, NULL);
-  PDK_CHECK(m->ops == &pdk_model_ops_corr_ul, m->ctx, PDK_ERR_ARG,
+  PDK_CHECK(m->ops->rebuild, m->ctx, PDK_ERR_ARG,
             "pdk_model_rebuild: only the ul connectivity rebuilds its families (this %s model "
             "uses %s)",
             pdk_model_kind_name(m->opts.kind),
             m->opts.connectivity == PDK_CONNECTIVITY_SEMI_TL ? "semi_tl" : "tl");
-  return pdk_model_corr_ul_rebuild(m);
+  return m->ops->rebuild(m);
 }
 
 pdk_families *pdk_model_current_families(const pdk_model *m) {
   if (!m) return NULL;
-  return m->ops == &pdk_model_ops_corr_ul ? pdk_model_corr_ul_families(m) : m->fam;
+  return m->ops->current_families ? m->ops->current_families(m) : m->fam;
 }
 
 int pdk_model_set_dt(pdk_model *m, double dt) {
@@ -565,3 +529,23 @@ int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double
   if (breaking) PDK_CALL(volume_sum(m, "w_broken", breaking));
   return PDK_SUCCESS;
 }
+
+int pdk_model_derived(const pdk_model *m, const char *name, double dt, double *out) {
+  PDK_CHECK_ARG(m, NULL);
+  PDK_CHECK(m->ops->derived && pdk_model_kind_derived(m->opts.kind, name), m->ctx,
+            PDK_ERR_NOT_FOUND, "the %s model derives no field '%s'",
+            pdk_model_kind_name(m->opts.kind), name);
+  return m->ops->derived(m, name, dt, out);
+}
+
+int pdk_model_opts_uses(const pdk_model_opts *o, const char *name) {
+  if (!o || !name) return 0;
+  if (!strcmp(name, "stab_softening") || !strcmp(name, "damage_triaxiality") ||
+      !strcmp(name, "break_stress"))
+    return pdk_model_opts_law_has(o, PDK_LAWF_HISTORY) && o->connectivity != PDK_CONNECTIVITY_UL;
+  char key[64];
+  snprintf(key, sizeof key, "model.%s", name);
+  return pdk_model_opts_scene_key(o, key);
+}
+
+int pdk_model_has_tangent(const pdk_model *m) { return m && m->ops->tangent_column != NULL; }

@@ -918,4 +918,67 @@ static int corr_state_check(const pdk_model *m, pdk_state *s) {
 const pdk_model_ops pdk_model_ops_corr = {.setup = corr_setup,
                                           .force = corr_force,
                                           .destroy = corr_destroy,
-                                          .state_check = corr_state_check};
+                                          .state_check = corr_state_check,
+                                          .derived = pdk_model_corr_derived};
+
+static const pdk_model_ops *corr_ops_for(const pdk_model_opts *o) {
+  return o->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul : &pdk_model_ops_corr;
+}
+
+/* The particles are ordered by lattice rows where the stencil path will walk them in site order
+ * (its per-particle end reads K^-1 and writes F, A: bench/README.md "Particle order on the
+ * correspondence stencil path"). */
+static int corr_stencil_rows(const pdk_model_opts *o) {
+  return o->stencil != PDK_STENCIL_OFF && !pdk_stencil_corr_refusal(o);
+}
+
+/* stencil on: the stencil path implements tl connectivity and stabilization none or silling. */
+static const char *corr_stencil_refusal(const pdk_model_opts *o) {
+  if (o->connectivity == PDK_CONNECTIVITY_UL)
+    return "correspondence model with ul connectivity: the stencil path implements tl only (ul "
+           "rebuilds its families in the current configuration); use stencil off or auto, or "
+           "connectivity tl";
+  if (o->connectivity != PDK_CONNECTIVITY_TL)
+    return "correspondence model with semi_tl connectivity: the stencil path implements tl only "
+           "(semi_tl compacts its bond list); use stencil off or auto, or connectivity tl";
+  if (o->stabilization == PDK_STAB_HOURGLASS)
+    return "correspondence model with hourglass stabilization: the stencil path implements "
+           "stabilization none and silling only (the hourglass force needs |Y| per bond); use "
+           "stencil off or auto, or stabilization silling";
+  return NULL;
+}
+
+static int corr_hyperelastic(const pdk_model_opts *o) {
+  const pdk_law_info *l = pdk_law_info_of(o->law);
+  return l && (l->flags & PDK_LAWF_HYPERELASTIC) && o->stabilization != PDK_STAB_HOURGLASS;
+}
+
+static int corr_unstabilized(const pdk_model_opts *o) { return o->stabilization == PDK_STAB_NONE; }
+
+static const char *const corr_scene_keys[] = {"model.influence",
+                                              "model.gaussian_width",
+                                              "model.stabilization",
+                                              "model.stabilization_coefficient",
+                                              "model.law",
+                                              "model.connectivity",
+                                              NULL};
+static const pdk_model_derived_info corr_derived[] = {{"von_mises", "stress"}, {NULL, NULL}};
+
+const pdk_model_kind_info pdk_model_kind_corr = {
+    .kind = PDK_MODEL_CORRESPONDENCE,
+    .name = "correspondence",
+    .caps = PDK_KIND_SCENE | PDK_KIND_SHEAR | PDK_KIND_STENCIL | PDK_KIND_MATERIALS |
+            PDK_KIND_LAWS | PDK_KIND_FLOAT | PDK_KIND_SPAN_FLAG,
+    .hops = 2,
+    .scene_stabilization = PDK_STAB_SILLING,
+    .scene_keys = corr_scene_keys,
+    .derived = corr_derived,
+    .mem_point = 1024,
+    .mem_bond = 16,
+    .mem_bond_float = 16,
+    .mem_newton_bond = 250,
+    .ops_for = corr_ops_for,
+    .stencil_rows = corr_stencil_rows,
+    .hyperelastic = corr_hyperelastic,
+    .unstabilized = corr_unstabilized,
+    .stencil_refusal = corr_stencil_refusal};

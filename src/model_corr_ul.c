@@ -67,6 +67,7 @@
 #include "families_impl.h"
 #include "kernels.h"
 #include "model_impl.h"
+#include "model_stencil.h"
 #include "state.h"
 
 /* Particles per block: the unit of work of both passes and of the energy reduction. */
@@ -87,7 +88,7 @@ typedef struct ul_impl {
   pdk_index num_blocks;
 } ul_impl;
 
-pdk_families *pdk_model_corr_ul_families(const pdk_model *m) {
+static pdk_families *ul_families(const pdk_model *m) {
   const ul_impl *c = m->impl;
   return c && c->own ? c->own : m->fam;
 }
@@ -98,7 +99,7 @@ static void ul_arrays(pdk_model *m, pdk_corr_ul_arrays *ua) {
   pdk_corr_arrays *a = &ua->base;
   const int dim = pdk_particles_dim(p);
   const pdk_index n_pad = pdk_particles_count_padded(p);
-  pdk_families *fam = pdk_model_corr_ul_families(m);
+  pdk_families *fam = ul_families(m);
   memset(ua, 0, sizeof *ua);
   a->bond_start = pdk_families_bond_start(fam);
   a->bond_j = pdk_families_bond_j(fam);
@@ -219,6 +220,8 @@ static int ul_setup(pdk_model *m) {
   const int dim = pdk_particles_dim(p);
   const pdk_index n = pdk_particles_count(p);
   const pdk_index n_pad = pdk_particles_count_padded(p);
+  if (o->stencil != PDK_STENCIL_OFF)
+    snprintf(m->stencil_why, sizeof m->stencil_why, "%s", pdk_stencil_corr_refusal(o));
   const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
   PDK_CHECK(o->precision == PDK_PRECISION_DOUBLE, ctx, PDK_ERR_UNSUPPORTED,
             "correspondence model, ul connectivity: float storage is not implemented; use "
@@ -582,7 +585,7 @@ static int ul_restore(pdk_model *m, pdk_families *fam, long num_rebuilds) {
   return PDK_SUCCESS;
 }
 
-int pdk_model_corr_ul_rebuild(pdk_model *m) {
+static int ul_rebuild(pdk_model *m) {
   PDK_CALL(ul_force(m, 0, NULL)); /* F at the current x, history untouched */
   return ul_rebuild_now(m);
 }
@@ -591,7 +594,7 @@ int pdk_model_corr_ul_rebuild(pdk_model *m) {
  */
 
 static int ul_state_save(const pdk_model *m, pdk_state *s) {
-  const pdk_families *cur = pdk_model_corr_ul_families(m);
+  const pdk_families *cur = ul_families(m);
   const int rebuilt = cur != m->fam;
   PDK_CALL(pdk_state_put_i64(s, "ul_rebuilt", rebuilt));
   PDK_CALL(pdk_state_put_i64(s, "ul_num_rebuilds", m->num_rebuilds));
@@ -651,4 +654,7 @@ const pdk_model_ops pdk_model_ops_corr_ul = {.setup = ul_setup,
                                              .destroy = ul_destroy,
                                              .state_save = ul_state_save,
                                              .state_check = ul_state_check,
-                                             .state_load = ul_state_load};
+                                             .state_load = ul_state_load,
+                                             .derived = pdk_model_corr_derived,
+                                             .rebuild = ul_rebuild,
+                                             .current_families = ul_families};

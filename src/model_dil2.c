@@ -425,3 +425,20 @@ const pdk_model_ops pdk_model_ops_dil2 = {.setup = dil2_setup,
                                           .destroy = dil2_destroy,
                                           .tangent_prepare = dil2_tangent_prepare,
                                           .tangent_column = dil2_tangent_column};
+
+static const pdk_model_ops *oterkus_ops_for(const pdk_model_opts *o) {
+  (void)o;
+  return &pdk_model_ops_dil2;
+}
+
+const pdk_model_kind_info pdk_model_kind_oterkus = {
+    .kind = PDK_MODEL_OTERKUS,
+    .name = "oterkus",
+    .caps = PDK_KIND_SHEAR | PDK_KIND_MATERIALS | PDK_KIND_TANGENT,
+    .hops = 2,
+    .scene_stabilization = PDK_STAB_NONE,
+    .mem_point = 640,
+    .mem_bond = 8,
+    .mem_bond_float = 12,
+    .mem_newton_bond = 100,
+    .ops_for = oterkus_ops_for};

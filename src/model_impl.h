@@ -1,12 +1,14 @@
 /* Private: the model object and the per-kind operations table.
  *
  * src/model.c owns creation, options checking, bond state and dispatch; each kind lives in its
- * own file (model_pmb.c, model_lps.c, model_corr.c) and fills a pdk_model_ops.
+ * own file (model_pmb.c, model_lps.c, model_corr.c, model_corr_ul.c, model_dil2.c), fills a
+ * pdk_model_ops and registers a pdk_model_kind_info (src/model_registry.h).
  */
 #ifndef PDK_MODEL_IMPL_H
 #define PDK_MODEL_IMPL_H
 
 #include "pdk/model.h"
+#include "model_registry.h"
 #include "pdk_impl.h"
 
 struct pdk_state; /* a checkpoint part (src/state.h) */
@@ -38,6 +40,21 @@ typedef struct pdk_model_ops {
   int (*state_save)(const pdk_model *m, struct pdk_state *s);
   int (*state_check)(const pdk_model *m, struct pdk_state *s);
   int (*state_load)(pdk_model *m, struct pdk_state *s);
+  /* Derived output field `name` (one the kind lists in its pdk_model_kind_info.derived) of every
+   * particle into out [n], from the state after the last force pass; dt: the step of that pass.
+   * NULL when the kind lists none. */
+  int (*derived)(const pdk_model *m, const char *name, double dt, double *out);
+  /* Layout sell: the padding fraction of the sliced copy (NULL: 0). */
+  double (*padding_fraction)(const pdk_model *m);
+  /* Connectivity that follows the motion: rebuild the families at the current x now, and the
+   * families the passes walk (both NULL for kinds whose families are fixed). */
+  int (*rebuild)(pdk_model *m);
+  pdk_families *(*current_families)(const pdk_model *m);
+  /* 1: float storage keeps the reference bond lengths as floats (pdk_model_float_stretch_ratio
+   * applies). */
+  int float_bond_lengths;
+  /* 1: layout sell is implemented. */
+  int layout_sell;
 } pdk_model_ops;
 
 struct pdk_model {
@@ -79,10 +96,8 @@ extern const pdk_model_ops pdk_model_ops_lps;
 extern const pdk_model_ops pdk_model_ops_corr;
 extern const pdk_model_ops pdk_model_ops_dil2; /* lps with influence, oterkus (model_dil2.c) */
 extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connectivity */
-/* UL only (m->ops == &pdk_model_ops_corr_ul): rebuild the families at the current x now; the
- * families the passes walk now. */
-int pdk_model_corr_ul_rebuild(pdk_model *m);
-pdk_families *pdk_model_corr_ul_families(const pdk_model *m);
+/* Derived fields of the correspondence kinds (TL and UL; src/model_corr_derived.c). */
+int pdk_model_corr_derived(const pdk_model *m, const char *name, double dt, double *out);
 /* Correspondence with the Johnson-Cook law, after a committing pass (src/model_corr.c): the
  * particles whose update failed (their count, the first in *first) and the error naming it. */
 pdk_index pdk_model_corr_jc_first_failure(const pdk_model *m, const uint8_t *flag,

@@ -460,7 +460,10 @@ const pdk_model_ops pdk_model_ops_lps = {.setup = lps_setup,
                                          .force = lps_force,
                                          .destroy = lps_destroy,
                                          .tangent_prepare = lps_tangent_prepare,
-                                         .tangent_column = lps_tangent_column};
+                                         .tangent_column = lps_tangent_column,
+                                         .padding_fraction = pdk_model_lps_padding_fraction,
+                                         .float_bond_lengths = 1,
+                                         .layout_sell = 1};
 
 double pdk_model_lps_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return 0.0;
@@ -472,3 +475,23 @@ const double *pdk_model_lps_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return NULL;
   return ((lps_impl *)m->impl)->w;
 }
+
+static const pdk_model_ops *lps_ops_for(const pdk_model_opts *o) {
+  return o->lps_use_influence ? &pdk_model_ops_dil2 : &pdk_model_ops_lps;
+}
+
+/* The stencil path implements LAMMPS's influence function only. */
+static int lps_no_stencil(const pdk_model_opts *o) { return o->lps_use_influence; }
+
+const pdk_model_kind_info pdk_model_kind_lps = {
+    .kind = PDK_MODEL_LPS,
+    .name = "lps",
+    .caps = PDK_KIND_SCENE | PDK_KIND_SHEAR | PDK_KIND_STENCIL | PDK_KIND_FLOAT | PDK_KIND_TANGENT,
+    .hops = 2,
+    .scene_stabilization = PDK_STAB_NONE,
+    .mem_point = 640,
+    .mem_bond = 8,
+    .mem_bond_float = 12,
+    .mem_newton_bond = 100,
+    .ops_for = lps_ops_for,
+    .no_stencil = lps_no_stencil};

@@ -280,7 +280,10 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
 const pdk_model_ops pdk_model_ops_pmb = {.setup = pmb_setup,
                                          .force = pmb_force,
                                          .destroy = pmb_destroy,
-                                         .tangent_column = pmb_tangent_column};
+                                         .tangent_column = pmb_tangent_column,
+                                         .padding_fraction = pdk_model_pmb_padding_fraction,
+                                         .float_bond_lengths = 1,
+                                         .layout_sell = 1};
 
 double pdk_model_pmb_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;
@@ -292,3 +295,21 @@ const double *pdk_model_pmb_energy_density(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return NULL;
   return ((pmb_impl *)m->impl)->w;
 }
+
+static const pdk_model_ops *pmb_ops_for(const pdk_model_opts *o) {
+  (void)o;
+  return &pdk_model_ops_pmb;
+}
+
+const pdk_model_kind_info pdk_model_kind_pmb = {
+    .kind = PDK_MODEL_PMB,
+    .name = "pmb",
+    .caps = PDK_KIND_SCENE | PDK_KIND_STENCIL | PDK_KIND_MATERIALS | PDK_KIND_FLOAT |
+            PDK_KIND_TANGENT,
+    .hops = 1,
+    .scene_stabilization = PDK_STAB_NONE,
+    .mem_point = 640,
+    .mem_bond = 8,
+    .mem_bond_float = 12,
+    .mem_newton_bond = 100,
+    .ops_for = pmb_ops_for};

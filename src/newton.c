@@ -88,19 +88,6 @@ static double *field(pdk_particles *p, const char *name, int c) {
 
 static const char comp_name[3] = {'x', 'y', 'z'};
 
-static int model_hyperelastic(const pdk_model *m) {
-  const pdk_model_opts *o = &m->opts;
-  switch (o->kind) {
-  case PDK_MODEL_PMB:
-  case PDK_MODEL_LPS:
-  case PDK_MODEL_OTERKUS: return 1;
-  case PDK_MODEL_CORRESPONDENCE:
-    return (o->law == PDK_LAW_LINEAR_ELASTIC || o->law == PDK_LAW_SVK ||
-            o->law == PDK_LAW_NEO_HOOKE) &&
-           o->stabilization != PDK_STAB_HOURGLASS;
-  }
-  return 0;
-}
 
 /* ---- rigid motions: are they all stopped by the displacement conditions? -------------------- */
 
@@ -420,13 +407,16 @@ int pdk_newton_setup(pdk_static *s) {
         ns->dof_particle[ns->dof_of[c][i]] = i;
         ns->dof_comp[ns->dof_of[c][i]] = (uint8_t)c;
       }
-  ns->hyperelastic = model_hyperelastic(s->m);
+  ns->hyperelastic = pdk_model_opts_hyperelastic(&s->m->opts);
   {
-    const int has = s->m->ops->tangent_column != NULL;
+    const int has = pdk_model_has_tangent(s->m);
+    char kinds[128];
     PDK_CHECK(s->opts.tangent != PDK_TANGENT_ANALYTIC || has, ctx, PDK_ERR_UNSUPPORTED,
               "newton: tangent analytic was requested but model '%s' has no analytic tangent "
-              "(PMB, LPS and Oterkus have one); use tangent auto or difference",
-              pdk_model_kind_name(s->m->opts.kind));
+              "(%s have one); use tangent auto or difference",
+              pdk_model_kind_name(s->m->opts.kind),
+              pdk_model_kinds_list(PDK_KIND_TANGENT, PDK_KIND_TANGENT, " and ", kinds,
+                                   sizeof kinds));
     ns->analytic = has && s->opts.tangent != PDK_TANGENT_DIFFERENCE;
   }
   s->stats.analytic_tangent = ns->analytic;
@@ -893,14 +883,13 @@ static int blame_singular(pdk_static *s, long dof, double ratio, int keep_prefix
     for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b)
       intact += alive ? alive[b] != 0 : 1;
     const uint8_t *flag = pdk_particles_field_data(s->p, "flag", 0);
-    flagged = flag && mo->kind == PDK_MODEL_CORRESPONDENCE ? flag[i] != 0 : 0;
+    flagged = flag && pdk_model_opts_has(mo, PDK_KIND_SPAN_FLAG) ? flag[i] != 0 : 0;
   }
   pdk_index peak = -1;
   const double rho = intact == 0 || flagged ? -1.0 : null_vector_rho(s, &peak);
   s->stats.null_nonaffine = rho;
   const long long peak_id = peak >= 0 ? (long long)pdk_particles_id(s->p)[peak] : -1;
-  const int corr_unstab =
-      mo->kind == PDK_MODEL_CORRESPONDENCE && mo->stabilization == PDK_STAB_NONE;
+  const int corr_unstab = pdk_model_opts_unstabilized(mo);
   if (intact == 0)
     snprintf(cause, sizeof cause,
              "particle id %lld has no intact bonds (it came loose); Newton cannot place a free "

@@ -31,10 +31,12 @@
 #include <unistd.h>
 
 #include "ext.h"
+#include "model_registry.h"
 #include "points.h"
 #include "scene_impl.h"
 
 #define SC_MAX_FIELDS 32    /* keys per mapping, + 1 terminator (johnson_cook has 23) */
+#define SC_MAX_NAMES 16     /* model kinds, laws */
 #define MAX_REACTION_SETS 8 /* pdk_history.reaction holds 8 */
 #define SC_NAME_MAX (PDK_FIELD_NAME_MAX - 8)
 #define KEY_MAX 256
@@ -168,18 +170,12 @@ typedef struct sc_scene {
 
 static const cyaml_strval_t lattice_names[] = {
     {"square", PDK_LATTICE_SQUARE}, {"hex", PDK_LATTICE_HEX}, {"cubic", PDK_LATTICE_CUBIC}};
-static const cyaml_strval_t kind_names[] = {
-    {"pmb", PDK_MODEL_PMB}, {"lps", PDK_MODEL_LPS}, {"correspondence", PDK_MODEL_CORRESPONDENCE}};
 static const cyaml_strval_t influence_names[] = {
     {"constant", PDK_INFLUENCE_CONSTANT}, {"inv_r", PDK_INFLUENCE_INV_R},
     {"inv_r2", PDK_INFLUENCE_INV_R2},     {"linear", PDK_INFLUENCE_LINEAR},
     {"cubic", PDK_INFLUENCE_CUBIC},       {"gaussian", PDK_INFLUENCE_GAUSSIAN}};
 static const cyaml_strval_t stab_names[] = {
     {"none", PDK_STAB_NONE}, {"silling", PDK_STAB_SILLING}, {"hourglass", PDK_STAB_HOURGLASS}};
-static const cyaml_strval_t law_names[] = {{"linear_elastic", PDK_LAW_LINEAR_ELASTIC},
-                                           {"svk", PDK_LAW_SVK},
-                                           {"neo_hooke", PDK_LAW_NEO_HOOKE},
-                                           {"jc", PDK_LAW_JC}};
 static const cyaml_strval_t connectivity_names[] = {{"tl", PDK_CONNECTIVITY_TL},
                                                     {"semi_tl", PDK_CONNECTIVITY_SEMI_TL},
                                                     {"ul", PDK_CONNECTIVITY_UL}};
@@ -240,6 +236,9 @@ typedef struct scene_schema {
       material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS], model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS],
       initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS], output[SC_MAX_FIELDS], limits[SC_MAX_FIELDS],
       scene[SC_MAX_FIELDS];
+  /* model.kind and model.law: the names the model registry lists (src/model_registry.h) */
+  cyaml_strval_t kind_names[SC_MAX_NAMES], law_names[SC_MAX_NAMES];
+  uint32_t num_kinds, num_laws;
 } scene_schema;
 
 static void field_add(cyaml_schema_field_t *fields, cyaml_schema_field_t f) {
@@ -268,6 +267,13 @@ static void schema_region_kinds(scene_schema *sc, cyaml_schema_field_t *f) {
 
 static void schema_build(scene_schema *sc, int dim) {
   memset(sc, 0, sizeof *sc);
+  for (int i = 0; pdk_model_kind_at(i) && sc->num_kinds < SC_MAX_NAMES; ++i)
+    if (pdk_model_kind_at(i)->caps & PDK_KIND_SCENE)
+      sc->kind_names[sc->num_kinds++] =
+          (cyaml_strval_t){pdk_model_kind_at(i)->name, (int64_t)pdk_model_kind_at(i)->kind};
+  for (int i = 0; pdk_law_at(i) && sc->num_laws < SC_MAX_NAMES; ++i)
+    sc->law_names[sc->num_laws++] =
+        (cyaml_strval_t){pdk_law_at(i)->name, (int64_t)pdk_law_at(i)->law};
   const uint32_t d = (uint32_t)dim;
   sc->num = (cyaml_schema_value_t){CYAML_VALUE_FLOAT(CYAML_FLAG_DEFAULT, double)};
   sc->str = (cyaml_schema_value_t){CYAML_VALUE_STRING(CYAML_FLAG_POINTER, char, 0, 255)};
@@ -363,7 +369,8 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(jc, CYAML_FIELD_ENUM("failed_mode", ENUM_FLAGS, sc_jc, failed_mode, failed_mode_names,
                            N_OF(failed_mode_names)));
 
-  ADD(model, CYAML_FIELD_ENUM("kind", ENUM_FLAGS, sc_model, kind, kind_names, N_OF(kind_names)));
+  ADD(model,
+      CYAML_FIELD_ENUM("kind", ENUM_FLAGS, sc_model, kind, sc->kind_names, sc->num_kinds));
   ADD(model, CYAML_FIELD_ENUM("influence", ENUM_FLAGS, sc_model, influence, influence_names,
                               N_OF(influence_names)));
   ADD(model, CYAML_FIELD_FLOAT("gaussian_width", OPT, sc_model, gaussian_width));
@@ -379,7 +386,7 @@ static void schema_build(scene_schema *sc, int dim) {
                               triaxiality_names, N_OF(triaxiality_names)));
   ADD(model, CYAML_FIELD_ENUM("break_stress", ENUM_FLAGS, sc_model, break_stress,
                               break_stress_names, N_OF(break_stress_names)));
-  ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, law_names, N_OF(law_names)));
+  ADD(model, CYAML_FIELD_ENUM("law", ENUM_FLAGS, sc_model, law, sc->law_names, sc->num_laws));
   ADD(model, CYAML_FIELD_ENUM("precision", ENUM_FLAGS, sc_model, precision, precision_names,
                               N_OF(precision_names)));
   ADD(model, CYAML_FIELD_ENUM("layout", ENUM_FLAGS, sc_model, layout, layout_names,
@@ -1220,13 +1227,13 @@ static int resolve_johnson_cook(loader *ld, const sc_material *mat, const sc_mod
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
   const int hjc = has(ld, "material.johnson_cook") && mat->johnson_cook;
-  if (m->law != PDK_LAW_JC) {
+  if (!pdk_model_opts_law_has(m, PDK_LAWF_PLASTICITY)) {
     REQUIRE(ld, !has(ld, "material.johnson_cook"), "material.johnson_cook",
             "only the jc law uses it (model.law is %s); remove it or set model.law: jc",
-            law_names[m->law].str);
+            pdk_law_name(m->law));
     REQUIRE(ld, !has(ld, "model.failed_keeps_bonds"), "model.failed_keeps_bonds",
             "only the jc law with damage has failed particles (model.law is %s); remove it",
-            law_names[m->law].str);
+            pdk_law_name(m->law));
     return PDK_SUCCESS;
   }
   REQUIRE(ld, hjc, "material.johnson_cook",
@@ -1379,7 +1386,7 @@ static int resolve_connectivity(loader *ld, const sc_model *mo) {
     m->ul_skin = mo->ul_skin;
   }
   if (m->connectivity == PDK_CONNECTIVITY_UL) {
-    const int jc_breaks = m->law == PDK_LAW_JC && m->jc.damage && !m->failed_keeps_bonds;
+    const int jc_breaks = pdk_model_opts_law_breaks(m);
     REQUIRE(ld, m->critical_stretch == 0 && !jc_breaks, "model.connectivity",
             "ul cannot break bonds (a rebuild in the current configuration would bond broken "
             "pairs again), but %s; use tl or semi_tl, or %s",
@@ -1396,7 +1403,7 @@ static int resolve_connectivity(loader *ld, const sc_model *mo) {
  * and connectivity. */
 static int resolve_softening(loader *ld, const sc_model *mo) {
   pdk_model_opts *m = &ld->s->model;
-  const int corr_jc = m->kind == PDK_MODEL_CORRESPONDENCE && m->law == PDK_LAW_JC;
+  const int corr_jc = pdk_model_opts_law_has(m, PDK_LAWF_HISTORY);
   if (has(ld, "model.stabilization_softening")) {
     m->stab_softening = mo->stabilization_softening;
     REQUIRE(ld, !m->stab_softening || (corr_jc && m->stabilization == PDK_STAB_SILLING),
@@ -1456,7 +1463,7 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
   *m = pdk_model_opts_default();
-  m->kind = has(ld, "model.kind") ? (pdk_model_kind)mo->kind : PDK_MODEL_PMB;
+  m->kind = has(ld, "model.kind") ? (pdk_model_kind)mo->kind : pdk_model_kind_at(0)->kind;
   const char *kname = pdk_model_kind_name(m->kind);
   REQUIRE(ld, isfinite(mat->density) && mat->density > 0, "material.density",
           "must be > 0, got %g (mass per volume, e.g. 7850 kg/m^3 for steel)", mat->density);
@@ -1485,11 +1492,13 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
     REQUIRE(ld, hK, "material.bulk_modulus",
             "is missing; shear_modulus is given, so bulk_modulus "
             "is needed too");
-    REQUIRE(
-        ld, hG || m->kind == PDK_MODEL_PMB, "material.shear_modulus",
-        "is missing; the %s model needs bulk_modulus and shear_modulus (only pmb needs the bulk "
-        "modulus alone)",
-        kname);
+    char bulk_only[128];
+    REQUIRE(ld, hG || !pdk_model_opts_has(m, PDK_KIND_SHEAR), "material.shear_modulus",
+            "is missing; the %s model needs bulk_modulus and shear_modulus (only %s needs the "
+            "bulk modulus alone)",
+            kname,
+            pdk_model_kinds_list(PDK_KIND_SHEAR | PDK_KIND_SCENE, PDK_KIND_SCENE, " or ",
+                                 bulk_only, sizeof bulk_only));
     REQUIRE(ld, isfinite(mat->bulk_modulus) && mat->bulk_modulus > 0, "material.bulk_modulus",
             "must be > 0, got %g", mat->bulk_modulus);
     if (hG)
@@ -1503,15 +1512,17 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
          "bulk_modulus and shear_modulus");
   }
 
-  const int corr = m->kind == PDK_MODEL_CORRESPONDENCE;
-  const char *corr_only[] = {"model.influence",     "model.gaussian_width",
-                             "model.stabilization", "model.stabilization_coefficient",
-                             "model.law",           "model.connectivity"};
-  for (int k = 0; k < (int)(sizeof corr_only / sizeof corr_only[0]); ++k)
-    REQUIRE(ld, corr || !has(ld, corr_only[k]), corr_only[k],
-            "only the correspondence model uses it (model.kind is %s); remove it or set "
-            "model.kind: correspondence",
-            kname);
+  /* the keys only some kinds accept (the kinds' pdk_model_kind_info.scene_keys) */
+  for (int k = 0; pdk_model_scene_key_at(k); ++k) {
+    const char *key = pdk_model_scene_key_at(k);
+    if (pdk_model_opts_scene_key(m, key) || !has(ld, key)) continue;
+    char users[128], alt[128];
+    int count;
+    pdk_model_key_kinds(key, " and ", users, sizeof users, &count);
+    FAIL(ld, key, "only the %s model%s %s it (model.kind is %s); remove it or set model.kind: %s",
+         users, count > 1 ? "s" : "", count > 1 ? "use" : "uses", kname,
+         pdk_model_key_kinds(key, " or ", alt, sizeof alt, NULL));
+  }
   if (has(ld, "model.influence")) m->influence = (pdk_influence)mo->influence;
   if (has(ld, "model.gaussian_width")) {
     REQUIRE(ld, m->influence == PDK_INFLUENCE_GAUSSIAN, "model.gaussian_width",
@@ -1521,9 +1532,9 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
             "must be > 0 (a fraction of the horizon), got %g", mo->gaussian_width);
     m->gaussian_width = mo->gaussian_width;
   }
-  m->stabilization = has(ld, "model.stabilization") ? (pdk_stabilization)mo->stabilization
-                     : corr                         ? PDK_STAB_SILLING
-                                                    : PDK_STAB_NONE;
+  m->stabilization = has(ld, "model.stabilization")
+                         ? (pdk_stabilization)mo->stabilization
+                         : pdk_model_kind_info_of(m->kind)->scene_stabilization;
   if (has(ld, "model.stabilization_coefficient")) {
     REQUIRE(ld, isfinite(mo->stabilization_coefficient) && mo->stabilization_coefficient >= 0,
             "model.stabilization_coefficient", "must be >= 0, got %g",
@@ -1538,12 +1549,14 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   if (!has(ld, "model.layout")) m->stencil = PDK_STENCIL_AUTO;
   if (has(ld, "model.stencil")) {
     m->stencil = (pdk_stencil_mode)mo->stencil;
-    REQUIRE(ld,
-            m->stencil != PDK_STENCIL_ON || m->kind == PDK_MODEL_PMB || m->kind == PDK_MODEL_LPS ||
-                m->kind == PDK_MODEL_CORRESPONDENCE,
+    char stencil_kinds[128];
+    REQUIRE(ld, m->stencil != PDK_STENCIL_ON || pdk_model_opts_has(m, PDK_KIND_STENCIL),
             "model.stencil",
-            "on needs model.kind pmb, lps or correspondence (the stencil path exists for those "
-            "models only; model.kind is %s); use auto or off",
+            "on needs model.kind %s (the stencil path exists for those models only; model.kind "
+            "is %s); use auto or off",
+            pdk_model_kinds_list(PDK_KIND_STENCIL | PDK_KIND_SCENE,
+                                 PDK_KIND_STENCIL | PDK_KIND_SCENE, " or ", stencil_kinds,
+                                 sizeof stencil_kinds),
             kname);
   }
   REQUIRE(ld, isfinite(mo->critical_stretch) && mo->critical_stretch >= 0, "model.critical_stretch",
@@ -1648,12 +1661,14 @@ static int resolve_materials(loader *ld, const sc_scene *d) {
   pdk_model_opts *m = &s->model;
   const int nm = (int)d->materials_count;
   if (nm == 0) return PDK_SUCCESS;
-  REQUIRE(ld, m->kind != PDK_MODEL_LPS, "materials",
-          "several materials are implemented for pmb and correspondence, not lps; use one "
-          "material or model.kind pmb or correspondence");
-  REQUIRE(ld, m->law != PDK_LAW_JC, "materials",
-          "the Johnson-Cook law takes one material (material.johnson_cook); several materials "
-          "work with the elastic laws");
+  char with[128], alt[128];
+  const unsigned mats = PDK_KIND_MATERIALS | PDK_KIND_SCENE;
+  REQUIRE(ld, pdk_model_opts_has(m, PDK_KIND_MATERIALS), "materials",
+          "several materials are implemented for %s, not %s; use one material or model.kind %s",
+          pdk_model_kinds_list(mats, mats, " and ", with, sizeof with),
+          pdk_model_kind_name(m->kind), pdk_model_kinds_list(mats, mats, " or ", alt, sizeof alt));
+  REQUIRE(ld, !pdk_model_opts_law_has(m, PDK_LAWF_ONE_MATERIAL), "materials", "%s",
+          pdk_law_info_of(m->law)->one_material_why);
   s->mat_regions = calloc((size_t)nm + 1, sizeof *s->mat_regions);
   s->materials = calloc((size_t)nm + 2, sizeof *s->materials);
   if (!s->mat_regions || !s->materials)
@@ -1684,10 +1699,15 @@ static int resolve_materials(loader *ld, const sc_scene *d) {
     const int hnu = has(ld, K(ld, "materials[%d].poisson_ratio", k));
     const int hK = has(ld, K(ld, "materials[%d].bulk_modulus", k));
     const int hG = has(ld, K(ld, "materials[%d].shear_modulus", k));
-    REQUIRE(ld, (hE && hnu && !hK && !hG) || (!hE && !hnu && hK && (hG || m->kind == PDK_MODEL_PMB)),
+    char bulk_only[128];
+    REQUIRE(ld,
+            (hE && hnu && !hK && !hG) ||
+                (!hE && !hnu && hK && (hG || !pdk_model_opts_has(m, PDK_KIND_SHEAR))),
             K(ld, "materials[%d]", k),
             "needs its elastic constants: youngs_modulus and poisson_ratio, or bulk_modulus and "
-            "shear_modulus (pmb: bulk_modulus alone), not a mix");
+            "shear_modulus (%s: bulk_modulus alone), not a mix",
+            pdk_model_kinds_list(PDK_KIND_SHEAR | PDK_KIND_SCENE, PDK_KIND_SCENE, " and ",
+                                 bulk_only, sizeof bulk_only));
     if (hE) {
       const double E = r->youngs_modulus, nu = r->poisson_ratio;
       REQUIRE(ld, isfinite(E) && E > 0, K(ld, "materials[%d].youngs_modulus", k),
@@ -1913,13 +1933,12 @@ static int resolve_static_solver(loader *ld, const sc_scene *d) {
             "to load along the time, or remove end_time to scale them by the load steps");
     o->total_time = so->end_time;
     s->end_time = so->end_time;
-  } else if (s->model.kind == PDK_MODEL_CORRESPONDENCE && s->model.law == PDK_LAW_JC) {
-    const pdk_jc_params *jc = &s->model.jc;
-    REQUIRE(ld, jc->C == 0.0 && !(jc->damage && jc->D4 != 0.0), "solver",
-            "the Johnson-Cook rate terms (C = %g, D4 = %g) need strain rates, so the load steps "
-            "need a pseudo-time; give solver.end_time (the duration of the load path) and "
-            "conditions with functions of time",
-            jc->C, jc->damage ? jc->D4 : 0.0);
+  } else {
+    char rate_terms[160];
+    REQUIRE(ld, !pdk_model_opts_rate_terms(&s->model, rate_terms, sizeof rate_terms), "solver",
+            "%s need strain rates, so the load steps need a pseudo-time; give solver.end_time "
+            "(the duration of the load path) and conditions with functions of time",
+            rate_terms);
   }
 
   /* Convergence. */
@@ -2174,11 +2193,11 @@ static double memory_estimate(const pdk_scene *s, double *per_point, double *per
   if (s->lattice.type == PDK_LATTICE_HEX) nb *= 2.0 / sqrt(3.0);
   const double n = (double)s->num_points;
   if (nb > n - 1) nb = n - 1;
-  const int corr = s->model.kind == PDK_MODEL_CORRESPONDENCE;
+  const pdk_model_kind_info *k = pdk_model_kind_info_of(s->model.kind);
   const int single = s->model.precision == PDK_PRECISION_FLOAT;
-  *per_point = corr ? 1024 : 640;
-  *per_bond = corr ? 16 : single ? 12 : 8;
-  if (s->solver_type == PDK_SOLVER_NEWTON) *per_bond += (corr ? 250 : 100) * s->dim * s->dim;
+  *per_point = k->mem_point;
+  *per_bond = single ? k->mem_bond_float : k->mem_bond;
+  if (s->solver_type == PDK_SOLVER_NEWTON) *per_bond += k->mem_newton_bond * s->dim * s->dim;
   *bonds = n * nb;
   return 32.0 * 1024 * 1024 + n * *per_point + *bonds * *per_bond;
 }

@@ -5,28 +5,14 @@
  *   -> define sets -> Morton reorder by the cells of the horizon -> families with
  *   geometry.precracks -> model -> solver: explicit (boundary_conditions, initial_conditions,
  *   solver) or static (solver.type adr | newton: boundary_conditions and the load steps of solver;
- *   pdk_sim_static_step solves one load step at a time) -> output fields ("u", "von_mises" when
- *   output.fields asks for them).
+ *   pdk_sim_static_step solves one load step at a time) -> output fields ("u", and the model's
+ *   derived fields such as "von_mises", when output.fields asks for them).
  *
  * Derived output fields, refreshed by pdk_sim_update_output_fields before each field output:
  *   "u"          f64 x dim  displacement x - X
- *   "von_mises"  f64 x 1    von Mises equivalent of the Cauchy stress sigma [pressure]
- *                           (correspondence only), sqrt(3/2 dev sigma : dev sigma) with all
- *                           three normal components, so in 2-D it includes the plane-strain
- *                           sigma_zz. From the model's state after the last force pass:
- *                             Johnson-Cook: a trial update of the committed history at the stored F
- *                               (pdk_jc_update with a scratch output: nothing changes), whose
- *                               returned stress is the one of the pass to round-off; failed
- *                               particles give 0;
- *                             elastic laws: sigma = P F^T / J with P = A K (A = P K^-1 and K^-1 are
- *                               fields of the model; updated-Lagrangian connectivity keeps no K, so
- *                               there P is the law evaluated again at the stored total F, as its
- *                               pass did), P itself for linear_elastic (small strain:
- *                               P = sigma); in 2-D sigma_zz from the law at F33 = 1:
- *                               linear_elastic lambda tr(eps), svk lambda tr(E) / J,
- *                               neo_hooke lambda ln(J) / J;
- *                           particles whose family does not span, or where the law is undefined
- *                           (flag SPAN or INVERTED), give 0.
+ *   the model kind's derived fields (pdk_model_kind_info.derived, src/model_registry.h), f64 x 1,
+ *   computed by the model (pdk_model_derived) from its state after the last force pass: the
+ *   correspondence kinds derive "von_mises" (src/model_corr_derived.c).
  *
  * The time step: the solver is created with force_dt set, and the scene's solver.dt is compared
  * here with the solver's stable estimate, so that a dt above it is refused with a message citing
@@ -50,11 +36,12 @@
 
 #include "checkpoint_impl.h"
 #include "state.h"         /* the restart sets dt where the checkpoint's run left off */
-#include "kernels.h"       /* PDK_CORR_FLAG_* */
-#include "model_stencil.h" /* pdk_stencil_corr_refusal */
+#include "model_registry.h"
 #include "run_impl.h"
 #include "points.h"
 #include "scene_impl.h"
+
+#define PDK_SIM_MAX_DERIVED 8
 
 struct pdk_sim {
   pdk_ctx *ctx;
@@ -67,7 +54,9 @@ struct pdk_sim {
   long num_steps;  /* at the dt of creation */
   double end_time; /* solver.end_time, 0 with solver.steps */
   int has_u;
-  int has_von_mises;
+  /* the model's derived fields output.fields asks for (names from the registry) */
+  const char *derived[PDK_SIM_MAX_DERIVED];
+  int num_derived;
   pdk_bc *bcs;      /* [num_bcs], set names point into bc_fields */
   char **bc_fields; /* [num_bcs] "set:<name>" or NULL */
   int num_bcs;
@@ -301,19 +290,18 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
     }
   }
 
-  /* Order by the cells of the horizon (Morton), or by the lattice's rows where the
-   * correspondence stencil path will walk the particles' own arrays in site order (its per-particle
-   * end reads K^-1 and writes F, A: 0.85 x the pass time on a 97 336-particle cube, bench/README.md
-   * "Particle order on the correspondence stencil path"); then families. */
+  /* Order by the cells of the horizon (Morton), or by the lattice's rows where the model's
+   * stencil path will walk the particles' own arrays in site order (the correspondence kind's:
+   * 0.85 x the pass time on a 97 336-particle cube, bench/README.md "Particle order on the
+   * correspondence stencil path"); then families. */
   double edge = pdk_families_cell_edge(sim->p, s->horizon);
   if (edge <= 0) {
     err = pdk_scene_blame(s, ctx, pdk_ctx_error_code(ctx) ? pdk_ctx_error_code(ctx) : PDK_ERR_ARG,
                           "geometry.horizon_factor");
     goto cleanup;
   }
-  const int rows = s->model.kind == PDK_MODEL_CORRESPONDENCE &&
-                   s->model.stencil != PDK_STENCIL_OFF && !pdk_stencil_corr_refusal(&s->model) &&
-                   s->lattice.type != PDK_LATTICE_HEX && s->lattice.jitter == 0.0 && !s->points;
+  const int rows = pdk_model_opts_stencil_rows(&s->model) && s->lattice.type != PDK_LATTICE_HEX &&
+                   s->lattice.jitter == 0.0 && !s->points;
   if (rows)
     PDK_CALL_GOTO(pdk_particles_reorder_rows(sim->p, s->lattice.spacing, NULL));
   else
@@ -368,36 +356,49 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
       PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "u", PDK_F64, s->dim));
       sim->has_u = 1;
     }
-    if (!strcmp(s->output.fields[k], "von_mises")) {
-      if (s->model.kind != PDK_MODEL_CORRESPONDENCE) {
-        char key[64];
-        snprintf(key, sizeof key, "output.fields[%d]", k);
-        err = pdk_scene_error(s, ctx, PDK_ERR_ARG, key,
-                              "von_mises is the stress of the correspondence model (model.kind "
-                              "is %s, which has no stress tensor); remove it or set model.kind: "
-                              "correspondence",
-                              pdk_model_kind_name(s->model.kind));
-        goto cleanup;
-      }
-      PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "von_mises", PDK_F64, 1));
-      sim->has_von_mises = 1;
+    const char *name = s->output.fields[k];
+    const pdk_model_derived_info *dv = pdk_model_kind_derived(s->model.kind, name), *od = NULL;
+    const pdk_model_kind_info *owner = pdk_model_derived_owner(name, &od);
+    if (!dv && owner) {
+      char key[64];
+      snprintf(key, sizeof key, "output.fields[%d]", k);
+      err = pdk_scene_error(s, ctx, PDK_ERR_ARG, key,
+                            "%s is the %s of the %s model (model.kind is %s, which has no %s "
+                            "tensor); remove it or set model.kind: %s",
+                            name, od->what, owner->name, pdk_model_kind_name(s->model.kind),
+                            od->what, owner->name);
+      goto cleanup;
+    }
+    if (dv) {
+      PDK_CALL_GOTO(pdk_particles_field_add(sim->p, dv->name, PDK_F64, 1));
+      int listed = 0;
+      for (int q = 0; q < sim->num_derived; ++q)
+        listed = listed || !strcmp(sim->derived[q], dv->name);
+      if (!listed && sim->num_derived < PDK_SIM_MAX_DERIVED)
+        sim->derived[sim->num_derived++] = dv->name;
     }
   }
   for (int k = 0; k < s->output.num_fields; ++k) {
     if (pdk_particles_field_exists(sim->p, s->output.fields[k])) continue;
-    char names[1024], key[64];
+    char names[1024], key[64], derived[256] = "";
     field_list(sim->p, names, sizeof names);
     snprintf(key, sizeof key, "output.fields[%d]", k);
     const char *name = s->output.fields[k];
-    const int jc_history = !strcmp(name, "eps_p") || !strcmp(name, "damage") ||
-                           !strcmp(name, "failed") || !strcmp(name, "w_plastic") ||
-                           !strcmp(name, "w_damage") || !strcmp(name, "eps_p_rate");
-    err = pdk_scene_error(
-        s, ctx, PDK_ERR_NOT_FOUND, key, "'%s' is not a field of this simulation%s; fields: %s%s%s",
-        name, jc_history ? " (it is Johnson-Cook history: set model.law: jc)" : "", names,
-        sim->has_u ? "" : ", u (displacement)",
-        sim->has_von_mises || s->model.kind != PDK_MODEL_CORRESPONDENCE ? ""
-                                                                        : ", von_mises (stress)");
+    /* a field of a law's history: which law declares it */
+    const char *hint = "";
+    for (int l = 0; pdk_law_at(l); ++l)
+      for (const char *const *h = pdk_law_at(l)->history_fields; h && *h; ++h)
+        if (!strcmp(*h, name) && !*hint) hint = pdk_law_at(l)->history_hint;
+    /* the derived fields the kind offers and the scene did not ask for */
+    const pdk_model_kind_info *ki = pdk_model_kind_info_of(s->model.kind);
+    for (const pdk_model_derived_info *d = ki ? ki->derived : NULL; d && d->name; ++d)
+      if (!pdk_particles_field_exists(sim->p, d->name)) {
+        const size_t len = strlen(derived);
+        snprintf(derived + len, sizeof derived - len, ", %s (%s)", d->name, d->what);
+      }
+    err = pdk_scene_error(s, ctx, PDK_ERR_NOT_FOUND, key,
+                          "'%s' is not a field of this simulation%s; fields: %s%s%s", name, hint,
+                          names, sim->has_u ? "" : ", u (displacement)", derived);
     goto cleanup;
   }
   PDK_CALL_GOTO(pdk_sim_update_output_fields(sim));
@@ -576,154 +577,15 @@ int pdk_sim_static_step(pdk_sim *sim, pdk_history *h) {
   return PDK_SUCCESS;
 }
 
-/* von Mises of a symmetric 3 x 3 stress. */
-static double von_mises_of(const double S[3][3]) {
-  const double a = S[0][0] - S[1][1], b = S[1][1] - S[2][2], c = S[2][2] - S[0][0];
-  return sqrt(0.5 * (a * a + b * b + c * c) +
-              3.0 * (S[0][1] * S[0][1] + S[1][2] * S[1][2] + S[0][2] * S[0][2]));
-}
-
-/* "von_mises" of every particle (see the file comment). */
-static int update_von_mises(pdk_sim *sim) {
-  pdk_particles *p = sim->p;
-  const int d = pdk_particles_dim(p);
-  const pdk_index n = pdk_particles_count(p);
-  const pdk_model_opts *mo = pdk_model_opts_get(sim->m);
-  const double mu = mo->shear_modulus, lambda0 = mo->bulk_modulus - 2.0 * mu / 3.0;
-  const int32_t *mat = mo->num_materials > 0 ? pdk_particles_field_data(p, "material", 0) : NULL;
-  /* the step of the last pass: the explicit time step, or the static load step's pseudo-time */
-  const double dt = sim->e ? pdk_explicit_dt(sim->e) : pdk_model_get_dt(sim->m);
-  double *vm = pdk_particles_field_data(p, "von_mises", 0);
-  const uint8_t *flag = pdk_particles_field_data(p, "flag", 0);
-  const double *Fc[9], *Ac[9], *Kc[9];
-  const int jc = mo->law == PDK_LAW_JC;
-  /* TL and semi-TL: P = A K from the pass's own A; UL keeps no K (A = tau_r M^-1 there), so the
-   * elastic laws are evaluated again at the total F, as its pass did */
-  const int from_law = !jc && mo->connectivity == PDK_CONNECTIVITY_UL;
-  int ok = vm && flag;
-  for (int t = 0; t < d * d; ++t) {
-    Fc[t] = pdk_particles_field_data(p, "F", t);
-    Ac[t] = pdk_particles_field_data(p, "A", t);
-    Kc[t] = pdk_particles_field_data(p, "Kinv", t);
-    ok = ok && Fc[t] && (jc || from_law || (Ac[t] && Kc[t]));
-  }
-  const double *cp[6] = {0}, *eps_p = NULL, *damage = NULL, *temp = NULL;
-  const uint8_t *failed = NULL;
-  if (jc) {
-    for (int c = 0; c < 6; ++c) {
-      cp[c] = pdk_particles_field_data(p, "cp_inv", c);
-      ok = ok && cp[c];
-    }
-    eps_p = pdk_particles_field_data(p, "eps_p", 0);
-    damage = pdk_particles_field_data(p, "damage", 0);
-    failed = pdk_particles_field_data(p, "failed", 0);
-    temp = mo->jc.thermal ? pdk_particles_field_data(p, "temp_rise", 0) : NULL;
-    ok = ok && eps_p && damage && failed && (!mo->jc.thermal || temp);
-  }
-  PDK_CHECK(ok, sim->ctx, PDK_ERR_NOT_FOUND,
-            "von_mises needs the correspondence fields F, flag%s; the model did not declare them",
-            jc         ? " and the Johnson-Cook history"
-            : from_law ? ""
-                       : ", A, Kinv");
-  pdk_corr_consts kc;
-  memset(&kc, 0, sizeof kc);
-  kc.dim = d;
-  kc.law = (int)mo->law;
-  kc.lambda = lambda0;
-  kc.mu = mu;
-  for (pdk_index i = 0; i < n; ++i) {
-    double F[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, S[3][3] = {{0}};
-    vm[i] = 0.0;
-    if (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) continue;
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        F[a][c] = Fc[a * d + c][i];
-    if (jc) {
-      if (failed[i]) continue;
-      pdk_jc_state in, scratch;
-      for (int c = 0; c < 6; ++c)
-        in.cp_inv[c] = cp[c][i];
-      in.eps_p = eps_p[i];
-      in.damage = damage[i];
-      in.temp_rise = temp ? temp[i] : 0.0;
-      in.failed = 0;
-      double P[3][3];
-      pdk_jc_result res;
-      if (!pdk_jc_update(&mo->jc, d, F, dt, &in, &scratch, P, &res)) vm[i] = res.sigma_vm;
-      continue;
-    }
-    /* the particle's material's Lame constants (multi-material bodies) */
-    pdk_corr_consts ki = kc;
-    if (mat) {
-      const pdk_material *q = &mo->materials[mat[i]];
-      ki.mu = q->shear_modulus;
-      ki.lambda = q->bulk_modulus - 2.0 * q->shear_modulus / 3.0;
-    }
-    double P[3][3] = {{0}};
-    if (from_law) {
-      double W;
-      if (!pdk_kernel_corr_law_ref(&ki, F, P, &W)) continue;
-    } else {
-      /* P = A K, K = (K^-1)^-1 */
-      double Ki[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}}, K[3][3];
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c)
-          Ki[a][c] = Kc[a * d + c][i];
-      const double detK = Ki[0][0] * (Ki[1][1] * Ki[2][2] - Ki[1][2] * Ki[2][1]) -
-                          Ki[0][1] * (Ki[1][0] * Ki[2][2] - Ki[1][2] * Ki[2][0]) +
-                          Ki[0][2] * (Ki[1][0] * Ki[2][1] - Ki[1][1] * Ki[2][0]);
-      if (!(fabs(detK) > 0) || !isfinite(detK)) continue;
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) {
-          /* cofactor / det, transposed */
-          const int a1 = (c + 1) % 3, a2 = (c + 2) % 3, c1 = (a + 1) % 3, c2 = (a + 2) % 3;
-          K[a][c] = (Ki[a1][c1] * Ki[a2][c2] - Ki[a1][c2] * Ki[a2][c1]) / detK;
-        }
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c)
-          for (int e = 0; e < d; ++e)
-            P[a][c] += Ac[a * d + e][i] * K[e][c];
-    }
-    const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
-                     F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
-                     F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
-    if (mo->law == PDK_LAW_LINEAR_ELASTIC) {
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c)
-          S[a][c] = 0.5 * (P[a][c] + P[c][a]);
-    } else {
-      if (!(J > 0)) continue;
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c) {
-          double v = 0.0;
-          for (int e = 0; e < d; ++e)
-            v += P[a][e] * F[c][e];
-          S[a][c] = v / J;
-        }
-    }
-    if (d == 2) {
-      const double lambda = ki.lambda;
-      switch (mo->law) {
-      case PDK_LAW_LINEAR_ELASTIC: S[2][2] = lambda * (F[0][0] - 1.0 + F[1][1] - 1.0); break;
-      case PDK_LAW_SVK: {
-        double trE = 0.0;
-        for (int a = 0; a < 2; ++a)
-          trE += 0.5 * (F[0][a] * F[0][a] + F[1][a] * F[1][a] - 1.0);
-        S[2][2] = lambda * trE / J;
-        break;
-      }
-      case PDK_LAW_NEO_HOOKE: S[2][2] = lambda * log(J) / J; break;
-      case PDK_LAW_JC: break;
-      }
-    }
-    vm[i] = von_mises_of(S);
-  }
-  return PDK_SUCCESS;
-}
-
 int pdk_sim_update_output_fields(pdk_sim *sim) {
   PDK_CHECK_ARG(sim, NULL);
-  if (sim->has_von_mises) PDK_CALL(update_von_mises(sim));
+  if (sim->num_derived) {
+    /* the step of the last pass: the explicit time step, or the static load step's pseudo-time */
+    const double dt = sim->e ? pdk_explicit_dt(sim->e) : pdk_model_get_dt(sim->m);
+    for (int k = 0; k < sim->num_derived; ++k)
+      PDK_CALL(pdk_model_derived(sim->m, sim->derived[k], dt,
+                                 pdk_particles_field_data(sim->p, sim->derived[k], 0)));
+  }
   if (!sim->has_u) return PDK_SUCCESS;
   const int dim = pdk_particles_dim(sim->p);
   const pdk_index n = pdk_particles_count(sim->p);

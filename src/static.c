@@ -225,7 +225,7 @@ int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static *
   s->dim = pdk_particles_dim(s->p);
   s->n = pdk_particles_count(s->p);
   s->horizon = pdk_families_horizon(s->fam);
-  s->hops = m->opts.kind == PDK_MODEL_PMB ? 1 : 2;
+  s->hops = pdk_model_opts_hops(&m->opts);
   s->num_blocks = (s->n + PDK_STATIC_BLOCK - 1) / PDK_STATIC_BLOCK;
   s->stats.coupling_hops = s->hops;
   if (s->opts.num_bcs) {
@@ -255,14 +255,13 @@ int pdk_static_create(pdk_model *m, const pdk_static_opts *opts_in, pdk_static *
                    ctx, PDK_ERR_MEMORY, "static solver: out of memory for %d particles", (int)s->n);
     memcpy(s->x_prev[c], field(s->p, "x", c), (size_t)s->n * sizeof(double));
   }
-  if (!s->time_mode && m->opts.kind == PDK_MODEL_CORRESPONDENCE && m->opts.law == PDK_LAW_JC) {
-    const pdk_jc_params *jc = &m->opts.jc;
-    PDK_CHECK_GOTO(jc->C == 0.0 && !(jc->damage && jc->D4 != 0.0), ctx, PDK_ERR_ARG,
-                   "%s: the Johnson-Cook rate terms (C = %g, D4 = %g) need strain rates, so the "
-                   "load steps need a pseudo-time: set total_time > 0 (scene: solver.end_time) "
-                   "and give the conditions time functions (e.g. a displacement with function "
-                   "linear)",
-                   pdk_static_method_name(s->opts.method), jc->C, jc->damage ? jc->D4 : 0.0);
+  char rate_terms[160];
+  if (!s->time_mode && pdk_model_opts_rate_terms(&m->opts, rate_terms, sizeof rate_terms)) {
+    PDK_CHECK_GOTO(0, ctx, PDK_ERR_ARG,
+                   "%s: %s need strain rates, so the load steps need a pseudo-time: set "
+                   "total_time > 0 (scene: solver.end_time) and give the conditions time "
+                   "functions (e.g. a displacement with function linear)",
+                   pdk_static_method_name(s->opts.method), rate_terms);
   }
   s->block_part = calloc((size_t)(s->num_blocks > 0 ? s->num_blocks : 1) * 2, sizeof(double));
   PDK_CHECK_GOTO(s->block_part, ctx, PDK_ERR_MEMORY, "static solver: out of memory");

@@ -169,6 +169,7 @@ static void model_api(pdk_ctx *ctx, pdk_particles *p, pdk_families *fam, pdk_mod
   IS(!pdk_model_current_families(NULL));
   NULL_ARG(NOCTX, pdk_model_set_dt(NULL, 1e-6));
   IS(isnan(pdk_model_get_dt(NULL)));
+  IS(!pdk_model_opts_uses(NULL, "law") && !pdk_model_opts_uses(&mo, NULL));
   double a, b, c;
   NULL_ARG(NOCTX, pdk_model_plastic_work(NULL, &a, &b, &c));
   NULL_ARG(NOCTX, pdk_smooth_field(NULL, fam, PDK_INFLUENCE_CONSTANT, 0.0, "volume", "sm"));

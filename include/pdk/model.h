@@ -372,6 +372,13 @@ PDK_EXPORT double pdk_model_get_dt(const pdk_model *m);
 PDK_EXPORT int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage,
                                       double *breaking);
 PDK_EXPORT const char *pdk_model_kind_name(pdk_model_kind kind);
+/* Whether option `name` (a pdk_model_opts member, as the scene key model.<name>) can act with
+ * these options' kind and law: 1 when it does, 0 when the kind or law ignores or refuses it. The
+ * options only some kinds take (influence, gaussian_width, stabilization,
+ * stabilization_coefficient, law, connectivity: correspondence), and those of laws with history
+ * (stab_softening, damage_triaxiality, break_stress: law jc with tl or semi_tl connectivity);
+ * 1 for any other name. */
+PDK_EXPORT int pdk_model_opts_uses(const pdk_model_opts *o, const char *name);
 
 /* Influence-weighted smoothing of a particle field (Queiruga & Moridis 2017, eq. (49), the
  * post-process that removes the oscillations of unstabilized correspondence):

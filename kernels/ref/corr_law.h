@@ -10,74 +10,20 @@
 #include <math.h>
 
 #include "kernels.h"
+#include "ref/law_linear_elastic.h"
+#include "ref/law_neo_hooke.h"
+#include "ref/law_svk.h"
 #include "ref/tensor_d.h"
 
-static inline void pdk_corr_mul_d(const int d, const double S[3][3], const double T[3][3],
-                                  double R[3][3]) {
-  for (int a = 0; a < d; ++a)
-    for (int c = 0; c < d; ++c) {
-      double s = 0.0;
-      for (int e = 0; e < d; ++e)
-        s += S[a][e] * T[e][c];
-      R[a][c] = s;
-    }
-}
-
-/* Elastic laws (linear, SVK, Neo-Hooke) in dimension d = k->dim: P(F) and W(F); return 0 if the law
- * is undefined at F (or for another law). */
+/* Elastic laws in dimension d = k->dim: P(F) and W(F), each law in its own header
+ * (kernels/ref/law_<law>.h); return 0 if the law is undefined at F (or for another law). */
 static inline int pdk_corr_law_eval_d(const int d, const pdk_corr_consts *k, const double F[3][3],
                                       double P[3][3], double *W) {
   const double lambda = k->lambda, mu = k->mu;
   switch (k->law) {
-  case PDK_KERNEL_LAW_LINEAR_ELASTIC: {
-    double eps[3][3], tr = 0.0, ee = 0.0;
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        eps[a][c] = 0.5 * (F[a][c] + F[c][a]) - (a == c ? 1.0 : 0.0);
-        ee += eps[a][c] * eps[a][c];
-      }
-    for (int a = 0; a < d; ++a)
-      tr += eps[a][a];
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        P[a][c] = 2.0 * mu * eps[a][c] + (a == c ? lambda * tr : 0.0);
-    *W = 0.5 * lambda * tr * tr + mu * ee;
-    return 1;
-  }
-  case PDK_KERNEL_LAW_SVK: {
-    double E[3][3], S[3][3], tr = 0.0, ee = 0.0;
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        double C = 0.0;
-        for (int e = 0; e < d; ++e)
-          C += F[e][a] * F[e][c];
-        E[a][c] = 0.5 * (C - (a == c ? 1.0 : 0.0));
-        ee += E[a][c] * E[a][c];
-      }
-    for (int a = 0; a < d; ++a)
-      tr += E[a][a];
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c)
-        S[a][c] = 2.0 * mu * E[a][c] + (a == c ? lambda * tr : 0.0);
-    pdk_corr_mul_d(d, F, S, P);
-    *W = 0.5 * lambda * tr * tr + mu * ee;
-    return 1;
-  }
-  case PDK_KERNEL_LAW_NEO_HOOKE: {
-    const double J = pdk_det_d(d, F);
-    if (!(J > 0.0) || !isfinite(J)) return 0;
-    double Finv[3][3], ff = 0.0;
-    pdk_inv_d(d, F, J, Finv);
-    const double lnJ = log(J);
-    for (int a = 0; a < d; ++a)
-      for (int c = 0; c < d; ++c) {
-        const double FinvT = Finv[c][a];
-        P[a][c] = mu * (F[a][c] - FinvT) + lambda * lnJ * FinvT;
-        ff += F[a][c] * F[a][c];
-      }
-    *W = 0.5 * mu * (ff - d) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
-    return 1;
-  }
+  case PDK_KERNEL_LAW_LINEAR_ELASTIC: return pdk_law_linear_elastic_eval_d(d, lambda, mu, F, P, W);
+  case PDK_KERNEL_LAW_SVK: return pdk_law_svk_eval_d(d, lambda, mu, F, P, W);
+  case PDK_KERNEL_LAW_NEO_HOOKE: return pdk_law_neo_hooke_eval_d(d, lambda, mu, F, P, W);
   }
   return 0;
 }

@@ -1,5 +1,5 @@
 /* Small dense tensors, d x d in the top-left of a 3 x 3 row-major array (d = 2 or 3): the
- * determinant and the inverse by the adjugate, shared by the correspondence kernels
+ * determinant, the inverse by the adjugate and the product, shared by the correspondence kernels
  * (kernels/ref/corr_law.h, corr_ul.c) and the Johnson-Cook update (kernels/ref/jc.c). A caller
  * with a constant d gets the branch folded away. */
 #ifndef PDK_KERNELS_TENSOR_D_H
@@ -33,6 +33,16 @@ static inline void pdk_inv_d(const int d, const double T[3][3], double det, doub
   R[2][2] = (T[0][0] * T[1][1] - T[0][1] * T[1][0]) * s;
 }
 
-/* R = S T */
+/* R = S T (d x d). */
+static inline void pdk_corr_mul_d(const int d, const double S[3][3], const double T[3][3],
+                                  double R[3][3]) {
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < d; ++c) {
+      double s = 0.0;
+      for (int e = 0; e < d; ++e)
+        s += S[a][e] * T[e][c];
+      R[a][c] = s;
+    }
+}
 
 #endif

@@ -321,8 +321,8 @@ static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history
      * two-hole plate (docs/validation/plate_two_holes.md, items 9 and 10) */
     const pdk_model_opts *mo = pdk_model_opts_get(pdk_sim_model(sim));
     const pdk_explicit *e = pdk_sim_explicit(sim);
-    const int jc_broke = e && h->broken > h0->broken && mo->kind == PDK_MODEL_CORRESPONDENCE &&
-                         mo->law == PDK_LAW_JC && mo->connectivity != PDK_CONNECTIVITY_UL;
+    const int jc_broke =
+        e && h->broken > h0->broken && pdk_model_opts_uses(mo, "break_stress");
     const char *hint = "";
     if (jc_broke && mo->break_stress == PDK_BREAK_STRESS_REFIT)
       hint = "; bonds broke, and with model.break_stress refit a particle's stress jumps when its "
