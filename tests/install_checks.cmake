@@ -7,7 +7,7 @@
 # - with pkg-config: the shared library, and `pkg-config --static` against libpdk.a (when
 #   hwloc's private -ludev can be linked: Debian's libudev-dev);
 # - the installed examples build with find_package(pdk) and one runs.
-# WORK is a scratch folder. Needs run() and PDK_TEST_DIR, CMAKE_C_COMPILER from the includer.
+# WORK is a scratch folder. Needs run() (tests/script_run.cmake) and CMAKE_C_COMPILER.
 
 function(pdk_check_installed prefix work)
   file(MAKE_DIRECTORY ${work}/consumer)
