@@ -128,4 +128,20 @@ static inline int h5s_same_file(const char *a, const char *b, char *why, size_t 
   return same;
 }
 
+/* 1 when the output groups /steps, /static and /history of the open files fa and fb hold the same
+ * contents (everything but the root, whose attributes name the run's scene text); else 0 with the
+ * first difference in why. */
+static inline int h5s_same_output_data(hid_t fa, hid_t fb, char *why, size_t cap) {
+  const char *const groups[] = {"/steps", "/static", "/history"};
+  int same = 1;
+  for (int k = 0; k < 3 && same; ++k) {
+    hid_t ga = H5Gopen2(fa, groups[k], H5P_DEFAULT), gb = H5Gopen2(fb, groups[k], H5P_DEFAULT);
+    T_ASSERT(ga >= 0 && gb >= 0, "cannot open %s in both files", groups[k]);
+    same = h5s_same_group(ga, gb, groups[k], why, cap);
+    H5Gclose(ga);
+    H5Gclose(gb);
+  }
+  return same;
+}
+
 #endif
