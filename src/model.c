@@ -26,26 +26,6 @@ pdk_model_opts pdk_model_opts_default(void) {
   return o;
 }
 
-double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width) {
-  /* Families admit r up to delta (1 + PDK_HORIZON_RTOL); q is clamped to 1 so the weights that
-   * vanish at the horizon (linear, cubic) never turn negative by round-off. */
-  double q = r / delta;
-  if (q > 1.0) q = 1.0;
-  switch (kind) {
-  case PDK_INFLUENCE_CONSTANT: return 1.0;
-  case PDK_INFLUENCE_INV_R: return 1.0 / q;
-  case PDK_INFLUENCE_INV_R2: return 1.0 / (q * q);
-  case PDK_INFLUENCE_LINEAR: return 1.0 - q;
-  case PDK_INFLUENCE_CUBIC: return (1.0 - q) * (1.0 - q) * (1.0 - q);
-  case PDK_INFLUENCE_QUADRATIC: return (1.0 - q) * (1.0 - q);
-  case PDK_INFLUENCE_GAUSSIAN: {
-    double s = q / gaussian_width;
-    return exp(-s * s);
-  }
-  }
-  return 0.0;
-}
-
 static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
   PDK_CHECK(pdk_model_kind_info_of(o->kind), ctx, PDK_ERR_ARG,
             "model kind %d is not one of pmb (0), lps (1), correspondence (2), oterkus (3)",
@@ -327,7 +307,8 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
   m->p = p;
   m->fam = fam;
   m->opts = *opts;
-  m->ops = pdk_model_kind_info_of(opts->kind)->ops_for(opts);
+  m->info = pdk_model_kind_info_of(opts->kind);
+  m->ops = m->info->ops_for(opts);
   PDK_CHECK_GOTO(m->ops && m->ops->setup, ctx, PDK_ERR_UNSUPPORTED,
                  "model kind '%s' is not part of this build", pdk_model_kind_name(opts->kind));
   PDK_CALL_GOTO(setup_materials(m, opts));

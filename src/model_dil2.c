@@ -179,7 +179,7 @@ static int dil2_force(pdk_model *m, int commit, double *energy) {
   const double *V = pdk_particles_volume(p);
   PDK_CHECK(x && y && fx && fy && theta, ctx, PDK_ERR_NOT_FOUND,
             "%s model: fields \"x\", \"f\" or \"theta\" are missing from the particle store",
-            pdk_model_kind_name(m->opts.kind));
+            m->info->name);
   const double *w = im->w, *kappa = im->kappa, *A = im->A, *B = im->B;
   const double *wdev = im->wdev, *ebulk = im->ebulk;
   double *block_energy = im->block_energy;
@@ -313,7 +313,7 @@ static int dil2_tangent_prepare(pdk_model *m) {
     im->tan_s[1] = malloc(nn * sizeof(double));
     PDK_CHECK(im->tan_theta && im->tan_s[0] && im->tan_s[1], ctx, PDK_ERR_MEMORY,
               "%s model: out of memory for the tangent of %d particles",
-              pdk_model_kind_name(m->opts.kind), (int)n);
+              m->info->name, (int)n);
   }
   const int oterkus = im->oterkus;
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);

@@ -62,6 +62,7 @@ struct pdk_model {
   pdk_particles *p;
   pdk_families *fam;
   pdk_model_opts opts;
+  const pdk_model_kind_info *info; /* its kind's registry entry (name, capabilities) */
   const pdk_model_ops *ops;
   void *impl;                  /* kind-private data */
   uint8_t *bond_alive;         /* [num_bonds] or NULL when bonds never break */

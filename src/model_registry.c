@@ -1,4 +1,5 @@
-/* The registry of model kinds and correspondence laws (src/model_registry.h): one line each. */
+/* The registry of model kinds (src/model_registry.h): one line each. The correspondence laws
+ * are listed in src/law_registry.c. */
 #include <stdio.h>
 #include <string.h>
 
@@ -7,24 +8,16 @@
 /* The kinds, in the order scenes list them (the first is the scenes' default model.kind): each
  * defines pdk_model_kind_<name> in its own file. */
 #define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus)
-/* The correspondence laws, each defining pdk_law_<name> in src/law_<name>.c. */
-#define PDK_LAWS(X) X(linear_elastic) X(svk) X(neo_hooke) X(jc)
 
 #define PDK_DECLARE_KIND(k) extern const pdk_model_kind_info pdk_model_kind_##k;
 #define PDK_LIST_KIND(k) &pdk_model_kind_##k,
-#define PDK_DECLARE_LAW(l) extern const pdk_law_info pdk_law_##l;
-#define PDK_LIST_LAW(l) &pdk_law_##l,
 PDK_MODEL_KINDS(PDK_DECLARE_KIND)
-PDK_LAWS(PDK_DECLARE_LAW)
 static const pdk_model_kind_info *const kinds[] = {PDK_MODEL_KINDS(PDK_LIST_KIND)};
-static const pdk_law_info *const laws[] = {PDK_LAWS(PDK_LIST_LAW)};
 #define NUM_KINDS ((int)(sizeof kinds / sizeof kinds[0]))
-#define NUM_LAWS ((int)(sizeof laws / sizeof laws[0]))
 
 const pdk_model_kind_info *pdk_model_kind_at(int i) {
   return i >= 0 && i < NUM_KINDS ? kinds[i] : NULL;
 }
-const pdk_law_info *pdk_law_at(int i) { return i >= 0 && i < NUM_LAWS ? laws[i] : NULL; }
 
 const pdk_model_kind_info *pdk_model_kind_info_of(pdk_model_kind kind) {
   for (int i = 0; i < NUM_KINDS; ++i)
@@ -32,20 +25,9 @@ const pdk_model_kind_info *pdk_model_kind_info_of(pdk_model_kind kind) {
   return NULL;
 }
 
-const pdk_law_info *pdk_law_info_of(pdk_law law) {
-  for (int i = 0; i < NUM_LAWS; ++i)
-    if (laws[i]->law == law) return laws[i];
-  return NULL;
-}
-
 const char *pdk_model_kind_name(pdk_model_kind kind) {
   const pdk_model_kind_info *k = pdk_model_kind_info_of(kind);
   return k ? k->name : "?";
-}
-
-const char *pdk_law_name(pdk_law law) {
-  const pdk_law_info *l = pdk_law_info_of(law);
-  return l ? l->name : "?";
 }
 
 /* Appends names[0 .. count) to buf joined by ", " and `last`. */

@@ -118,7 +118,7 @@ int pdk_stencil_model_setup(pdk_model *m, const float *bond_r0, int multi_materi
   PDK_CHECK(m->stencil || o->stencil != PDK_STENCIL_ON, m->ctx, PDK_ERR_UNSUPPORTED,
             "%s model: stencil on, but the stencil path does not apply: %s; use stencil auto (the "
             "general path then) or off",
-            pdk_model_kind_name(o->kind), m->stencil_why);
+            m->info->name, m->stencil_why);
   return PDK_SUCCESS;
 }
 
