@@ -45,7 +45,7 @@
 #include "h5io.h"
 #include "pdk/output.h"
 #include "pdk_impl.h"
-#include "state.h"
+#include "checkpoint_impl.h"
 #include "state_impl.h"
 
 #define CKPT_KIND "pdk checkpoint"

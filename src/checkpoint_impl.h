@@ -2,18 +2,7 @@
 #ifndef PDK_CHECKPOINT_IMPL_H
 #define PDK_CHECKPOINT_IMPL_H
 
-#include "pdk/explicit.h"
-
-/* The solver's scalars stored in a checkpoint. */
-typedef struct pdk_checkpoint_solver {
-  long step;
-  double time;
-  double dt;         /* the step it was taking */
-  double dt_created; /* the step its run was created with (before dt_update lowered it) */
-  double dt_stable;  /* the latest estimate of the stable step */
-  long dt_step0;     /* step and time at which dt took its value (0, 0: at creation) */
-  double dt_time0;
-} pdk_checkpoint_solver;
+#include "explicit_impl.h"
 
 /* pdk_checkpoint_read with a say before anything changes: after the checkpoint is verified and
  * found to fit the simulation, decide(arg, its /solver scalars) runs (when not NULL); a non-zero

@@ -3,6 +3,7 @@
 #define PDK_EXPLICIT_IMPL_H
 
 #include "model_impl.h"
+#include "state.h"
 #include "pdk/explicit.h"
 
 #define PDK_RED_BLOCK 4096 /* particles per reduction block: fixed, so sums are thread-independent */
@@ -38,5 +39,34 @@ struct pdk_explicit {
   double energy0;           /* kinetic + strain energy at creation, for the blow-up check */
   double energy_floor;      /* energies below this are round-off for the blow-up check */
 };
+
+/* The solver's scalars stored in a checkpoint. */
+typedef struct pdk_checkpoint_solver {
+  long step;
+  double time;
+  double dt;         /* the step it was taking */
+  double dt_created; /* the step its run was created with (before dt_update lowered it) */
+  double dt_stable;  /* the latest estimate of the stable step */
+  long dt_step0;     /* step and time at which dt took its value (0, 0: at creation) */
+  double dt_time0;
+} pdk_checkpoint_solver;
+
+/* ---- its checkpoint part (/solver; src/explicit_state.c, through src/state.h) ---------------------------- */
+
+/* The model the solver advances. */
+pdk_model *pdk_explicit_model(const pdk_explicit *e);
+
+/* time, step, dt, dt_created, strain, external_work and the dt_update state. */
+int pdk_explicit_state_save(const pdk_explicit *e, pdk_state *s);
+/* The scalars a restart decides with, from a /solver part (no solver needed). */
+int pdk_explicit_state_info(pdk_state *s, pdk_checkpoint_solver *out);
+/* Restores the scalars (a part without the dt_update state, from before it, leaves that as it
+ * is). */
+int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s);
+
+/* Restart of a run at a step other than the one its checkpoint was taking (src/sim.c): the step
+ * the solver was created with, and the step dt from (step0, time0) on. */
+double pdk_explicit_dt_created(const pdk_explicit *e);
+void pdk_explicit_restart_dt(pdk_explicit *e, double dt, long step0, double time0);
 
 #endif

@@ -10,6 +10,7 @@
 #include "pdk/model.h"
 #include "model_registry.h"
 #include "pdk_impl.h"
+#include "state.h"
 
 struct pdk_state; /* a checkpoint part (src/state.h) */
 
@@ -107,5 +108,15 @@ int pdk_model_corr_jc_failure_error(pdk_model *m, pdk_index i, pdk_index count, 
 
 /* Influence function omega(r) for r <= delta (see pdk_influence). */
 double pdk_influence_eval(pdk_influence kind, double r, double delta, double gaussian_width);
+
+/* ---- its checkpoint part (/model; src/model_state.c and the kinds, through src/state.h) --------------------------- */
+
+/* num_broken, num_flagged, has_bond_state; bond_alive [num_bonds] and s0 [n] when the model has
+ * them; then the kind's state (pdk_model_ops.state_save). */
+int pdk_model_state_save(const pdk_model *m, pdk_state *s);
+/* Whether the part fits the model (bond state, the kind's state), changing nothing. */
+int pdk_model_state_check(const pdk_model *m, pdk_state *s);
+/* Restores it, after the particle fields (a kind's state may be computed from them). */
+int pdk_model_state_load(pdk_model *m, pdk_state *s);
 
 #endif

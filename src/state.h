@@ -17,10 +17,10 @@
 #ifndef PDK_STATE_H
 #define PDK_STATE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
-#include "checkpoint_impl.h"
-#include "pdk/explicit.h"
+#include "pdk_impl.h"
 
 typedef struct pdk_state pdk_state;
 
@@ -49,33 +49,5 @@ int pdk_state_mismatch(pdk_state *s, const char *fmt, ...)
 #endif
     ;
 int pdk_state_missing(pdk_state *s, const char *name);
-
-/* ---- the explicit solver's part (/solver; src/explicit_state.c) ---------------------------- */
-
-/* The model the solver advances. */
-pdk_model *pdk_explicit_model(const pdk_explicit *e);
-
-/* time, step, dt, dt_created, strain, external_work and the dt_update state. */
-int pdk_explicit_state_save(const pdk_explicit *e, pdk_state *s);
-/* The scalars a restart decides with, from a /solver part (no solver needed). */
-int pdk_explicit_state_info(pdk_state *s, pdk_checkpoint_solver *out);
-/* Restores the scalars (a part without the dt_update state, from before it, leaves that as it
- * is). */
-int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s);
-
-/* Restart of a run at a step other than the one its checkpoint was taking (src/sim.c): the step
- * the solver was created with, and the step dt from (step0, time0) on. */
-double pdk_explicit_dt_created(const pdk_explicit *e);
-void pdk_explicit_restart_dt(pdk_explicit *e, double dt, long step0, double time0);
-
-/* ---- the model's part (/model; src/model_state.c and the kinds) --------------------------- */
-
-/* num_broken, num_flagged, has_bond_state; bond_alive [num_bonds] and s0 [n] when the model has
- * them; then the kind's state (pdk_model_ops.state_save). */
-int pdk_model_state_save(const pdk_model *m, pdk_state *s);
-/* Whether the part fits the model (bond state, the kind's state), changing nothing. */
-int pdk_model_state_check(const pdk_model *m, pdk_state *s);
-/* Restores it, after the particle fields (a kind's state may be computed from them). */
-int pdk_model_state_load(pdk_model *m, pdk_state *s);
 
 #endif
