@@ -90,53 +90,10 @@
 #include <math.h>
 #include <string.h>
 
-#include "kernels.h"
-#include "model_impl.h"
-#include "model_stencil.h"
-#include "state.h"
-
-/* Particles per block: the unit of work of both passes and of the energy reduction. A constant,
- * not the thread count, so the reduction order never depends on how many threads run. */
-#define PDK_CORR_BLOCK 256
-
-typedef struct corr_impl {
-  pdk_corr_consts k;
-  double *bond_omega;   /* [num_bonds] omega(|xi|) >= 0 */
-  double *W;            /* [n_pad] strain energy density of the last pass */
-  double *m;            /* [n_pad] weighted volume; NULL without stabilization */
-  int32_t *num_alive;   /* [n] intact bonds when K^-1 was computed; NULL without failure */
-  double *s0_next;      /* [n_pad] critical stretch for the next pass; NULL without s0 */
-  double *block_energy; /* [num_blocks] */
-  pdk_index num_blocks;
-  uint8_t *changed; /* [n_pad] rows that lost bonds (bits, see kernels.h); NULL: no failure */
-  uint8_t *detach;  /* [n_pad] semi-TL detach marks; NULL in TL */
-  /* semi-TL compacted list of intact bonds; NULL before the first compaction */
-  pdk_bond_index *c_start; /* [n+1] */
-  pdk_index *c_j;          /* [c_len] */
-  double *c_omega;         /* [c_len] */
-  uint8_t *c_alive;        /* [c_len] */
-  pdk_bond_index c_len;    /* entries in the list the passes walk (families' before compaction) */
-  pdk_bond_index c_dead;   /* broken entries still in that list (counted since creation or the
-                              last compaction) */
-  pdk_index failed_seen;   /* failed particles when the break kernel last ran */
-  /* Kernels (from the context's table at setup) and the pass-2 data they need
-   * (pdk_corr_pair_layout): kst [n_pad], B, G [9][n_pad] double, Bf, Gf [9][n_pad] float. */
-  pdk_index (*shape)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
-  void (*pass1)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
-  void (*pass2)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index, pdk_index);
-  double *kst, *B[9], *G[9];
-  float *Bf[9], *Gf[9];
-  void *pair_d, *pair_f; /* the allocations behind kst, B, G and Bf, Gf */
-  /* Packed rows (layout bit 32, pdk_corr_arrays): ref4, cur4, own [4 n_pad]; row or rowf [n_pad] */
-  double *ref4, *cur4, *own;
-  pdk_corr_row *row;
-  pdk_corr_rowf *rowf;
-  /* Softened stabilization: the commit pass's scratch (kernels.h); NULL when off */
-  double *stab_prev, *w_law;
-} corr_impl;
+#include "model_corr_impl.h"
 
 /* Points the kernel arrays at the current fields. */
-static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
+void pdk_corr_arrays_of(pdk_model *m, pdk_corr_arrays *a) {
   corr_impl *c = m->impl;
   pdk_particles *p = m->p;
   const int dim = pdk_particles_dim(p);
@@ -208,7 +165,7 @@ static void corr_arrays(pdk_model *m, pdk_corr_arrays *a) {
   a->detach = c->detach;
 }
 
-static void free_compacted(corr_impl *c) {
+void pdk_corr_free_compacted(corr_impl *c) {
   pdk_free_aligned(c->c_start);
   pdk_free_aligned(c->c_j);
   pdk_free_aligned(c->c_omega);
@@ -239,15 +196,10 @@ static void corr_destroy(pdk_model *m) {
   pdk_free_aligned(c->rowf);
   pdk_free_aligned(c->stab_prev);
   pdk_free_aligned(c->w_law);
-  free_compacted(c);
+  pdk_corr_free_compacted(c);
   free(c);
   m->impl = NULL;
 }
-
-/* Block range of particles [i0, i1) for block blk. */
-#define CORR_BLOCK_RANGE(blk, n, i0, i1)                                                        \
-  const pdk_index i0 = (blk) * PDK_CORR_BLOCK;                                                  \
-  const pdk_index i1 = i0 + PDK_CORR_BLOCK < (n) ? i0 + PDK_CORR_BLOCK : (n)
 
 /* damage_triaxiality family: sigma_m_avg_i = (V_i sigma_m_i + sum_b omega_b V_j sigma_m_j) /
  * (V_i + sum_b omega_b V_j) over i's intact bonds to particles that have not failed (a failed
@@ -257,13 +209,13 @@ static void corr_destroy(pdk_model *m) {
 static void corr_pressure_average(pdk_model *m) {
   corr_impl *c = m->impl;
   pdk_corr_arrays a;
-  corr_arrays(m, &a);
+  pdk_corr_arrays_of(m, &a);
   const pdk_index n = pdk_particles_count(m->p);
   const pdk_index num_blocks = c->num_blocks;
   const int nt = m->ctx->num_threads;
   const double *sm = a.sigma_m;
   double *avg = pdk_particles_field_data(m->p, "sigma_m_avg", 0);
-#pragma omp parallel for default(none) shared(a, sm, avg, n, num_blocks) schedule(static)       \
+#pragma omp parallel for default(none) shared(a, sm, avg, n, num_blocks) schedule(static)          \
     num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     CORR_BLOCK_RANGE(blk, n, i0, i1);
@@ -327,9 +279,8 @@ static int corr_setup(pdk_model *m) {
     ok = ok && c->stab_prev && c->w_law;
   }
   /* Pass-2 data: each of B, G, Bf, Gf is dim*dim arrays of n_pad; kst one. */
-  const unsigned layout = pdk_corr_pair_layout((int)o->stabilization,
-                                               o->precision == PDK_PRECISION_FLOAT,
-                                               ctx->kernels.corr_opt);
+  const unsigned layout = pdk_corr_pair_layout(
+      (int)o->stabilization, o->precision == PDK_PRECISION_FLOAT, ctx->kernels.corr_opt);
   const int dd = dim * dim;
   const size_t nd = (size_t)((layout & 1u) ? 1 : 0) + (size_t)((layout & 2u) ? dd : 0) +
                     (size_t)((layout & 4u) ? dd : 0);
@@ -446,7 +397,7 @@ static int corr_setup(pdk_model *m) {
   /* Influence weight per bond (first touch in the pass order). A bond of zero length would give
    * omega = infinity (1/r) and a singular family; it is an input error. */
   pdk_corr_arrays a;
-  corr_arrays(m, &a);
+  pdk_corr_arrays_of(m, &a);
   const pdk_bond_index *bond_start = a.bond_start;
   const pdk_index *bond_j = a.bond_j;
   double *omega = c->bond_omega;
@@ -545,171 +496,6 @@ static int corr_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
-/* semi-TL: rebuilds the compacted list from the intact bonds of the list the passes walk now (the
- * families' CSR with the model's bond state before the first compaction). Row order and entry
- * order are kept. */
-static int corr_compact(pdk_model *m) {
-  corr_impl *c = m->impl;
-  pdk_ctx *ctx = m->ctx;
-  pdk_corr_arrays a;
-  corr_arrays(m, &a);
-  const pdk_index n = pdk_particles_count(m->p);
-  const pdk_index num_blocks = c->num_blocks;
-  const int nt = ctx->num_threads;
-  const pdk_bond_index *old_start = a.bond_start;
-  const pdk_index *old_j = a.bond_j;
-  const double *old_omega = a.bond_omega;
-  const uint8_t *old_alive = a.bond_alive;
-  pdk_bond_index *start = pdk_alloc_aligned((size_t)n + 1, sizeof *start);
-  PDK_CHECK(start, ctx, PDK_ERR_MEMORY, "out of memory compacting the bond list (semi-TL)");
-#pragma omp parallel for default(none) shared(old_start, old_alive, start, n, num_blocks)         \
-    schedule(static) num_threads(nt)
-  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-    CORR_BLOCK_RANGE(blk, n, i0, i1);
-    for (pdk_index i = i0; i < i1; ++i) {
-      pdk_bond_index count = 0;
-      for (pdk_bond_index b = old_start[i]; b < old_start[i + 1]; ++b)
-        count += old_alive[b] != 0;
-      start[i + 1] = count;
-    }
-  }
-  start[0] = 0;
-  for (pdk_index i = 0; i < n; ++i)
-    start[i + 1] += start[i];
-  const pdk_bond_index len = start[n];
-  const size_t alloc = (size_t)(len > 0 ? len : 1);
-  pdk_index *bj = pdk_alloc_aligned(alloc, sizeof *bj);
-  double *omega = pdk_alloc_aligned(alloc, sizeof *omega);
-  uint8_t *alive = pdk_alloc_aligned(alloc, 1);
-  if (!bj || !omega || !alive) {
-    pdk_free_aligned(start);
-    pdk_free_aligned(bj);
-    pdk_free_aligned(omega);
-    pdk_free_aligned(alive);
-    return pdk_ctx_error_set(ctx, PDK_ERR_MEMORY, __func__,
-                             "out of memory compacting the bond list (semi-TL): %lld bonds",
-                             (long long)len);
-  }
-#pragma omp parallel for default(none)                                                          \
-    shared(old_start, old_j, old_omega, old_alive, start, bj, omega, alive, n, num_blocks)      \
-    schedule(static) num_threads(nt)
-  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-    CORR_BLOCK_RANGE(blk, n, i0, i1);
-    for (pdk_index i = i0; i < i1; ++i) {
-      pdk_bond_index out = start[i];
-      for (pdk_bond_index b = old_start[i]; b < old_start[i + 1]; ++b) {
-        if (!old_alive[b]) continue;
-        bj[out] = old_j[b];
-        omega[out] = old_omega[b];
-        alive[out] = 1;
-        ++out;
-      }
-    }
-  }
-  free_compacted(c);
-  c->c_start = start;
-  c->c_j = bj;
-  c->c_omega = omega;
-  c->c_alive = alive;
-  c->c_len = len;
-  c->c_dead = 0;
-  m->num_compactions++;
-  return PDK_SUCCESS;
-}
-
-/* semi-TL with a compacted list: copies the broken state of the rows that lost bonds in this pass
- * back to the model's bond state over the families' bonds. The compacted row is a subsequence of
- * the families' row in the same order, so one forward walk pairs the entries. */
-static void corr_sync_bond_state(pdk_model *m) {
-  corr_impl *c = m->impl;
-  const pdk_index n = pdk_particles_count(m->p);
-  const pdk_index num_blocks = c->num_blocks;
-  const int nt = m->ctx->num_threads;
-  const pdk_bond_index *fam_start = pdk_families_bond_start(m->fam);
-  const pdk_index *fam_j = pdk_families_bond_j(m->fam);
-  const pdk_bond_index *c_start = c->c_start;
-  const pdk_index *c_j = c->c_j;
-  const uint8_t *c_alive = c->c_alive;
-  const uint8_t *changed = c->changed;
-  uint8_t *alive = m->bond_alive;
-#pragma omp parallel for default(none)                                                          \
-    shared(fam_start, fam_j, c_start, c_j, c_alive, changed, alive, n, num_blocks)              \
-    schedule(static) num_threads(nt)
-  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-    CORR_BLOCK_RANGE(blk, n, i0, i1);
-    for (pdk_index i = i0; i < i1; ++i) {
-      if (!(changed[i] & 2u)) continue;
-      pdk_bond_index b = fam_start[i];
-      for (pdk_bond_index e = c_start[i]; e < c_start[i + 1]; ++e) {
-        while (fam_j[b] != c_j[e])
-          ++b;
-        if (!c_alive[e]) alive[b] = 0;
-        ++b;
-      }
-    }
-  }
-}
-
-/* After the break kernel broke bonds in a commit pass: reshape the changed rows, detach
- * degenerate families (semi-TL), remap their Johnson-Cook histories (break_stress continuous) and
- * book the released energy (its total, sum_i V_i dw_broken_i
- * summed in block order, into *released), keep the bond state current, compact in batches
- * (semi-TL). `broken` is what the break kernel broke. */
-static int corr_after_breaking(pdk_model *m, const pdk_corr_consts *k, pdk_bond_index broken,
-                               double *released) {
-  corr_impl *c = m->impl;
-  const pdk_index n = pdk_particles_count(m->p);
-  const pdk_index num_blocks = c->num_blocks;
-  const int nt = m->ctx->num_threads;
-  pdk_corr_arrays a;
-  corr_arrays(m, &a);
-  pdk_bond_index total = broken;
-  for (;;) {
-    pdk_index detached = 0;
-#pragma omp parallel for default(none) shared(a, k, n, num_blocks) reduction(+ : detached)        \
-    schedule(static) num_threads(nt)
-    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      CORR_BLOCK_RANGE(blk, n, i0, i1);
-      detached += pdk_kernel_corr_reshape_ref(k, &a, i0, i1);
-    }
-    if (!detached) break;
-    pdk_bond_index cut = 0;
-#pragma omp parallel for default(none) shared(a, k, n, num_blocks) reduction(+ : cut)             \
-    schedule(static) num_threads(nt)
-    for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-      CORR_BLOCK_RANGE(blk, n, i0, i1);
-      cut += pdk_kernel_corr_cut_ref(k, &a, i0, i1);
-    }
-    total += cut;
-  }
-  m->num_broken += total;
-  if (c->c_start) corr_sync_bond_state(m);
-  const uint8_t *flag = a.flag;
-  double *block_released = c->block_energy; /* free again: the pass's energy is summed */
-  const int remap = m->opts.break_stress == PDK_BREAK_STRESS_CONTINUOUS;
-  pdk_index flagged = 0;
-#pragma omp parallel for default(none)                                                          \
-    shared(a, k, n, num_blocks, flag, block_released, remap) reduction(+ : flagged)              \
-    schedule(static) num_threads(nt)
-  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
-    CORR_BLOCK_RANGE(blk, n, i0, i1);
-    block_released[blk] = pdk_kernel_corr_release_ref(k, &a, i0, i1, remap);
-    for (pdk_index i = i0; i < i1; ++i)
-      flagged += (flag[i] & (PDK_CORR_FLAG_SPAN | PDK_CORR_FLAG_INVERTED)) != 0;
-  }
-  m->num_flagged = flagged;
-  double sum = 0.0;
-  for (pdk_index blk = 0; blk < num_blocks; ++blk)
-    sum += block_released[blk];
-  *released = sum;
-  if (m->opts.connectivity == PDK_CONNECTIVITY_SEMI_TL) {
-    c->c_dead += total;
-    if (c->c_dead > 0 && (double)c->c_dead > m->opts.compact_fraction * (double)c->c_len)
-      PDK_CALL(corr_compact(m));
-  }
-  return PDK_SUCCESS;
-}
-
 static int corr_force(pdk_model *m, int commit, double *energy) {
   corr_impl *c = m->impl;
   pdk_corr_consts kc = c->k;
@@ -729,7 +515,7 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       kc.dt = INFINITY; /* trial before any step: the quasi-static limit */
   }
   pdk_corr_arrays a;
-  corr_arrays(m, &a);
+  pdk_corr_arrays_of(m, &a);
   const pdk_index n = pdk_particles_count(m->p);
   const pdk_index num_blocks = c->num_blocks;
   const double *volume = a.volume;
@@ -829,7 +615,7 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
        * the next commit books it), so external work = kinetic + strain + plastic + damage +
        * breaking holds at every step, not only one step after a break. */
       double released = 0.0;
-      PDK_CALL(corr_after_breaking(m, k, broken, &released));
+      PDK_CALL(pdk_corr_after_breaking(m, k, broken, &released));
       if (energy) *energy -= released;
       if (m->stencil) pdk_stencil_mask_rows(m, m->stencil, c->changed);
     }

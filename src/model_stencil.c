@@ -1,5 +1,5 @@
 /* The stencil layout of a particle set on a regular lattice, and the PMB, LPS and correspondence
- * passes over it (correspondence: the section at the end of this file).
+ * passes over it (correspondence: model_stencil_corr.c).
  *
  * Detection (pdk_stencil_create). The spacing h is the shortest bond of the families; the origin
  * is the smallest reference coordinate per axis. Every particle must sit within 1e-6 h of a lattice
@@ -32,46 +32,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "model_stencil.h"
-
-#define STENCIL_POS_TOL 1e-6 /* lattice test: |X - (origin + k h)| <= tol h per axis */
-#define STENCIL_MAX_REACH 64 /* largest bond offset component, in spacings */
-
-struct pdk_stencil {
-  int dim;
-  pdk_index n;
-  int pad;                       /* P: largest offset component */
-  int64_t nx, ny, nz;            /* padded grid (nz = 1 in 2-D) */
-  int num_offsets;
-  int64_t *offset;               /* [num_offsets] ascending */
-  int64_t num_sites, num_rows;
-  int64_t *row_lo, *row_hi;      /* [num_rows] */
-  int64_t tile;                  /* rows per tile along y (3-D), see stencil_rows */
-  pdk_index *site_particle;      /* [num_sites] */
-  int64_t *particle_site;        /* [n] */
-  int64_t lut_min;               /* lut[d - lut_min]: offset index of site offset d, or -1 */
-  int16_t *lut;                  /* [lut_len] */
-  int64_t lut_len;
-  double *X[3], *x[3], *volume;  /* [num_sites] */
-  double *s0;                    /* [num_sites] when bonds can break */
-  double *r0_off, *beta_off;     /* [num_offsets] float storage */
-  uint8_t *mask;                 /* [num_offsets * num_sites] or NULL */
-  uint8_t *changed;              /* [num_sites] when bonds can break */
-  unsigned long version;         /* m->bond_state_version the mask holds */
-  double *inv_m, *theta;         /* LPS [num_sites + slack]: 1/m, dilation (0 at empty sites) */
-  /* correspondence: xi and omega per offset [num_offsets]; per site [num_sites + slack] B (d*d
-   * arrays), its float copy (float storage) and k; x then holds the displacements */
-  double *xi_off[3], *wxi_off[3], *omega_off;
-  double *cs[3]; /* [num_sites + slack] sum of omega V_j xi over the intact bonds */
-  double *cB[9], *ck;
-  float *cBf[9];
-  /* correspondence: one block of the pass-2 site arrays, component c at cblk + c * cstride
-   * (u_0 .. u_{d-1}, V, k, B_0 .. B_{d^2-1}; x, volume, ck and cB point into it), and the float
-   * copies of B at cBfblk + t * cstride; NULL before set-up */
-  double *cblk;
-  float *cBfblk;
-  int64_t cstride;
-};
+#include "model_stencil_impl.h"
 
 void pdk_stencil_destroy(pdk_stencil **stp) {
   if (!stp || !*stp) return;
@@ -128,7 +89,8 @@ int pdk_stencil_lps_setup(pdk_model *m, pdk_stencil *st, const double *inv_m) {
   st->theta = pdk_alloc_aligned(ns_all, sizeof(double));
   PDK_CHECK(st->inv_m && st->theta, m->ctx, PDK_ERR_MEMORY,
             "stencil: out of memory for a grid of %lld sites", (long long)st->num_sites);
-  for (pdk_index i = 0; i < st->n; ++i) st->inv_m[st->particle_site[i]] = inv_m[i];
+  for (pdk_index i = 0; i < st->n; ++i)
+    st->inv_m[st->particle_site[i]] = inv_m[i];
   return PDK_SUCCESS;
 }
 
@@ -137,15 +99,9 @@ static int cmp_i64(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* Offset index of the bond from site si to site sj (-1: not in the list). */
-static inline int stencil_offset_of(const pdk_stencil *st, int64_t si, int64_t sj) {
-  const int64_t d = sj - si - st->lut_min;
-  return d >= 0 && d < st->lut_len ? st->lut[d] : -1;
-}
-
 /* Correspondence: cs of particle i's site, sum over the offsets whose bond is present (mask, or
  * an occupied site without one) of omega V_j xi. */
-static void stencil_corr_s(pdk_stencil *st, pdk_index i) {
+void pdk_stencil_corr_s(pdk_stencil *st, pdk_index i) {
   const int64_t si = st->particle_site[i], ns = st->num_sites;
   double acc[3] = {0, 0, 0};
   for (int o = 0; o < st->num_offsets; ++o) {
@@ -159,7 +115,7 @@ static void stencil_corr_s(pdk_stencil *st, pdk_index i) {
 }
 
 /* mask[o][s] = bond present in the family and intact; the whole mask from m's families. */
-static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
+void pdk_stencil_load_mask(pdk_model *m, pdk_stencil *st) {
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index *bj = pdk_families_bond_j(m->fam);
   const uint8_t *alive = m->bond_alive;
@@ -173,10 +129,10 @@ static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
   for (pdk_index i = 0; i < n; ++i) {
     const int64_t si = cst->particle_site[i];
     for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
-      const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
+      const int o = pdk_stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
       mask[(int64_t)o * ns + si] = alive ? alive[b] : 1;
     }
-    if (cst->cs[0]) stencil_corr_s((pdk_stencil *)cst, i);
+    if (cst->cs[0]) pdk_stencil_corr_s((pdk_stencil *)cst, i);
   }
   st->version = m->bond_state_version;
 }
@@ -186,7 +142,7 @@ static void stencil_load_mask(pdk_model *m, pdk_stencil *st) {
  * 768 KiB for site_bytes bytes read per neighbour site) stay in the L2 cache while z advances;
  * each row is then read from memory about (tile + 2P) / tile times instead of 2P + 1. The order
  * does not change any result. Returns -1 when out of memory. */
-static int stencil_rows(pdk_stencil *st, double site_bytes) {
+int pdk_stencil_make_rows(pdk_stencil *st, double site_bytes) {
   const int64_t nx = st->nx, ny = st->ny;
   const int pad = st->pad, dim = st->dim;
   const int64_t nrow_max = ny * st->nz;
@@ -242,7 +198,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
   const double delta = pdk_families_horizon(m->fam);
   const double *X[3] = {NULL, NULL, NULL};
-  for (int a = 0; a < dim; ++a) X[a] = pdk_particles_X(p, a);
+  for (int a = 0; a < dim; ++a)
+    X[a] = pdk_particles_X(p, a);
   int32_t *kidx = NULL; /* [n * 3] lattice indices */
   int *table = NULL;    /* [(2R+1)^dim] offset index of each integer offset, -1 none */
   pdk_stencil *st = NULL;
@@ -251,7 +208,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   double h = delta;
   if (nb > 0) {
     double hmin = HUGE_VAL;
-#pragma omp parallel for default(none) shared(n, bs, bj, X, dim) reduction(min : hmin)             \
+#pragma omp parallel for default(none) shared(n, bs, bj, X, dim) reduction(min                     \
+                                                                           : hmin)                 \
     schedule(static) num_threads(nt)
     for (pdk_index i = 0; i < n; ++i)
       for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
@@ -269,7 +227,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   int64_t ext[3] = {1, 1, 1};
   for (int a = 0; a < dim; ++a) {
     double lo = HUGE_VAL;
-    for (pdk_index i = 0; i < n; ++i) lo = X[a][i] < lo ? X[a][i] : lo;
+    for (pdk_index i = 0; i < n; ++i)
+      lo = X[a][i] < lo ? X[a][i] : lo;
     origin[a] = lo;
   }
   kidx = malloc((size_t)n * 3 * sizeof *kidx);
@@ -305,7 +264,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   const int64_t tsize = dim == 3 ? (int64_t)side * side * side : (int64_t)side * side;
   table = malloc((size_t)tsize * sizeof *table);
   PDK_CHECK_GOTO(table, ctx, PDK_ERR_MEMORY, "stencil: out of memory for the offset table");
-  for (int64_t t = 0; t < tsize; ++t) table[t] = -1;
+  for (int64_t t = 0; t < tsize; ++t)
+    table[t] = -1;
   for (pdk_index i = 0; i < n; ++i)
     for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
       const pdk_index j = bj[b];
@@ -353,7 +313,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     for (int64_t t = 0; t < tsize; ++t)
       if (table[t] >= 0) {
         int64_t u = t, comp[3] = {0, 0, 0};
-        for (int a = 0; a < dim; ++a, u /= side) comp[a] = (int)(u % side) - R;
+        for (int a = 0; a < dim; ++a, u /= side)
+          comp[a] = (int)(u % side) - R;
         st->offset[o++] = comp[0] + nx * (comp[1] + ny * comp[2]);
       }
     qsort(st->offset, (size_t)num_off, sizeof *st->offset, cmp_i64);
@@ -365,8 +326,10 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   PDK_CHECK_GOTO(st->lut && num_off < 32767, ctx, PDK_ERR_MEMORY,
                  "stencil: out of memory for the offset lookup (%lld entries)",
                  (long long)st->lut_len);
-  for (int64_t t = 0; t < st->lut_len; ++t) st->lut[t] = -1;
-  for (int o = 0; o < num_off; ++o) st->lut[st->offset[o] - st->lut_min] = (int16_t)o;
+  for (int64_t t = 0; t < st->lut_len; ++t)
+    st->lut[t] = -1;
+  for (int o = 0; o < num_off; ++o)
+    st->lut[st->offset[o] - st->lut_min] = (int16_t)o;
 
   const int64_t ns_all = ns + PDK_STENCIL_SLACK; /* per-site arrays: the grid and the slack */
   st->site_particle = pdk_alloc_aligned((size_t)ns_all, sizeof *st->site_particle);
@@ -380,7 +343,8 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     PDK_CHECK_GOTO(st->X[a] && st->x[a], ctx, PDK_ERR_MEMORY,
                    "stencil: out of memory for a grid of %lld sites", (long long)ns);
   }
-  for (int64_t s = 0; s < ns_all; ++s) st->site_particle[s] = -1;
+  for (int64_t s = 0; s < ns_all; ++s)
+    st->site_particle[s] = -1;
   const double *V = pdk_particles_volume(p);
   for (pdk_index i = 0; i < n; ++i) {
     const int32_t *k = kidx + 3 * (size_t)i;
@@ -405,7 +369,7 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
   }
 
   /* 4. rows (stencil_rows) */
-  PDK_CHECK_GOTO(stencil_rows(st, 8.0 * (2 * dim + 1)) == 0, ctx, PDK_ERR_MEMORY,
+  PDK_CHECK_GOTO(pdk_stencil_make_rows(st, 8.0 * (2 * dim + 1)) == 0, ctx, PDK_ERR_MEMORY,
                  "stencil: out of memory");
 
   /* 5. float storage: one float length per offset */
@@ -413,10 +377,11 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     st->r0_off = malloc((size_t)(num_off > 0 ? num_off : 1) * sizeof(double));
     st->beta_off = malloc((size_t)(num_off > 0 ? num_off : 1) * sizeof(double));
     PDK_CHECK_GOTO(st->r0_off && st->beta_off, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-    for (int o = 0; o < num_off; ++o) st->r0_off[o] = -1.0;
+    for (int o = 0; o < num_off; ++o)
+      st->r0_off[o] = -1.0;
     for (pdk_index i = 0; i < n; ++i)
       for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
-        const int o = stencil_offset_of(st, st->particle_site[i], st->particle_site[bj[b]]);
+        const int o = pdk_stencil_offset_of(st, st->particle_site[i], st->particle_site[bj[b]]);
         const double r0 = (double)bond_r0[b];
         if (st->r0_off[o] < 0)
           st->r0_off[o] = r0;
@@ -442,18 +407,20 @@ int pdk_stencil_create(pdk_model *m, const float *bond_r0, pdk_stencil **out, ch
     }
   }
   if (!complete || m->bond_alive) {
-    st->mask = pdk_alloc_aligned((size_t)ns * (size_t)(num_off > 0 ? num_off : 1) + PDK_STENCIL_SLACK, 1);
+    st->mask =
+        pdk_alloc_aligned((size_t)ns * (size_t)(num_off > 0 ? num_off : 1) + PDK_STENCIL_SLACK, 1);
     PDK_CHECK_GOTO(st->mask, ctx, PDK_ERR_MEMORY,
                    "stencil: out of memory for the bond mask (%lld sites x %d offsets); use "
                    "stencil off",
                    (long long)ns, num_off);
-    stencil_load_mask(m, st);
+    pdk_stencil_load_mask(m, st);
   }
   if (m->bond_alive && m->s0) {
     st->s0 = pdk_alloc_aligned((size_t)ns_all, sizeof(double));
     st->changed = pdk_alloc_aligned((size_t)ns_all, 1);
     PDK_CHECK_GOTO(st->s0 && st->changed, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-    for (int64_t s = 0; s < ns_all; ++s) st->s0[s] = DBL_MAX;
+    for (int64_t s = 0; s < ns_all; ++s)
+      st->s0[s] = DBL_MAX;
   }
   free(kidx);
   free(table);
@@ -472,7 +439,7 @@ cleanup:
 }
 
 /* The lattice part of the kernels' arrays (dimension, offsets, sites, rows), the rest zeroed. */
-static void stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *arr) {
+void pdk_stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *arr) {
   memset(arr, 0, sizeof *arr);
   arr->dim = st->dim;
   arr->num_offsets = st->num_offsets;
@@ -485,24 +452,24 @@ static void stencil_arrays_lattice(const pdk_stencil *st, pdk_stencil_arrays *ar
 }
 
 /* The kernels' arrays for one pass; xp: the particles' "x". */
-static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_b,
-                          double *s0_next, double *w, pdk_stencil_arrays *out,
-                          const double *xp[3]) {
+static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_b, double *s0_next,
+                          double *w, pdk_stencil_arrays *out, const double *xp[3]) {
   pdk_ctx *ctx = m->ctx;
   pdk_particles *p = m->p;
   const int dim = st->dim;
   const int commit = s0_next != NULL;
   PDK_CHECK(!commit || (st->mask && st->s0 && m->bond_alive && m->s0), ctx, PDK_ERR_ARG,
             "stencil: a committing pass needs the bond state");
-  if (st->mask && st->version != m->bond_state_version) stencil_load_mask(m, st);
+  if (st->mask && st->version != m->bond_state_version) pdk_stencil_load_mask(m, st);
   if (st->r0_off) /* partial-volume factor of each offset's float length, as the kernels do */
     for (int o = 0; o < st->num_offsets; ++o) {
       const double t = (vs_a - st->r0_off[o]) * vs_b;
       st->beta_off[o] = t < 1.0 ? t : 1.0;
     }
   pdk_stencil_arrays arr;
-  stencil_arrays_lattice(st, &arr);
-  for (int a = 0; a < 3; ++a) xp[a] = NULL;
+  pdk_stencil_arrays_lattice(st, &arr);
+  for (int a = 0; a < 3; ++a)
+    xp[a] = NULL;
   for (int a = 0; a < dim; ++a) {
     arr.X[a] = st->X[a];
     arr.x[a] = st->x[a];
@@ -528,7 +495,7 @@ static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_
 /* The particles' x (and s0) onto their sites; a parallel loop inside the caller's region. */
 #define STENCIL_SCATTER()                                                                          \
   do {                                                                                             \
-    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                       \
+    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                        \
       const int64_t s_ = cst->particle_site[i];                                                    \
       gx[s_] = xp[0][i];                                                                           \
       gy[s_] = xp[1][i];                                                                           \
@@ -540,19 +507,19 @@ static int stencil_arrays(pdk_model *m, pdk_stencil *st, double vs_a, double vs_
 /* The new bond state back into the model's bond list, for the particles that lost bonds. */
 #define STENCIL_SYNC()                                                                             \
   do {                                                                                             \
-    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                       \
+    _Pragma("omp for schedule(static)") for (pdk_index i = 0; i < n; ++i) {                        \
       const int64_t si_ = cst->particle_site[i];                                                   \
       if (!changed[si_]) continue;                                                                 \
       changed[si_] = 0;                                                                            \
       for (pdk_bond_index b_ = bs[i]; b_ < bs[i + 1]; ++b_) {                                      \
-        const int o_ = stencil_offset_of(cst, si_, cst->particle_site[bj[b_]]);                    \
+        const int o_ = pdk_stencil_offset_of(cst, si_, cst->particle_site[bj[b_]]);                \
         alive[b_] = mask[(int64_t)o_ * ns + si_];                                                  \
       }                                                                                            \
     }                                                                                              \
   } while (0)
 
-int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k,
-                          double *s0_next, double *w, pdk_bond_index *broken_out) {
+int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k, double *s0_next,
+                          double *w, pdk_bond_index *broken_out) {
   pdk_ctx *ctx = m->ctx;
   const int dim = st->dim;
   const int commit = s0_next != NULL;
@@ -577,7 +544,8 @@ int pdk_stencil_pmb_force(pdk_model *m, pdk_stencil *st, const pdk_pmb_consts *k
   {
     STENCIL_SCATTER(); /* implicit barrier: every site is filled before a neighbour reads it */
 #pragma omp for schedule(static)
-    for (int64_t r = 0; r < num_rows; ++r) broken += kernel(k, a, r, r + 1);
+    for (int64_t r = 0; r < num_rows; ++r)
+      broken += kernel(k, a, r, r + 1);
     if (commit) STENCIL_SYNC();
   }
   *broken_out = broken;
@@ -613,257 +581,14 @@ int pdk_stencil_lps_force(pdk_model *m, pdk_stencil *st, const pdk_lps_consts *k
   {
     STENCIL_SCATTER(); /* implicit barrier: every site is filled before a neighbour reads it */
 #pragma omp for schedule(static)
-    for (int64_t r = 0; r < num_rows; ++r) dilation(k, a, r, r + 1);
-    /* implicit barrier: every theta is complete before any force is computed */
+    for (int64_t r = 0; r < num_rows; ++r)
+      dilation(k, a, r, r + 1);
+      /* implicit barrier: every theta is complete before any force is computed */
 #pragma omp for schedule(static)
-    for (int64_t r = 0; r < num_rows; ++r) broken += force(k, a, r, r + 1);
+    for (int64_t r = 0; r < num_rows; ++r)
+      broken += force(k, a, r, r + 1);
     if (commit) STENCIL_SYNC();
   }
   *broken_out = broken;
-  return PDK_SUCCESS;
-}
-
-/* ---- correspondence ----------------------------------------------------------------------------
- * Set-up takes xi and omega per offset from the first bond of each offset and checks every other
- * bond against them (a particle off its lattice point by round-off only: |xi_b - xi_o| <=
- * STENCIL_CORR_XI_TOL h per component, |omega_b - omega_o| <= STENCIL_CORR_OMEGA_RTOL omega_o);
- * K^-1 and m stay the general path's (computed at set-up from the families). Per site: the
- * displacement in the x arrays, the pass-2 data cB, ck (and cBf with float storage). The passes
- * (pdk_stencil_corr_passes): scatter u, pass 1 over the rows, barrier, pass 2 over the rows, in
- * one parallel region. Bond breaking stays the general path's (over the families, after pass 2);
- * the driver then refreshes the mask of the rows that lost bonds (pdk_stencil_mask_rows). */
-#define STENCIL_CORR_XI_TOL 1e-10
-#define STENCIL_CORR_OMEGA_RTOL 1e-9
-
-const char *pdk_stencil_corr_refusal(const pdk_model_opts *o) {
-  if (o->connectivity == PDK_CONNECTIVITY_UL)
-    return "correspondence with ul connectivity (its families are rebuilt in the current "
-           "configuration)";
-  if (o->connectivity != PDK_CONNECTIVITY_TL)
-    return "correspondence with semi_tl connectivity (its bond list is compacted)";
-  if (o->stabilization == PDK_STAB_HOURGLASS)
-    return "correspondence with hourglass stabilization (the stencil passes implement none and "
-           "silling)";
-  return NULL;
-}
-
-int pdk_stencil_corr_setup(pdk_model *m, const double *bond_omega, int float_storage) {
-  pdk_stencil *st = m->stencil;
-  pdk_ctx *ctx = m->ctx;
-  if (!st) return PDK_SUCCESS;
-  const int dim = st->dim, no = st->num_offsets;
-  const pdk_index n = st->n;
-  const int64_t *ids = pdk_particles_id(m->p);
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const double *X[3] = {NULL, NULL, NULL};
-  for (int a = 0; a < dim; ++a)
-    X[a] = pdk_particles_X(m->p, a);
-  /* the bond-breaking copies of the PMB pass are not used: breaking stays the general path's */
-  pdk_free_aligned(st->s0);
-  pdk_free_aligned(st->changed);
-  st->s0 = NULL;
-  st->changed = NULL;
-  const size_t nof = (size_t)(no > 0 ? no : 1);
-  for (int a = 0; a < dim; ++a) {
-    st->xi_off[a] = malloc(nof * sizeof(double));
-    PDK_CHECK(st->xi_off[a], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-  }
-  st->omega_off = malloc(nof * sizeof(double));
-  uint8_t *seen = calloc(nof, 1);
-  PDK_CHECK(st->omega_off && seen, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-  char *why = m->stencil_why;
-  const size_t why_len = sizeof m->stencil_why;
-  int bad = 0;
-  for (pdk_index i = 0; i < n && !bad; ++i)
-    for (pdk_bond_index b = bs[i]; b < bs[i + 1] && !bad; ++b) {
-      const pdk_index j = bj[b];
-      const int o = stencil_offset_of(st, st->particle_site[i], st->particle_site[j]);
-      double xi[3] = {0, 0, 0}, r2 = 0.0;
-      for (int a = 0; a < dim; ++a) {
-        xi[a] = X[a][j] - X[a][i];
-        r2 += xi[a] * xi[a];
-      }
-      if (!seen[o]) {
-        seen[o] = 1;
-        for (int a = 0; a < dim; ++a)
-          st->xi_off[a][o] = xi[a];
-        st->omega_off[o] = bond_omega[b];
-        continue;
-      }
-      const double tol = STENCIL_CORR_XI_TOL * sqrt(r2);
-      for (int a = 0; a < dim; ++a)
-        if (fabs(xi[a] - st->xi_off[a][o]) > tol) {
-          snprintf(why, why_len,
-                   "correspondence: the bond from particle id %lld to %lld differs from another "
-                   "bond along the same lattice offset by %.3g along axis %c (more than %g of its "
-                   "length); the correspondence stencil takes one reference bond per offset, so "
-                   "particles must sit on their lattice points to round-off",
-                   (long long)ids[i], (long long)ids[j], fabs(xi[a] - st->xi_off[a][o]), "xyz"[a],
-                   STENCIL_CORR_XI_TOL);
-          bad = 1;
-          break;
-        }
-      if (!bad && fabs(bond_omega[b] - st->omega_off[o]) >
-                      STENCIL_CORR_OMEGA_RTOL * fabs(st->omega_off[o])) {
-        snprintf(why, why_len,
-                 "correspondence: the influence weight of the bond from particle id %lld to %lld "
-                 "(%.17g) differs from another bond along the same lattice offset (%.17g); the "
-                 "correspondence stencil takes one weight per offset",
-                 (long long)ids[i], (long long)ids[j], bond_omega[b], st->omega_off[o]);
-        bad = 1;
-      }
-    }
-  free(seen); /* every offset is some bond's (the offsets are the union of the families') */
-  /* pass 1 takes the offsets in pairs o, no - 1 - o: the list must be symmetric, with opposite xi
-   * and equal omega (families are symmetric, so it is; checked to the same tolerances) */
-  for (int o = 0; o < no && !bad; ++o) {
-    const int o2 = no - 1 - o;
-    double r2 = 0.0, dev = 0.0;
-    for (int a = 0; a < dim; ++a) {
-      r2 += st->xi_off[a][o] * st->xi_off[a][o];
-      dev = fmax(dev, fabs(st->xi_off[a][o] + st->xi_off[a][o2]));
-    }
-    if (st->offset[o2] != -st->offset[o] || dev > STENCIL_CORR_XI_TOL * sqrt(r2) ||
-        fabs(st->omega_off[o] - st->omega_off[o2]) >
-            STENCIL_CORR_OMEGA_RTOL * fabs(st->omega_off[o])) {
-      snprintf(why, why_len,
-               "correspondence: the bond offsets are not symmetric (offset %d of %d: the families "
-               "are not symmetric, or xi / omega differ between a bond and its reverse)",
-               o, no);
-      bad = 1;
-    }
-  }
-  if (bad) {
-    pdk_stencil_destroy(&m->stencil);
-    PDK_CHECK(m->opts.stencil != PDK_STENCIL_ON, ctx, PDK_ERR_UNSUPPORTED,
-              "correspondence model: stencil on, but the stencil path does not apply: %s; use "
-              "stencil auto (the general path then) or off",
-              why);
-    return PDK_SUCCESS;
-  }
-  const size_t ns_all = (size_t)(st->num_sites + PDK_STENCIL_SLACK);
-  for (int a = 0; a < dim; ++a) {
-    st->wxi_off[a] = malloc(nof * sizeof(double));
-    st->cs[a] = pdk_alloc_aligned(ns_all, sizeof(double));
-    PDK_CHECK(st->wxi_off[a] && st->cs[a], ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-    memset(st->cs[a], 0, ns_all * sizeof(double));
-    for (int o = 0; o < no; ++o)
-      st->wxi_off[a][o] = st->omega_off[o] * st->xi_off[a][o];
-  }
-  /* the pair (o, no - 1 - o) uses omega_o and -wxi_o for both: make the stored pair exact */
-  for (int o = no / 2; o < no; ++o) {
-    st->omega_off[o] = st->omega_off[no - 1 - o];
-    for (int a = 0; a < dim; ++a)
-      st->wxi_off[a][o] = -st->wxi_off[a][no - 1 - o];
-  }
-  for (pdk_index i = 0; i < n; ++i)
-    stencil_corr_s(st, i);
-  /* the pass-2 site arrays in one block with a fixed stride (a multiple of 8 doubles, so every
-   * component starts 64-byte aligned): pass 2 addresses its 14 (2-D: 8) streams from one pointer.
-   * The grid's x (which holds u) and volume move into it. */
-  const int64_t cstr = (int64_t)((ns_all + 7) / 8 * 8);
-  const int ncomp = dim + 2 + dim * dim;
-  double *blk = pdk_alloc_aligned((size_t)(ncomp * cstr), sizeof(double));
-  PDK_CHECK(blk, ctx, PDK_ERR_MEMORY, "stencil: out of memory for a grid of %lld sites",
-            (long long)st->num_sites);
-  memset(blk, 0, (size_t)(ncomp * cstr) * sizeof(double));
-  memcpy(blk + dim * cstr, st->volume, ns_all * sizeof(double));
-  pdk_free_aligned(st->volume);
-  st->volume = blk + dim * cstr;
-  for (int a = 0; a < dim; ++a) { /* x holds displacements: 0 at empty sites and in the slack */
-    pdk_free_aligned(st->x[a]);
-    st->x[a] = blk + a * cstr;
-  }
-  st->ck = blk + (dim + 1) * cstr;
-  for (int t = 0; t < dim * dim; ++t)
-    st->cB[t] = blk + (dim + 2 + t) * cstr;
-  st->cblk = blk;
-  st->cstride = cstr;
-  if (float_storage) {
-    st->cBfblk = pdk_alloc_aligned((size_t)(dim * dim * cstr), sizeof(float));
-    PDK_CHECK(st->cBfblk, ctx, PDK_ERR_MEMORY, "stencil: out of memory");
-    memset(st->cBfblk, 0, (size_t)(dim * dim * cstr) * sizeof(float));
-    for (int t = 0; t < dim * dim; ++t)
-      st->cBf[t] = st->cBfblk + t * cstr;
-  }
-  /* tiles for the pass-2 neighbour data: u, V, k and B (double, or its float copy) */
-  PDK_CHECK(stencil_rows(st, 8.0 * (dim + 2) + (float_storage ? 4.0 : 8.0) * dim * dim) == 0, ctx,
-            PDK_ERR_MEMORY, "stencil: out of memory");
-  return PDK_SUCCESS;
-}
-
-void pdk_stencil_mask_rows(pdk_model *m, pdk_stencil *st, const uint8_t *changed) {
-  if (!st || !st->mask) return;
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const uint8_t *alive = m->bond_alive;
-  const pdk_index n = st->n;
-  const int64_t ns = st->num_sites;
-  const pdk_stencil *cst = st;
-  uint8_t *mask = st->mask;
-#pragma omp parallel for default(none) shared(n, bs, bj, alive, cst, mask, ns, changed)            \
-    schedule(static) num_threads(m->ctx->num_threads)
-  for (pdk_index i = 0; i < n; ++i) {
-    if (!(changed[i] & 2u)) continue;
-    const int64_t si = cst->particle_site[i];
-    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
-      const int o = stencil_offset_of(cst, si, cst->particle_site[bj[b]]);
-      mask[(int64_t)o * ns + si] = alive ? alive[b] : 1;
-    }
-    if (cst->cs[0]) stencil_corr_s((pdk_stencil *)cst, i);
-  }
-}
-
-int pdk_stencil_corr_passes(pdk_model *m, pdk_stencil *st, const pdk_corr_consts *k,
-                            const pdk_corr_arrays *c) {
-  pdk_ctx *ctx = m->ctx;
-  const int dim = st->dim;
-  PDK_CHECK(st->ck && st->omega_off, ctx, PDK_ERR_ARG,
-            "stencil: the correspondence arrays were not set up");
-  if (st->mask && st->version != m->bond_state_version) stencil_load_mask(m, st);
-  pdk_stencil_arrays arr;
-  stencil_arrays_lattice(st, &arr);
-  arr.volume = st->volume;
-  arr.mask = st->mask;
-  for (int a = 0; a < dim; ++a) {
-    arr.u[a] = st->x[a];
-    arr.wxi_off[a] = st->wxi_off[a];
-    arr.cs[a] = st->cs[a];
-  }
-  arr.omega_off = st->omega_off;
-  for (int t = 0; t < dim * dim; ++t) {
-    arr.cB[t] = st->cB[t];
-    arr.cBf[t] = st->cBf[t];
-  }
-  arr.ck = st->ck;
-  arr.cbase = st->cblk;
-  arr.cbase_f = st->cBfblk;
-  arr.cstride = st->cstride;
-  const pdk_stencil_arrays *a = &arr;
-  const pdk_stencil *cst = st;
-  const pdk_corr_stencil_fn pass1 = ctx->kernels.corr_stencil_pass1;
-  const pdk_corr_stencil_fn pass2 = ctx->kernels.corr_stencil_pass2;
-  const pdk_index n = st->n;
-  const int64_t num_rows = st->num_rows;
-  double *gu[3] = {st->x[0], st->x[1], dim == 3 ? st->x[2] : NULL};
-#pragma omp parallel default(none) num_threads(ctx->num_threads)                                   \
-    shared(n, cst, c, gu, dim, num_rows, pass1, pass2, k, a)
-  {
-#pragma omp for schedule(static)
-    for (pdk_index i = 0; i < n; ++i) {
-      const int64_t s = cst->particle_site[i];
-      for (int d = 0; d < dim; ++d)
-        gu[d][s] = c->x[d][i] - c->X[d][i];
-    }
-    /* implicit barrier: every site's u is in place before a neighbour reads it */
-#pragma omp for schedule(static)
-    for (int64_t r = 0; r < num_rows; ++r)
-      pass1(k, c, a, r, r + 1);
-      /* implicit barrier: pass 2 reads the neighbours' B and k */
-#pragma omp for schedule(static)
-    for (int64_t r = 0; r < num_rows; ++r)
-      pass2(k, c, a, r, r + 1);
-  }
   return PDK_SUCCESS;
 }
