@@ -1,5 +1,5 @@
 /* Private: HDF5 attribute helpers, pdk's HDF5 file driver and crash-safe file commits, shared by
- * src/output.c and src/checkpoint.c.
+ * src/output*.c and src/checkpoint.c.
  *
  * Every file pdk writes goes through the same life: it is created as <final>.part, written and
  * flushed, then pdk_file_commit syncs it to disk, renames it to <final> and syncs the directory,

@@ -1,5 +1,5 @@
 /* Private: a loaded scene, resolved into the option structs of the objects it describes, shared by
- * src/scene.c (loading and validation) and src/sim.c (building).
+ * src/scene*.c (loading and validation; src/scene_load.h) and src/sim.c (building).
  *
  * Everything here is owned by the scene: strings, region vertices, boundary conditions and the
  * "set:<name>" field names they point to. The option structs (lattice, model, solver) hold the
