@@ -19,9 +19,9 @@
  *   (default linear) and stabilization (default none; Silling and hourglass with C_s = 0.1).
  *
  * --layout: csr (default), the general path over the CSR families; sell, the PMB and LPS passes
- *   over the sliced SELL-C-sigma layout (model layout sell, src/sell.h); stencil, the PMB and LPS
+ *   over the sliced SELL-C-sigma layout (model layout sell, src/space/sell.h); stencil, the PMB and LPS
  *   stencil path (model stencil on: bond offsets outside, runs of lattice sites inside,
- *   src/model_stencil.c; for corr the correspondence stencil passes, kernels/opt/corr_stencil.h);
+ *   src/models/model_stencil.c; for corr the correspondence stencil passes, kernels/opt/corr_stencil.h);
  *   repeatable, so they run side by side on the same lattice (each configuration with each layout
  *   in turn). Other models skip sell and stencil (corr skips sell).
  *   --sell-sigma S: the sell sorting window in particles (0, the default: 32 C). The `pad%` column

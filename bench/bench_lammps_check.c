@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "model_bond.h"
+#include "models/model_bond.h"
 #include "pdk/pdk.h"
 
 typedef struct dump {

@@ -4,7 +4,7 @@
  * (through kernels.h) and no other pdk header: they know no model, family or particle store.
  *
  * The law and stabilization values are those of the public enums pdk_law and pdk_stabilization
- * (pdk/model.h), which the drivers copy into pdk_corr_consts.law and .stab; src/kernels.c checks
+ * (pdk/model.h), which the drivers copy into pdk_corr_consts.law and .stab; src/core/kernels.c checks
  * at compile time that the two agree. */
 #ifndef PDK_KERNEL_TYPES_H
 #define PDK_KERNEL_TYPES_H

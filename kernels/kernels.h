@@ -1,6 +1,6 @@
 /* Kernel prototypes. A kernel is a pure function: restrict pointers and counts in, results out;
  * no allocation, no error paths, no OpenMP region. kernels/ref/ holds the readable oracle of each;
- * kernels/opt/ holds the variants that src/kernels.c puts in the table. */
+ * kernels/opt/ holds the variants that src/core/kernels.c puts in the table. */
 #ifndef PDK_KERNELS_H
 #define PDK_KERNELS_H
 
@@ -189,7 +189,7 @@ pdk_bond_index pdk_kernel_lps_force_avx512(const pdk_lps_consts *k, const pdk_bo
                                            pdk_index i0, pdk_index i1);
 
 /* ---- PMB and LPS over the sliced layout (SELL-C-sigma) --------------------------------------------------
- * The families of pdk_bond_arrays re-stored in slices of C consecutive rows (src/sell.h): row r of
+ * The families of pdk_bond_arrays re-stored in slices of C consecutive rows (src/space/sell.h): row r of
  * slice s = r / C is particle row_i[r]; within a slice the bonds are stored column-major, entry
  * slice_start[s] + col C + l holding bond col of lane l's particle, so one SIMD vector of C lanes
  * is C particles at the same bond rank and a particle's force is one lane's running sum, without
@@ -248,7 +248,7 @@ void pdk_kernel_lps_dilation_sell_avx512(const pdk_lps_consts *k, const pdk_bond
 pdk_bond_index pdk_kernel_lps_force_sell_avx512(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                                 const pdk_sell_arrays *s, int64_t s0, int64_t s1);
 /* ---- PMB on a regular lattice: the stencil layout (kernels/opt/pmb_stencil.h) ----------------
- * Built by src/model_stencil.c when the particles sit on a simple cubic (3-D) or square (2-D)
+ * Built by src/models/model_stencil.c when the particles sit on a simple cubic (3-D) or square (2-D)
  * lattice. Sites of a padded grid, s = ix + nx (iy + ny iz); a bond is a fixed site offset. Per-site
  * arrays are [num_sites + PDK_STENCIL_SLACK] (the slack: sites past the grid that a row's last,
  * partial vector block reads; empty); particle arrays (f, w, s0_next) are [n_pad]. */
@@ -330,7 +330,7 @@ pdk_bond_index pdk_kernel_lps_stencil_force_avx512(const pdk_lps_consts *k,
                                                    int64_t r1);
 
 /* ---- Johnson-Cook material point (kernels/ref/jc.c; formulation in its header) -------------- */
-/* The functions of pdk/plasticity.h are these kernels: src/plasticity.c defines each public one as
+/* The functions of pdk/plasticity.h are these kernels: src/models/plasticity.c defines each public one as
  * a call of its kernel here, after checking the arguments (NULL pointers, a non-finite
  * sigma_m_avg: PDK_ERR_ARG). The kernels take valid pointers.
  * pdk_jc_update_full_kernel: pdk_jc_update (sigma_m_avg NULL) or pdk_jc_update_avg (sigma_m_avg
@@ -595,7 +595,7 @@ void pdk_kernel_corr_pass2_avx512(const pdk_corr_consts *k, const pdk_corr_array
                                   pdk_index i0, pdk_index i1);
 
 /* Correspondence passes 1 and 2 on the lattice (stencil layout; kernels/opt/corr_stencil.h, driven
- * by src/model_stencil.c): rows r0 .. r1-1 of the site grid a; c is the model's arrays (the
+ * by src/models/model_stencil.c): rows r0 .. r1-1 of the site grid a; c is the model's arrays (the
  * per-particle end writes F, A, W, flags, history through it; its pass-2 arrays are NULL).
  * Baseline ISA, AVX2 + FMA, AVX-512 variants; results equal the general path's up to the order
  * of the family sums (round-off, tests/t163). */

@@ -21,7 +21,7 @@
 
 #include "jc_corr_util.h"
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 
 #define PH_MAX_OVERRIDES 16
 #define PH_MAX_TRACE 200000

@@ -1,6 +1,6 @@
 /* Context: creation options, thread count, kernel table choice, error recording.
  * labels: unit */
-#include "pdk_impl.h"
+#include "core/pdk_impl.h"
 #include "test_util.h"
 
 int main(void) {

@@ -4,7 +4,7 @@
 #include <errno.h>
 #include <hwloc.h>
 
-#include "ext.h"
+#include "core/ext.h"
 #include "test_util.h"
 
 static int h5_open_missing(pdk_ctx *ctx) {

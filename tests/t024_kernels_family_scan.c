@@ -6,7 +6,7 @@
 #include <stdint.h>
 
 #include "kernels.h"
-#include "pdk_impl.h"
+#include "core/pdk_impl.h"
 #include "test_util.h"
 
 typedef pdk_index (*scan2_fn)(pdk_index, const double *restrict, const double *restrict, double,

@@ -8,7 +8,7 @@
  * labels: unit */
 #include <stdint.h>
 
-#include "cells.h"
+#include "space/cells.h"
 #include "test_util.h"
 
 static uint64_t rng_next(uint64_t *s) {

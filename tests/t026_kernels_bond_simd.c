@@ -24,8 +24,8 @@
 
 #include "bond_models_test.h"
 #include "kernels.h"
-#include "model_bond.h"
-#include "pdk_impl.h"
+#include "models/model_bond.h"
+#include "core/pdk_impl.h"
 
 #define NP 64
 #define I0 5

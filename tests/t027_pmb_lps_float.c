@@ -22,7 +22,7 @@
 #include <stdint.h>
 
 #include "bond_models_test.h"
-#include "model_bond.h"
+#include "models/model_bond.h"
 
 static pdk_particles *body(pdk_ctx *ctx, int dim, double origin) {
   pdk_lattice_opts o = pdk_lattice_opts_default();

@@ -9,7 +9,7 @@
  * Tolerances are given, with their reason, at each check.
  * labels: physics */
 #include "bond_models_test.h"
-#include "model_bond.h"
+#include "models/model_bond.h"
 
 #define K_BULK 2.0
 #define G_SHEAR 0.7

@@ -11,7 +11,7 @@
  * (t060 checks that a scene's geometry.thickness reaches the model options.)
  * labels: unit physics */
 #include "bond_models_test.h"
-#include "model_bond.h"
+#include "models/model_bond.h"
 
 /* sum over square-lattice offsets within delta (the families' rule) of c s^2 r0 beta V / 4, with
  * V = t and c = 72 K / (5 pi delta^3 t): t cancels, so it is written for t = 1. beta is LAMMPS's

@@ -33,8 +33,8 @@
 #include <stdint.h>
 
 #include "kernels.h"
-#include "model_impl.h"
-#include "pdk_impl.h"
+#include "models/model_impl.h"
+#include "core/pdk_impl.h"
 #include "test_util.h"
 
 typedef pdk_index (*shape_fn)(const pdk_corr_consts *, const pdk_corr_arrays *, pdk_index,

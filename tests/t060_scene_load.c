@@ -3,7 +3,7 @@
  * sets, pre-crack, boundary conditions and output fields.
  * labels: unit */
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 static char scene_dir[1024];

@@ -6,7 +6,7 @@
  * labels: unit */
 #include "pdk/output.h"
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 #include <sys/stat.h>

@@ -5,7 +5,7 @@
  * at a time with one history record each.
  * labels: unit
  */
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 static const char *base_scene = "dimension: 2\n"

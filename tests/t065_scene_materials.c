@@ -5,7 +5,7 @@
  * stiffest material, and bad keys are errors naming the key.
  * labels: unit */
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 static char path[2048];

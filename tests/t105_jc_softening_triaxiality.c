@@ -1,5 +1,5 @@
 /* Softened stabilization and family-averaged damage triaxiality (pdk_model_opts stab_softening,
- * damage_triaxiality; kernels/ref/corr.c, src/model_corr.c).
+ * damage_triaxiality; kernels/ref/corr.c, src/models/model_corr.c).
  *
  * 1. Material point, pdk_jc_update_avg: given the point's own effective mean stress it returns
  *    what pdk_jc_update returns (stress, history; to 1e-12, the round-off of sigma_m J / q against

@@ -24,7 +24,7 @@
  *   order one, so |u(L) / (T L / E) - 1| <= delta / H (half that share). At fixed RF = delta/h
  *   the error is O(h) (V-Q3: order 1): halving h must halve it (ratio in [1.6, 2.4]).
  */
-#include "static_impl.h"
+#include "solvers/static_impl.h"
 #include "test_util.h"
 
 typedef struct body {

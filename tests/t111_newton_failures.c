@@ -3,7 +3,7 @@
  * with 2 dim colors force passes, far fewer than the unknowns), and the LU path.
  * labels: unit
  */
-#include "static_impl.h"
+#include "solvers/static_impl.h"
 #include "test_util.h"
 
 typedef struct body {

@@ -5,7 +5,7 @@
  * with the same levels breaks the same bonds.
  * labels: physics threads
  */
-#include "static_impl.h"
+#include "solvers/static_impl.h"
 #include "test_util.h"
 
 #define MAX_EVENTS 4096

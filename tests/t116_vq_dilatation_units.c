@@ -1,4 +1,4 @@
-/* Dilatation laws with any influence function (src/model_dil2.c), the smoothing post-process
+/* Dilatation laws with any influence function (src/models/model_dil2.c), the smoothing post-process
  * (pdk_smooth_field), per-particle prescribed values (pdk_bc.scale_field) and the V-Q8
  * pressurized crack at a small size.
  * labels: physics threads

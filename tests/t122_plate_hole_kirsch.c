@@ -39,7 +39,7 @@
  * labels: physics */
 #include "pdk/scene.h"
 #include "pdk/static.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 typedef struct edge_result {

@@ -30,7 +30,7 @@
 
 #include "jc_corr_util.h"
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 
 #define SPACING 1.0e-3
 #define END_TIME 3.0e-3 /* both separate by then (2.6 ms is too short as shipped) */

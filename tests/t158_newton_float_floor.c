@@ -27,7 +27,7 @@
  * labels: physics */
 #include <float.h>
 
-#include "static_impl.h"
+#include "solvers/static_impl.h"
 #include "test_util.h"
 
 static double *solve(pdk_ctx *ctx, pdk_precision prec, pdk_static_stats *out, pdk_index *n_out) {

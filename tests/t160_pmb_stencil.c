@@ -1,4 +1,4 @@
-/* The stencil path of the PMB and LPS force passes (model.stencil, src/model_stencil.c) against the
+/* The stencil path of the PMB and LPS force passes (model.stencil, src/models/model_stencil.c) against the
  * general path, on regular lattices.
  *
  * Tolerance. Both paths compute every bond term with the same operations on the same values (the

@@ -1,5 +1,5 @@
-/* Newton's analytic tangent (PMB, LPS, the 2-D dilatation laws; src/model_pmb.c, src/model_lps.c,
- * src/model_dil2.c) against the colored central-difference tangent, and what it does to a solve.
+/* Newton's analytic tangent (PMB, LPS, the 2-D dilatation laws; src/models/model_pmb.c, src/models/model_lps.c,
+ * src/models/model_dil2.c) against the colored central-difference tangent, and what it does to a solve.
  * labels: physics threads
  *
  * 1. Entry by entry, on a deformed configuration (a smooth nonlinear field with stretches of a few
@@ -33,7 +33,7 @@
  * 5. tangent analytic is refused for a model without one (correspondence), with a message naming
  *    the model; auto falls back to the difference tangent there.
  */
-#include "static_impl.h"
+#include "solvers/static_impl.h"
 #include "test_util.h"
 
 typedef struct body {

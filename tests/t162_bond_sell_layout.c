@@ -18,7 +18,7 @@
  *
  * What must hold, and why:
  *   - bond state, number broken: bit for bit the reference's (every bond's stretch is computed
- *     with the reference's operations in its order; src/sell.h keeps the layout's state equal to
+ *     with the reference's operations in its order; src/space/sell.h keeps the layout's state equal to
  *     the CSR state);
  *   - f, W (and LPS theta): the reference's up to the order of the sums over a family. Two sums of
  *     the same n_b terms in different orders differ by at most 2 (n_b - 1) eps sum_b |term_b|
@@ -35,12 +35,12 @@
 #include <stdint.h>
 
 #include "bond_models_test.h"
-#include "families_impl.h"
+#include "space/families_impl.h"
 #include "kernels.h"
-#include "model_bond.h"
-#include "model_impl.h"
-#include "pdk_impl.h"
-#include "sell.h"
+#include "models/model_bond.h"
+#include "models/model_impl.h"
+#include "core/pdk_impl.h"
+#include "space/sell.h"
 
 static const int row_sizes[] = {0, 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33};
 #define NSIZES ((int)(sizeof row_sizes / sizeof row_sizes[0]))

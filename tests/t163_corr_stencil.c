@@ -1,5 +1,5 @@
 /* The stencil path of the correspondence passes (model.stencil for correspondence;
- * src/model_stencil.c, kernels/opt/corr_stencil.h) against the general path, on regular lattices.
+ * src/models/model_stencil.c, kernels/opt/corr_stencil.h) against the general path, on regular lattices.
  *
  * Tolerance. Both paths form the same bond terms from the same values (xi and omega per offset
  * equal every bond's to round-off: set-up checks it), but sum them in another order (lattice
@@ -44,7 +44,7 @@
 
 #include "bond_models_test.h"
 #include "corr_util.h"
-#include "model_impl.h" /* pdk_influence_eval */
+#include "models/model_impl.h" /* pdk_influence_eval */
 #include "pdk/scene.h"
 
 #define EPS DBL_EPSILON

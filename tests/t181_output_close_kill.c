@@ -14,7 +14,7 @@
 
 #include "output_util.h"
 
-#include "h5io.h"
+#include "core/h5io.h"
 
 #define DIR_OUT "t181_out"
 #define NAME "run"

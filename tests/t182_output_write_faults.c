@@ -11,7 +11,7 @@
 
 #include <hdf5.h>
 
-#include "h5io.h"
+#include "core/h5io.h"
 
 #define DIR_OUT "t182_out"
 

@@ -1,4 +1,4 @@
-/* The registry of model kinds and correspondence laws (src/model_registry.h) is the one place
+/* The registry of model kinds and correspondence laws (src/models/model_registry.h) is the one place
  * that knows them: every registered kind has a name, operations for its options and the
  * capabilities it claims (a kind that claims an analytic tangent has one); every law has a
  * name and what its flags promise (an elastic law its Cauchy stress, a law with history its von
@@ -7,8 +7,8 @@
  * spelled the kinds out, as do model creation's refusals decided by the kinds' entries (the texts
  * below are those of before the registry). pdk_model_opts_uses answers from the same entries.
  * labels: unit */
-#include "model_impl.h"
-#include "scene_impl.h"
+#include "models/model_impl.h"
+#include "scene/scene_impl.h"
 #include "test_util.h"
 
 static void write_file(const char *path, const char *text) {

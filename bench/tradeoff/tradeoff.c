@@ -71,7 +71,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 
-#include "model_impl.h" /* pdk_influence_eval: the stress post-processing of the hole */
+#include "models/model_impl.h" /* pdk_influence_eval: the stress post-processing of the hole */
 #include "pdk/pdk.h"
 
 /* ---- problems and knobs ------------------------------------------------------------------- */

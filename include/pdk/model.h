@@ -61,10 +61,10 @@ typedef enum pdk_model_kind {
   PDK_MODEL_LPS = 1,           /* linear peridynamic solid, as LAMMPS peri/lps */
   PDK_MODEL_CORRESPONDENCE = 2, /* non-ordinary state-based, total Lagrangian */
   PDK_MODEL_OTERKUS = 3 /* Oterkus' dilatation law, plane strain, any influence function (2-D;
-                           Queiruga & Moridis 2017 section 2.3; src/model_dil2.c) */
+                           Queiruga & Moridis 2017 section 2.3; src/models/model_dil2.c) */
 } pdk_model_kind;
 
-/* Oterkus law: how the dilatation coefficient a is set (src/model_dil2.c). */
+/* Oterkus law: how the dilatation coefficient a is set (src/models/model_dil2.c). */
 typedef enum pdk_oterkus_a {
   PDK_OTERKUS_A_PUBLISHED = 0, /* a = (K - 2G)/2, K the 3-D bulk modulus: what Queiruga & Moridis'
                                   published results used; wrong for isotropic strain */
@@ -111,7 +111,7 @@ typedef enum pdk_connectivity {
                                    detached: all its bonds break, it moves freely, carries no
                                    stress and counts in num_flagged (a cascade to neighbours that
                                    become degenerate in turn is followed in the same pass) */
-  PDK_CONNECTIVITY_UL = 2 /* updated Lagrangian (Bergel & Li 2016), src/model_corr_ul.c: spatial
+  PDK_CONNECTIVITY_UL = 2 /* updated Lagrangian (Bergel & Li 2016), src/models/model_corr_ul.c: spatial
                              shape tensor M = sum omega V Y (x) Y, F^ = M N^-T relative to the
                              configuration of the last rebuild (times the F stored there), Cauchy
                              (Kirchhoff) stress force states sigma M^-1 Y; the families are rebuilt
@@ -137,7 +137,7 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
-/* How the force passes store the families (PMB and LPS; src/sell.h, kernels/kernels.h). */
+/* How the force passes store the families (PMB and LPS; src/space/sell.h, kernels/kernels.h). */
 typedef enum pdk_layout {
   PDK_LAYOUT_CSR = 0, /* the families' CSR rows: the SIMD lanes run along one particle's bonds */
   PDK_LAYOUT_SELL = 1 /* sliced (SELL-C-sigma): slices of C consecutive particles (C = the SIMD
@@ -149,7 +149,7 @@ typedef enum pdk_layout {
                          summation order; bond failure bit for bit. Speed against csr:
                          bench/README.md, "Force loops" (an option, not the default) */
 } pdk_layout;
-/* The stencil path of the PMB, LPS and correspondence force passes (src/model_stencil.c,
+/* The stencil path of the PMB, LPS and correspondence force passes (src/models/model_stencil.c,
  * kernels/opt/pmb_stencil.h, lps_stencil.h, corr_stencil.h; LPS with LAMMPS's influence function
  * only; correspondence with tl connectivity and stabilization none or silling, xi and omega taken
  * per offset, so particles on their lattice points to round-off): when the
@@ -218,7 +218,7 @@ typedef struct pdk_model_opts {
   pdk_influence influence; /* correspondence and oterkus; lps with lps_use_influence (otherwise
                               LPS uses LAMMPS's omega = 1/r and PMB a constant, as LAMMPS) */
   /* LPS: 0 (default) LAMMPS's omega = 1/r (2-D and 3-D, kernels/ref/lps.c); 1: omega = influence,
-   * Silling's law in plane strain (2-D only, no bond breaking; src/model_dil2.c). */
+   * Silling's law in plane strain (2-D only, no bond breaking; src/models/model_dil2.c). */
   int lps_use_influence;
   pdk_oterkus_a oterkus_a; /* oterkus model (default published) */
   double gaussian_width;   /* for PDK_INFLUENCE_GAUSSIAN, fraction of delta (default 0.5) */

@@ -161,7 +161,7 @@ PDK_EXPORT int pdk_output_adopt(pdk_output *o, const char *part, const char *fin
  *
  * Layout: a 512-byte HDF5 user block holding the text "pdk checkpoint\nchecksum fnv1a64x:<16 hex
  * digits>\nsize <bytes>\n" and zeros: a 64-bit hash of every byte of the file after the user
- * block, and the file's size (src/checkpoint.c), written once the HDF5 file is closed;
+ * block, and the file's size (src/io/checkpoint.c), written once the HDF5 file is closed;
  * / attributes kind = "pdk checkpoint", format (int, 2), pdk_version, build_flags,
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
  * dataset /scene); /solver attributes time, step, dt, dt_created (the step the run was created with), strain,

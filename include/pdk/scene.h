@@ -130,7 +130,7 @@ PDK_EXPORT int pdk_sim_static_step(pdk_sim *sim, pdk_history *h);
 PDK_EXPORT int pdk_sim_static_history(pdk_sim *sim, pdk_history *h);
 
 /* Refreshes derived output fields before a field output: displacement "u" = x - X, and
- * "von_mises" (the von Mises Cauchy stress of a correspondence model; see src/sim.c). */
+ * "von_mises" (the von Mises Cauchy stress of a correspondence model; see src/scene/sim.c). */
 PDK_EXPORT int pdk_sim_update_output_fields(pdk_sim *sim);
 
 #ifdef __cplusplus

@@ -81,7 +81,7 @@
  * Analytic tangent (opts.tangent auto, the default, or analytic): PMB and LPS (omega = 1/r0, 2-D
  * and 3-D, partial volumes, float storage, broken bonds) and the 2-D dilatation laws (LPS with an
  * influence function, Oterkus) bring the exact derivative of their trial force at the current x
- * (src/model_pmb.c, src/model_lps.c, src/model_dil2.c), assembled column by column in the same
+ * (src/models/model_pmb.c, src/models/model_lps.c, src/models/model_dil2.c), assembled column by column in the same
  * compressed-column pattern (so CHOLMOD/UMFPACK and the symbolic reuse are unchanged) in one sweep
  * over the particles: no force passes (passes_per_tangent 0, no coloring), no difference error,
  * and a nonlinear (large-stretch) problem converges quadratically. Correspondence uses the

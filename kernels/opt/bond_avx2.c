@@ -2,7 +2,7 @@
  * kernels/opt/bond_simd.h (method, contract and equality with the reference there); and the PMB
  * pass over the sliced layout, slices of 4 particles, kernels/opt/sell_simd.h. Compiled for
  * AVX2 + FMA by the target pragma below (FMA contraction stays off: PDK_KERNEL_FP_EXACT), so the
- * baseline build runs on any x86-64 and src/kernels.c installs these only on CPUs with AVX2. */
+ * baseline build runs on any x86-64 and src/core/kernels.c installs these only on CPUs with AVX2. */
 #include "kernels.h"
 
 PDK_KERNEL_FP_EXACT

@@ -2,7 +2,7 @@
  * kernels/opt/bond_simd.h (method, contract and equality with the reference there); and the PMB
  * pass over the sliced layout, slices of 8 particles, kernels/opt/sell_simd.h. Compiled for
  * AVX-512 F/VL/DQ/BW by the target pragma below (FMA contraction stays off: PDK_KERNEL_FP_EXACT);
- * src/kernels.c installs these only on CPUs with AVX-512. */
+ * src/core/kernels.c installs these only on CPUs with AVX-512. */
 #include "kernels.h"
 
 PDK_KERNEL_FP_EXACT

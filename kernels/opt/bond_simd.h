@@ -9,7 +9,7 @@
  *   BS_SET1(a)           every lane a
  *   BS_MIN(a, b)         lane-wise a < b ? a : b (vminpd)
  * and compile the file for their ISA (target pragma), so the baseline build runs anywhere and
- * src/kernels.c installs the variants only when the CPU has the ISA.
+ * src/core/kernels.c installs the variants only when the CPU has the ISA.
  *
  * Formulas, contracts and failure rules: kernels/ref/pmb.c and kernels/ref/lps.c. Each bond's
  * terms are computed with the operations of the reference in the same order, no FMA (the file

@@ -1,5 +1,5 @@
 /* Correspondence shape, pass 1 and pass 2 for AVX2 + FMA (256-bit vectors): kernels/opt/corr_simd.h
- * compiled for this target. The baseline build runs on any x86-64; src/kernels.c installs these
+ * compiled for this target. The baseline build runs on any x86-64; src/core/kernels.c installs these
  * only when the CPU has AVX2 and FMA. */
 #include "kernels.h"
 

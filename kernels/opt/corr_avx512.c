@@ -2,7 +2,7 @@
  * compiled for this target with 256-bit vectors: the gain over AVX2 is the 32 vector registers
  * (the pass-2 loop keeps i's F, centre and 17 neighbour streams live and spills with 16) and
  * masked remainders; 512-bit vectors measured slower (bench/log.md, "Correspondence
- * kernels"). The baseline build runs on any x86-64; src/kernels.c installs these only when the
+ * kernels"). The baseline build runs on any x86-64; src/core/kernels.c installs these only when the
  * CPU has AVX-512. */
 #include "kernels.h"
 

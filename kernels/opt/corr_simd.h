@@ -1,6 +1,6 @@
 /* Correspondence shape, pass 1 and pass 2, vectorized: one source for every ISA.
  * kernels/opt/corr_avx2.c and corr_avx512.c each set a target (#pragma GCC target) and CORR_SFX,
- * then include this file, so the same loops are compiled once per ISA and src/kernels.c installs
+ * then include this file, so the same loops are compiled once per ISA and src/core/kernels.c installs
  * the one the CPU runs.
  *
  * Two forms of pass 1 and pass 2:
@@ -18,7 +18,7 @@
  *   - shape: m = tr K (the reference sums w V |xi|^2 separately);
  *   - pass 1 accumulates N in the vector loop; the per-particle end (law, A, flags, the pass-2
  *     data) is the reference's pdk_kernel_corr_point_ref, and a row whose intact count changed
- *     is reshaped by the reference (as src/model_corr.c reshapes after breaking);
+ *     is reshaped by the reference (as src/models/model_corr.c reshapes after breaking);
  *   - pass 2 (fused stabilization): particle j enters only through the B_j (9 entries; 4 in 2-D)
  *     and k_j pass 1 stored, instead of A_j, F_j, flag_j and m_j (U = Y - xi):
  *       Silling    f_i = sum w V [(B_i + B_j) xi + (k_i + k_j) U],   B = A - k (F - I)

@@ -1,6 +1,6 @@
 /* Correspondence passes on the lattice (stencil layout) for AVX2 + FMA CPUs: 4 sites per vector,
  * one vector per block (pass 1 keeps 11 accumulators of 4 lanes, pass 2 nine, in the 16 ymm
- * registers); the body is kernels/opt/corr_stencil.h. src/kernels.c installs it only on CPUs with
+ * registers); the body is kernels/opt/corr_stencil.h. src/core/kernels.c installs it only on CPUs with
  * AVX2. */
 #include "kernels.h"
 

@@ -1,5 +1,5 @@
 /* Correspondence passes on the lattice (stencil layout) for AVX-512 CPUs: 8 sites per vector, one
- * vector per block; the body is kernels/opt/corr_stencil.h. src/kernels.c installs it only on CPUs
+ * vector per block; the body is kernels/opt/corr_stencil.h. src/core/kernels.c installs it only on CPUs
  * with AVX-512. */
 #include "kernels.h"
 

@@ -9,7 +9,7 @@
  * 16 x 16 byte-shuffle table that moves the accepted int32 ids to the low lanes of an xmm, which is
  * stored whole at out + count; count advances by the mask's popcount. The tail (< 4 candidates) is
  * the scalar formula. out needs n_cand + PDK_SCAN_OUT_PAD entries of room. Compiled for AVX2
- * through target attributes; src/kernels.c installs these only when the CPU has AVX2. */
+ * through target attributes; src/core/kernels.c installs these only when the CPU has AVX2. */
 #include <stdint.h>
 
 #include "kernels.h"

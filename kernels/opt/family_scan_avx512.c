@@ -11,7 +11,7 @@
  * whole at out + count; count advances by the mask's popcount. The tail uses masked loads, so no
  * candidate array is read past its end. out needs n_cand + PDK_SCAN_OUT_PAD entries of room.
  * Compiled for AVX-512 through target attributes: the baseline build runs on any x86-64, and the
- * table in src/kernels.c installs these only when the CPU has AVX-512. */
+ * table in src/core/kernels.c installs these only when the CPU has AVX-512. */
 #include "kernels.h"
 
 PDK_KERNEL_FP_EXACT

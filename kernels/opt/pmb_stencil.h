@@ -4,9 +4,9 @@
  *   SC_U            vectors per block (a block is SC_U * SC_W consecutive sites)
  *   SC_NAME(base)   the exported name
  *   SC_SQRT(v)      lane-wise correctly rounded square root of an sc_vd
- * and compile it for their ISA (target pragma); src/kernels.c installs the one the CPU runs.
+ * and compile it for their ISA (target pragma); src/core/kernels.c installs the one the CPU runs.
  *
- * Layout (pdk_stencil_arrays in kernels/kernels.h, built by src/model_stencil.c): the particles sit
+ * Layout (pdk_stencil_arrays in kernels/kernels.h, built by src/models/model_stencil.c): the particles sit
  * on the sites of a padded grid, site s = ix + nx (iy + ny iz); a bond is a fixed site offset
  * offset[o] (o < num_offsets, the same list for every particle), so the neighbour of site s along
  * offset o is site s + offset[o]. Positions, reference positions and volumes are stored per site

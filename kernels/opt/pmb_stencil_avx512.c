@@ -1,6 +1,6 @@
 /* PMB force and LPS dilation / force passes on the lattice (stencil layout) for AVX-512 CPUs (8
  * sites per vector): the bodies are kernels/opt/pmb_stencil.h and lps_stencil.h. FMA contraction
- * stays off (PDK_KERNEL_FP_EXACT); src/kernels.c installs it only on CPUs with AVX-512. */
+ * stays off (PDK_KERNEL_FP_EXACT); src/core/kernels.c installs it only on CPUs with AVX-512. */
 #include <math.h>
 
 #include "kernels.h"

@@ -1,5 +1,5 @@
 /* Reference PMB force pass and LPS dilation / force passes over the sliced layout (SELL-C-sigma;
- * arrays in kernels/kernels.h, pdk_sell_arrays; layout built by src/sell.c).
+ * arrays in kernels/kernels.h, pdk_sell_arrays; layout built by src/space/sell.c).
  *
  * Formula, partial volumes, bond failure (LAMMPS s0 rule) and energy: kernels/ref/pmb.c, term for
  * term. For each slice s in [s0, s1) and each column col < (slice_start[s+1] - slice_start[s]) / C,

@@ -80,7 +80,7 @@
  *   18 C_s K / (pi delta^4) / |xi| of Peridigm's hourglass force (with delta / |xi| above).
  *   Dividing by the particle's own m_i (rather than a constant) makes the term invariant under a
  *   rescaling of omega, like F and the correspondence force, and stiffer at surfaces, as LPS is.
- *   Why this and not another reading: see src/model_corr.c.
+ *   Why this and not another reading: see src/models/model_corr.c.
  *
  * Bond failure (pdk_kernel_corr_break_ref, commit passes only, bond_alive != NULL), after pass 2,
  * so the state it writes is read by the next pass: a bond intact at entry breaks when
@@ -91,7 +91,7 @@
  * the failed test is symmetric, so a bond breaks from both ends in the same pass. Returns the
  * number of directed bonds broken; changed[i] = 3 marks the rows that lost bonds.
  *
- * After breaking (driver: src/model_corr.c), per commit pass with broken bonds:
+ * After breaking (driver: src/models/model_corr.c), per commit pass with broken bonds:
  *   reshape  K, m recomputed from the intact family of every changed row (reference
  *            configuration); in semi-TL a changed row whose intact bonds no longer span (but are
  *            not none) is marked detach;

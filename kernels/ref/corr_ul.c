@@ -5,7 +5,7 @@
  * the last rebuild (X_r, V_r, with F_ref the deformation gradient from 0 to r and J_ref = det
  * F_ref; at creation r = 0, F_ref = I); the current one (x). The families are those of r: bond b
  * of particle i with neighbour j, xi = X_r,j - X_r,i, Y = x_j - x_i, w_b = omega(|xi|) at
- * creation and omega(min(|X_j - X_i|, |xi|)) after a rebuild (src/model_corr_ul.c, "Weights";
+ * creation and omega(min(|X_j - X_i|, |xi|)) after a rebuild (src/models/model_corr_ul.c, "Weights";
  * fixed between rebuilds: Bergel & Li's omega(xi) dV = omega_t dv), V_j = V_r,j.
  *
  * Rebuild shape (pdk_kernel_corr_ul_shape_ref), at creation and after each rebuild:

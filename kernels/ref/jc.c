@@ -1,5 +1,5 @@
 /* Johnson-Cook plasticity and damage at one material point (pdk_jc_update), finite strain: the
- * kernels behind the functions of pdk/plasticity.h (src/plasticity.c calls them; kernels.h).
+ * kernels behind the functions of pdk/plasticity.h (src/models/plasticity.c calls them; kernels.h).
  *
  * Formulation (Simo 1992, CMAME 99:61-112; Eterovic & Bathe 1990, IJNME 30:1099-1114; Simo &
  * Hughes 1998 ch. 9; the exponential-map return of Bode 2021 eq. 4.41):

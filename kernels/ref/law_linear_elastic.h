@@ -1,6 +1,6 @@
 /* Correspondence law linear_elastic: P(F) and W(F) in dimension d (d x d in the top-left of 3 x
  * 3), small strain: sigma = lambda tr(eps) I + 2 mu eps, P = sigma. Called by pdk_corr_law_eval_d
- * (kernels/ref/corr_law.h); the law's pdk-side entry is src/law_linear_elastic.c. Returns 0 if the
+ * (kernels/ref/corr_law.h); the law's pdk-side entry is src/models/law_linear_elastic.c. Returns 0 if the
  * law is undefined at F. */
 #ifndef PDK_KERNELS_LAW_LINEAR_ELASTIC_H
 #define PDK_KERNELS_LAW_LINEAR_ELASTIC_H

@@ -1,6 +1,6 @@
 /* Correspondence law neo_hooke: P(F) and W(F) in dimension d (d x d in the top-left of 3 x 3),
  * compressible Neo-Hooke: P = mu (F - F^-T) + lambda ln(J) F^-T. Called by pdk_corr_law_eval_d
- * (kernels/ref/corr_law.h); the law's pdk-side entry is src/law_neo_hooke.c. Returns 0 if the law
+ * (kernels/ref/corr_law.h); the law's pdk-side entry is src/models/law_neo_hooke.c. Returns 0 if the law
  * is undefined at F. */
 #ifndef PDK_KERNELS_LAW_NEO_HOOKE_H
 #define PDK_KERNELS_LAW_NEO_HOOKE_H

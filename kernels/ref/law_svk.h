@@ -1,6 +1,6 @@
 /* Correspondence law svk: P(F) and W(F) in dimension d (d x d in the top-left of 3 x 3), St
  * Venant-Kirchhoff: S = lambda tr(E) I + 2 mu E, P = F S. Called by pdk_corr_law_eval_d
- * (kernels/ref/corr_law.h); the law's pdk-side entry is src/law_svk.c. Returns 0 if the law is
+ * (kernels/ref/corr_law.h); the law's pdk-side entry is src/models/law_svk.c. Returns 0 if the law is
  * undefined at F. */
 #ifndef PDK_KERNELS_LAW_SVK_H
 #define PDK_KERNELS_LAW_SVK_H

@@ -15,7 +15,7 @@
  *   energy density   W_i     = e_bulk theta_i^2 / 2
  *                              + e_dev / m_i * sum_b alive_b omega (e - theta_i r0 / d)^2 beta V_j
  *
- * Constants (src/model_lps.c): 3-D c_dil = 3K - 5G, c_dev = 15G, e_bulk = K, e_dev = 15G/2 (the
+ * Constants (src/models/model_lps.c): 3-D c_dil = 3K - 5G, c_dev = 15G, e_bulk = K, e_dev = 15G/2 (the
  * LAMMPS force; its rk = (3K-5G) (omega theta_i/m_i + omega theta_j/m_j) r0 + 15 G (omega/m_i +
  * omega/m_j) e). Plane strain (lambda = K - 2G/3, mu = G): c_dil = 2(lambda - mu) = 2K - 10G/3,
  * c_dev = 8 mu, e_bulk = lambda + mu = K + G/3, e_dev = 4 mu. In both cases V_i f_i = -dE/dx_i for

@@ -10,7 +10,7 @@
  *   W_i  = sum_b alive_b * c * s^2 * r0 * beta * V_j / 4             strain energy density
  *
  * c is the micromodulus (3-D: 18 K / (pi delta^4); 2-D plane strain: 72 K / (5 pi delta^3), see
- * src/model_pmb.c); in a multi-material body (k->c_particle != NULL) bond i-j uses
+ * src/models/model_pmb.c); in a multi-material body (k->c_particle != NULL) bond i-j uses
  * c_ij = 2 c_i c_j / (c_i + c_j), the same from both ends (the product and sum commute). beta is LAMMPS's vfrac_scale: with h = lattice/2, beta = (delta + h - r0)/(2h)
  * when r0 >= delta - h and 1 otherwise, written branch-free as min(1, (vs_a - r0) * vs_b) with
  * vs_a = delta + h, vs_b = 1/(2h); vs_a = +inf turns it off. Each bond is stored from both ends,

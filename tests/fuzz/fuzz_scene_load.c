@@ -24,7 +24,7 @@
 
 #include "pdk/pdk.h"
 #include "pdk/scene.h"
-#include "scene_impl.h"
+#include "scene/scene_impl.h"
 
 #define PDK_FUZZ_MAX_PARTICLES 1000.0
 #define PDK_FUZZ_MAX_OVERRIDES 8
