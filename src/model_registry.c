@@ -6,7 +6,7 @@
 
 /* The kinds, in the order scenes list them (the first is the scenes' default model.kind): each
  * defines pdk_model_kind_<name> in its own file. */
-#define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus)
+#define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus) X(galerkin)
 /* The correspondence laws, each defining pdk_law_<name> in src/law_<name>.c. */
 #define PDK_LAWS(X) X(linear_elastic) X(svk) X(neo_hooke) X(jc)
 
