@@ -31,7 +31,7 @@ static inline double pg_rand(uint64_t *s) {
 }
 
 /* The cloud (n1 x n1 points, jitter in units of h, a seed). */
-static pdk_particles *pg_cloud(pdk_ctx *ctx, int n1, double jitter, uint64_t seed) {
+static inline pdk_particles *pg_cloud(pdk_ctx *ctx, int n1, double jitter, uint64_t seed) {
   pdk_particles *p;
   T_OK(ctx, pdk_particles_create(ctx, 2, (pdk_index)n1 * n1, &p));
   const double h = 2.0 / (n1 - 1);
@@ -69,7 +69,7 @@ typedef struct pg_errors {
   double l2_abs, h1_abs; /* absolute */
 } pg_errors;
 
-static pg_errors pg_measure(pdk_particles *p) {
+static inline pg_errors pg_measure(pdk_particles *p) {
   const pdk_index n = pdk_particles_count(p);
   const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1), *V = pdk_particles_volume(p);
   const double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
@@ -97,7 +97,7 @@ static pg_errors pg_measure(pdk_particles *p) {
 }
 
 /* Model options of the patch test. */
-static pdk_model_opts pg_model_opts(pdk_galerkin_basis basis, pdk_galerkin_correction corr) {
+static inline pdk_model_opts pg_model_opts(pdk_galerkin_basis basis, pdk_galerkin_correction corr) {
   pdk_model_opts mo = pdk_model_opts_default();
   mo.kind = PDK_MODEL_GALERKIN;
   mo.shear_modulus = pg_mu();
@@ -112,7 +112,7 @@ static pdk_model_opts pg_model_opts(pdk_galerkin_basis basis, pdk_galerkin_corre
 
 /* Solves the patch test with Newton on a model built over p (fields "u_exact" and "t_load" are
  * added: the Dirichlet values and the Neumann body force P A_k / V_k); returns the errors. */
-static pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, pdk_static_stats *stats) {
+static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, pdk_static_stats *stats) {
   const pdk_index n = pdk_particles_count(p);
   const double lam = pg_lambda(), mu = pg_mu();
   const double tr = pg_H[0][0] + pg_H[1][1];
