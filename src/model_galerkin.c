@@ -18,12 +18,14 @@
  *
  * VC1 (Bode 2021 section 5.3.2, eqs. 5.56, 5.64-5.68): dN^{kji} <- dN^{kji} + psi^{ki} alpha_k
  * (componentwise, the same alpha_k for every evaluation point j). Since sum_j w_kj = V_k, the area
- * vectors become A_m(alpha) = A_m(0) + sum_{k : m in H_k} V_k psi^{km} alpha_k, one sparse
- * unsymmetric n x n matrix J[m][k] = V_k psi^{km} for every component. Boundary condition "s" of
- * the thesis (Table 7.1): alpha = 0 on the surface set, whose area vectors stay free; the
- * interior rows A_m = 0 give the square system J_II alpha_c = -A_c(0)|_I, factorized once by
- * UMFPACK and solved for each component. (The thesis' default "sn" fixes only the normal
- * component of alpha with Lagrange multipliers and needs surface normals; "s" needs only the set.)
+ * vectors become A_m(alpha) = A_m(0) + sum_{k : m in H_k} V_k psi^{km} alpha_k: sparse,
+ * unsymmetric, with the pattern of the families. Conditions (thesis Table 7.1): A_m = 0 inside;
+ * on the surface set either "s" (no normals given, or a zero normal: alpha_m = 0, A_m free) or
+ * "sn" (normals given: alpha_m . n_m = 0, A_m . t = 0 for the tangents t, so A_m is normal; the
+ * thesis imposes the same with Lagrange multipliers, here alpha_m = T_m beta_m is parametrized by
+ * the tangents and the normal equation dropped, which gives the same solution). Per particle a
+ * basis B_m (identity, tangents or nothing), unknowns beta_m, equations B_m^T A_m = 0: one square
+ * system, assembled in compressed columns, factorized and solved once by UMFPACK.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -125,16 +127,55 @@ static int row_val_cmp(const void *x, const void *y) {
   return (a->row > b->row) - (a->row < b->row);
 }
 
-/* VC1: psi, the interior system, alpha, the corrected table (see the top of the file). */
+/* The unknowns and equations of particle i (VC1): nb[i] basis vectors B_i (columns, in
+ * basis[i][e][c]): the identity inside; the tangents of the normal on a surface particle with a
+ * normal ("sn"); none on one without ("s"). alpha_i = B_i beta_i, equations B_i^T A_i = 0. */
+static int particle_basis(int dim, int surface, const double nrm[3], double B[3][3]) {
+  if (!surface) {
+    for (int e = 0; e < dim; ++e)
+      for (int c = 0; c < dim; ++c)
+        B[e][c] = e == c ? 1.0 : 0.0;
+    return dim;
+  }
+  double len = 0.0;
+  for (int c = 0; c < dim; ++c)
+    len += nrm[c] * nrm[c];
+  if (!(len > 0)) return 0;
+  len = sqrt(len);
+  const double n[3] = {nrm[0] / len, nrm[1] / len, dim == 3 ? nrm[2] / len : 0.0};
+  if (dim == 2) {
+    B[0][0] = -n[1];
+    B[0][1] = n[0];
+    return 1;
+  }
+  /* two unit tangents: the axis least aligned with n, projected, then n x t1 */
+  int ax = 0;
+  for (int c = 1; c < 3; ++c)
+    if (fabs(n[c]) < fabs(n[ax])) ax = c;
+  double t[3] = {0, 0, 0}, tl = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    t[c] = (c == ax ? 1.0 : 0.0) - n[ax] * n[c];
+    tl += t[c] * t[c];
+  }
+  tl = sqrt(tl);
+  for (int c = 0; c < 3; ++c)
+    B[0][c] = t[c] / tl;
+  B[1][0] = n[1] * B[0][2] - n[2] * B[0][1];
+  B[1][1] = n[2] * B[0][0] - n[0] * B[0][2];
+  B[1][2] = n[0] * B[0][1] - n[1] * B[0][0];
+  return 2;
+}
+
+/* VC1: psi, the system, alpha, the corrected table (see the top of the file). */
 static int galerkin_vc1(pdk_model *m) {
   pdk_ctx *ctx = m->ctx;
   galerkin_impl *im = m->impl;
   const int dim = im->k.dim;
   const pdk_index n = im->n;
-  const char *sname = m->opts.galerkin.surface;
+  const char *sname = m->opts.galerkin.surface, *nname = m->opts.galerkin.normals;
   int err = PDK_SUCCESS;
-  double *psi = NULL, *Ax = NULL, *rhs = NULL, *sol = NULL;
-  int *Ap = NULL, *Ai = NULL, *idx = NULL;
+  double *psi = NULL, *Ax = NULL, *rhs = NULL, *sol = NULL, *basis = NULL;
+  int *Ap = NULL, *Ai = NULL, *off = NULL;
   row_val *col = NULL;
   void *symbolic = NULL, *numeric = NULL;
   PDK_CHECK(sname && sname[0], ctx, PDK_ERR_ARG,
@@ -145,12 +186,27 @@ static int galerkin_vc1(pdk_model *m) {
   const uint8_t *surf = pdk_particles_field_data(m->p, field, 0);
   PDK_CHECK(surf, ctx, PDK_ERR_ARG,
             "galerkin model: the surface set '%s' does not exist (no field \"%s\")", sname, field);
+  const double *nrm[3] = {NULL, NULL, NULL};
+  if (nname) {
+    pdk_type type;
+    int comp = 0;
+    PDK_CHECK(pdk_particles_field_exists(m->p, nname) &&
+                  !pdk_particles_field_info(m->p, nname, &type, &comp) && type == PDK_F64 &&
+                  comp == dim,
+              ctx, PDK_ERR_ARG,
+              "galerkin model: the normals field '%s' must exist, f64 with %d components", nname,
+              dim);
+    for (int c = 0; c < dim; ++c)
+      nrm[c] = pdk_particles_field_data(m->p, nname, c);
+  }
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index *bj = pdk_families_bond_j(m->fam);
   const double *vol = pdk_particles_volume(m->p);
+  const size_t nn = (size_t)(n > 0 ? n : 1);
   psi = malloc((size_t)im->num_members * sizeof(double));
-  idx = malloc((size_t)(n > 0 ? n : 1) * sizeof(int));
-  PDK_CHECK_GOTO(psi && idx, ctx, PDK_ERR_MEMORY, "galerkin model: out of memory for vc1");
+  off = malloc((nn + 1) * sizeof(int));
+  basis = malloc(nn * 9 * sizeof(double));
+  PDK_CHECK_GOTO(psi && off && basis, ctx, PDK_ERR_MEMORY, "galerkin model: out of memory for vc1");
   pdk_galerkin_arrays a;
   galerkin_arrays(m, &a);
   pdk_index bad = 0;
@@ -170,65 +226,99 @@ static int galerkin_vc1(pdk_model *m) {
                  "squares of the vc1 correction (at least dim + 1 members not on one line or "
                  "plane); raise the horizon",
                  (int)bad);
-  int ni = 0;
-  for (pdk_index i = 0; i < n; ++i)
-    idx[i] = surf[i] ? -1 : ni++;
-  /* J_II in compressed columns: column of interior k, rows its interior members. */
+  /* unknowns: off[i] .. off[i+1] belong to particle i */
+  off[0] = 0;
+  for (pdk_index i = 0; i < n; ++i) {
+    double ni[3] = {0, 0, 0};
+    for (int c = 0; c < dim && nrm[0]; ++c)
+      ni[c] = nrm[c][i];
+    double(*Bi)[3] = (double(*)[3])(basis + 9 * (size_t)i);
+    const int nbas = particle_basis(dim, surf[i] != 0, ni, Bi);
+    PDK_CHECK_GOTO((int64_t)off[i] + nbas < INT32_MAX, ctx, PDK_ERR_UNSUPPORTED,
+                   "galerkin model: the vc1 system is too large for UMFPACK's int interface");
+    off[i + 1] = off[i] + nbas;
+  }
+  const int nu = off[n];
+  /* the matrix in compressed columns: column (k, e), rows (m, r) for the members m of k:
+   * V_k psi^{km} (B_m^T B_k)[r][e] */
   int64_t nnz = 0;
-  for (pdk_index k = 0; k < n; ++k)
-    if (idx[k] >= 0) {
-      nnz += 1;
-      for (pdk_bond_index b = bs[k]; b < bs[k + 1]; ++b)
-        nnz += idx[bj[b]] >= 0;
-    }
+  for (pdk_index k = 0; k < n; ++k) {
+    const int64_t ck = off[k + 1] - off[k];
+    nnz += ck * (off[k + 1] - off[k]);
+    for (pdk_bond_index b = bs[k]; b < bs[k + 1]; ++b)
+      nnz += ck * (off[bj[b] + 1] - off[bj[b]]);
+  }
   PDK_CHECK_GOTO(nnz < INT32_MAX, ctx, PDK_ERR_UNSUPPORTED,
                  "galerkin model: the vc1 system has %lld entries, more than UMFPACK's int "
                  "interface takes",
                  (long long)nnz);
-  Ap = malloc((size_t)(ni + 1) * sizeof(int));
+  Ap = malloc((size_t)(nu + 1) * sizeof(int));
   Ai = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(int));
   Ax = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof(double));
-  rhs = malloc((size_t)(ni > 0 ? ni : 1) * sizeof(double));
-  sol = malloc((size_t)(ni > 0 ? ni : 1) * sizeof(double));
-  im->alpha = calloc((size_t)dim * (size_t)(n > 0 ? n : 1), sizeof(double));
+  rhs = malloc((size_t)(nu > 0 ? nu : 1) * sizeof(double));
+  sol = malloc((size_t)(nu > 0 ? nu : 1) * sizeof(double));
+  im->alpha = calloc((size_t)dim * nn, sizeof(double));
   pdk_index maxlen = 0;
   for (pdk_index k = 0; k < n; ++k)
     maxlen = bs[k + 1] - bs[k] > maxlen ? (pdk_index)(bs[k + 1] - bs[k]) : maxlen;
-  col = malloc((size_t)(maxlen + 1) * sizeof *col);
+  col = malloc((size_t)(maxlen + 1) * (size_t)dim * sizeof *col);
   PDK_CHECK_GOTO(Ap && Ai && Ax && rhs && sol && im->alpha && col, ctx, PDK_ERR_MEMORY,
                  "galerkin model: out of memory for the vc1 system (%lld entries)",
                  (long long)nnz);
   nnz = 0;
   for (pdk_index k = 0; k < n; ++k) {
-    if (idx[k] < 0) continue;
-    Ap[idx[k]] = (int)nnz;
+    const double(*Bk)[3] = (const double(*)[3])(basis + 9 * (size_t)k);
     const double *pk = psi + bs[k] + k;
-    int len = 0;
-    col[len++] = (row_val){idx[k], vol[k] * pk[0]};
-    for (pdk_bond_index b = bs[k]; b < bs[k + 1]; ++b)
-      if (idx[bj[b]] >= 0) col[len++] = (row_val){idx[bj[b]], vol[k] * pk[b - bs[k] + 1]};
-    qsort(col, (size_t)len, sizeof *col, row_val_cmp);
-    for (int e = 0; e < len; ++e) {
-      Ai[nnz] = col[e].row;
-      Ax[nnz++] = col[e].val;
+    for (int e = 0; e < off[k + 1] - off[k]; ++e) {
+      Ap[off[k] + e] = (int)nnz;
+      int len = 0;
+      for (pdk_index mm = 0; mm <= (pdk_index)(bs[k + 1] - bs[k]); ++mm) {
+        const pdk_index mi = mm == 0 ? k : bj[bs[k] + mm - 1];
+        const double(*Bm)[3] = (const double(*)[3])(basis + 9 * (size_t)mi);
+        for (int r = 0; r < off[mi + 1] - off[mi]; ++r) {
+          double dot = 0.0;
+          for (int c = 0; c < dim; ++c)
+            dot += Bm[r][c] * Bk[e][c];
+          col[len++] = (row_val){off[mi] + r, vol[k] * pk[mm] * dot};
+        }
+      }
+      qsort(col, (size_t)len, sizeof *col, row_val_cmp);
+      for (int t = 0; t < len; ++t) {
+        Ai[nnz] = col[t].row;
+        Ax[nnz++] = col[t].val;
+      }
     }
   }
-  Ap[ni] = (int)nnz;
+  Ap[nu] = (int)nnz;
   double control[UMFPACK_CONTROL], info[UMFPACK_INFO];
   umfpack_di_defaults(control);
-  if (ni > 0) {
-    PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_symbolic(ni, ni, Ap, Ai, Ax, &symbolic, control, info));
-    PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_numeric(Ap, Ai, Ax, symbolic, &numeric, control, info));
-  }
   galerkin_area(m);
-  for (int c = 0; c < dim && ni > 0; ++c) {
-    const double *A = pdk_particles_field_data(m->p, "area", c);
-    for (pdk_index i = 0; i < n; ++i)
-      if (idx[i] >= 0) rhs[idx[i]] = -A[i];
+  if (nu > 0) {
+    PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_symbolic(nu, nu, Ap, Ai, Ax, &symbolic, control, info));
+    PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_numeric(Ap, Ai, Ax, symbolic, &numeric, control, info));
+    const double *A[3] = {NULL, NULL, NULL};
+    for (int c = 0; c < dim; ++c)
+      A[c] = pdk_particles_field_data(m->p, "area", c);
+    for (pdk_index i = 0; i < n; ++i) {
+      const double(*Bi)[3] = (const double(*)[3])(basis + 9 * (size_t)i);
+      for (int r = 0; r < off[i + 1] - off[i]; ++r) {
+        double dot = 0.0;
+        for (int c = 0; c < dim; ++c)
+          dot += Bi[r][c] * A[c][i];
+        rhs[off[i] + r] = -dot;
+      }
+    }
     PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_solve(UMFPACK_A, Ap, Ai, Ax, sol, rhs, numeric, control,
                                                 info));
-    for (pdk_index i = 0; i < n; ++i)
-      im->alpha[(size_t)c * n + i] = idx[i] >= 0 ? sol[idx[i]] : 0.0;
+    for (pdk_index i = 0; i < n; ++i) {
+      const double(*Bi)[3] = (const double(*)[3])(basis + 9 * (size_t)i);
+      for (int c = 0; c < dim; ++c) {
+        double v = 0.0;
+        for (int r = 0; r < off[i + 1] - off[i]; ++r)
+          v += Bi[r][c] * sol[off[i] + r];
+        im->alpha[(size_t)c * n + i] = v;
+      }
+    }
   }
   /* the corrected table: dN^{kji} += psi^{ki} alpha_k for every j */
   {
@@ -251,7 +341,8 @@ cleanup:
   if (numeric) umfpack_di_free_numeric(&numeric);
   if (symbolic) umfpack_di_free_symbolic(&symbolic);
   free(psi);
-  free(idx);
+  free(off);
+  free(basis);
   free(Ap);
   free(Ai);
   free(Ax);

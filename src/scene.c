@@ -100,7 +100,13 @@ typedef struct sc_material {
   double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
   sc_jc *johnson_cook;
 } sc_material;
+/* model.galerkin (kind galerkin) */
+typedef struct sc_galerkin {
+  int basis, form, correction;
+  char *surface;
+} sc_galerkin;
 typedef struct sc_model {
+  sc_galerkin *galerkin;
   int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
   int stabilization_softening, damage_triaxiality, break_stress;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
@@ -192,6 +198,11 @@ static const cyaml_strval_t triaxiality_names[] = {{"local", PDK_TRIAX_LOCAL},
                                                    {"family", PDK_TRIAX_FAMILY}};
 static const cyaml_strval_t break_stress_names[] = {{"refit", PDK_BREAK_STRESS_REFIT},
                                                     {"continuous", PDK_BREAK_STRESS_CONTINUOUS}};
+static const cyaml_strval_t galerkin_basis_names[] = {{"taylor", PDK_GALERKIN_TAYLOR},
+                                                      {"wls", PDK_GALERKIN_WLS}};
+static const cyaml_strval_t galerkin_form_names[] = {{"bubnov", PDK_GALERKIN_BUBNOV}};
+static const cyaml_strval_t galerkin_correction_names[] = {{"none", PDK_GALERKIN_NONE},
+                                                           {"vc1", PDK_GALERKIN_VC1}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
@@ -234,6 +245,7 @@ typedef struct scene_schema {
       polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
       precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
       material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS], model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS],
+      galerkin[SC_MAX_FIELDS],
       initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS], output[SC_MAX_FIELDS], limits[SC_MAX_FIELDS],
       scene[SC_MAX_FIELDS];
   /* model.kind and model.law: the names the model registry lists (src/model_registry.h) */
@@ -401,6 +413,14 @@ static void schema_build(scene_schema *sc, int dim) {
   ADD(model, CYAML_FIELD_FLOAT("compact_fraction", OPT, sc_model, compact_fraction));
   ADD(model, CYAML_FIELD_FLOAT("ul_skin", OPT, sc_model, ul_skin));
   ADD(model, CYAML_FIELD_BOOL("failed_keeps_bonds", OPT, sc_model, failed_keeps_bonds));
+  ADD(model, CYAML_FIELD_MAPPING_PTR("galerkin", OPT_PTR, sc_model, galerkin, sc->galerkin));
+  ADD(galerkin, CYAML_FIELD_ENUM("basis", ENUM_FLAGS, sc_galerkin, basis, galerkin_basis_names,
+                                 N_OF(galerkin_basis_names)));
+  ADD(galerkin, CYAML_FIELD_ENUM("form", ENUM_FLAGS, sc_galerkin, form, galerkin_form_names,
+                                 N_OF(galerkin_form_names)));
+  ADD(galerkin, CYAML_FIELD_ENUM("correction", ENUM_FLAGS, sc_galerkin, correction,
+                                 galerkin_correction_names, N_OF(galerkin_correction_names)));
+  ADD(galerkin, CYAML_FIELD_STRING_PTR("surface", OPT, sc_galerkin, surface, 1, 255));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
   ADD(bc,
@@ -1459,6 +1479,29 @@ static int resolve_softening(loader *ld, const sc_model *mo) {
   return PDK_SUCCESS;
 }
 
+/* model.galerkin (kind galerkin; refused for the others by its scene_keys entry). */
+static int resolve_galerkin(loader *ld, const sc_model *mo) {
+  pdk_scene *s = ld->s;
+  pdk_galerkin_opts *g = &s->model.galerkin;
+  const sc_galerkin *sg = mo->galerkin;
+  if (!sg || !has(ld, "model.galerkin")) return PDK_SUCCESS;
+  if (has(ld, "model.galerkin.basis")) g->basis = (pdk_galerkin_basis)sg->basis;
+  if (has(ld, "model.galerkin.form")) g->form = (pdk_galerkin_form)sg->form;
+  if (has(ld, "model.galerkin.correction"))
+    g->correction = (pdk_galerkin_correction)sg->correction;
+  if (has(ld, "model.galerkin.surface")) {
+    REQUIRE(ld, g->correction == PDK_GALERKIN_VC1, "model.galerkin.surface",
+            "only the vc1 correction uses it; set model.galerkin.correction: vc1 or remove it");
+    s->galerkin_surface = strdup(sg->surface);
+    REQUIRE(ld, s->galerkin_surface, "model.galerkin.surface", "out of memory");
+    g->surface = s->galerkin_surface;
+  }
+  REQUIRE(ld, g->correction != PDK_GALERKIN_VC1 || g->surface, "model.galerkin.correction",
+          "vc1 needs model.galerkin.surface: the name of the set of the particles on the body's "
+          "surface");
+  return PDK_SUCCESS;
+}
+
 static int resolve_material_model(loader *ld, const sc_material *mat, const sc_model *mo) {
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
@@ -1572,6 +1615,7 @@ static int resolve_material_model(loader *ld, const sc_material *mat, const sc_m
   PDK_CALL(resolve_johnson_cook(ld, mat, mo));
   PDK_CALL(resolve_connectivity(ld, mo));
   PDK_CALL(resolve_softening(ld, mo));
+  PDK_CALL(resolve_galerkin(ld, mo));
   return PDK_SUCCESS;
 }
 
@@ -2419,6 +2463,7 @@ void pdk_scene_destroy(pdk_scene **sp) {
   regions_free(s->sets, s->num_sets);
   regions_free(s->mat_regions, s->num_mat_regions);
   free(s->materials);
+  free(s->galerkin_surface);
   free(s->precracks);
   free(s->crack_vertices);
   if (s->points) pdk_points_free(s->points);

@@ -7,12 +7,14 @@
  * boundary (as the papers' particles, collocated with the nodes of an irregular mesh). Volumes:
  * h^2, halved on the edges, quartered at the corners (sum 4). A fixed linear congruential
  * generator makes the cloud the same on every machine. Sets: "surface" (the four edges),
- * "dirichlet" (left, bottom, right edges), "top" (the top edge without its corners).
+ * "dirichlet" (left, bottom, right edges), "top" (the top edge without its corners); field
+ * "normal": the outward unit normal on the edges, 0 at the corners and inside.
  *
  * Problem: u = (0.1 X + 0.3 Y, 0.2 X + 0.4 Y) (Bode eq. 83, thesis eq. 7.1), E = 1e5, nu = 0.3,
  * plane strain, the linear law; P = lambda tr(eps) I + 2 mu eps (eq. 84 / 7.2). Dirichlet: u on
  * "dirichlet"; Neumann: the nodal force P A_k on "top", A_k the model's area vector (thesis eqs.
- * 4.31-4.32: the traction enters as the volume force P . A_k / V_k). */
+ * 4.31-4.32: the traction enters as the volume force P . A_k / V_k). pg_uniaxial: the affine
+ * field of uniaxial stress along x in plane strain (P n = 0 on the top: a traction-free top). */
 #ifndef PDK_TESTS_GALERKIN_UTIL_H
 #define PDK_TESTS_GALERKIN_UTIL_H
 
@@ -21,6 +23,7 @@
 static const double pg_H[2][2] = {{0.1, 0.3}, {0.2, 0.4}};
 #define PG_E 1e5
 #define PG_NU 0.3
+static const double pg_uniaxial[2][2] = {{1e-2, 0.0}, {0.0, -1e-2 * PG_NU / (1 - PG_NU)}};
 
 static inline double pg_lambda(void) { return PG_E * PG_NU / ((1 + PG_NU) * (1 - 2 * PG_NU)); }
 static inline double pg_mu(void) { return PG_E / (2 * (1 + PG_NU)); }
@@ -39,6 +42,8 @@ static inline pdk_particles *pg_cloud(pdk_ctx *ctx, int n1, double jitter, uint6
   T_OK(ctx, pdk_particles_field_add(p, "set:surface", PDK_U8, 1));
   T_OK(ctx, pdk_particles_field_add(p, "set:dirichlet", PDK_U8, 1));
   T_OK(ctx, pdk_particles_field_add(p, "set:top", PDK_U8, 1));
+  T_OK(ctx, pdk_particles_field_add(p, "normal", PDK_F64, 2));
+  double *nx = pdk_particles_field_data(p, "normal", 0), *ny = pdk_particles_field_data(p, "normal", 1);
   uint8_t *surf = pdk_particles_field_data(p, "set:surface", 0);
   uint8_t *dir = pdk_particles_field_data(p, "set:dirichlet", 0);
   uint8_t *top = pdk_particles_field_data(p, "set:top", 0);
@@ -58,6 +63,8 @@ static inline pdk_particles *pg_cloud(pdk_ctx *ctx, int n1, double jitter, uint6
       surf[k] = (uint8_t)(ex || ey);
       dir[k] = (uint8_t)(i == 0 || i == n1 - 1 || j == 0);
       top[k] = (uint8_t)(j == n1 - 1 && !ex);
+      nx[k] = ex && !ey ? (i == 0 ? -1.0 : 1.0) : 0.0;
+      ny[k] = ey && !ex ? (j == 0 ? -1.0 : 1.0) : 0.0;
     }
   return p;
 }
@@ -69,7 +76,7 @@ typedef struct pg_errors {
   double l2_abs, h1_abs; /* absolute */
 } pg_errors;
 
-static inline pg_errors pg_measure(pdk_particles *p) {
+static inline pg_errors pg_measure(pdk_particles *p, const double Hx[2][2]) {
   const pdk_index n = pdk_particles_count(p);
   const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1), *V = pdk_particles_volume(p);
   const double *x = pdk_particles_field_data(p, "x", 0), *y = pdk_particles_field_data(p, "x", 1);
@@ -78,8 +85,8 @@ static inline pg_errors pg_measure(pdk_particles *p) {
     F[t] = pdk_particles_field_data(p, "F", t);
   double e0 = 0, n0 = 0, e1 = 0, n1 = 0;
   for (pdk_index k = 0; k < n; ++k) {
-    const double ue[2] = {pg_H[0][0] * X[k] + pg_H[0][1] * Y[k],
-                          pg_H[1][0] * X[k] + pg_H[1][1] * Y[k]};
+    const double ue[2] = {Hx[0][0] * X[k] + Hx[0][1] * Y[k],
+                          Hx[1][0] * X[k] + Hx[1][1] * Y[k]};
     const double uh[2] = {x[k] - X[k], y[k] - Y[k]};
     for (int c = 0; c < 2; ++c) {
       e0 += V[k] * (uh[c] - ue[c]) * (uh[c] - ue[c]);
@@ -88,8 +95,8 @@ static inline pg_errors pg_measure(pdk_particles *p) {
     for (int r = 0; r < 2; ++r)
       for (int c = 0; c < 2; ++c) {
         const double g = F[r * 2 + c][k] - (r == c ? 1.0 : 0.0);
-        e1 += V[k] * (g - pg_H[r][c]) * (g - pg_H[r][c]);
-        n1 += V[k] * pg_H[r][c] * pg_H[r][c];
+        e1 += V[k] * (g - Hx[r][c]) * (g - Hx[r][c]);
+        n1 += V[k] * Hx[r][c] * Hx[r][c];
       }
   }
   pg_errors r = {sqrt(e0 / n0), sqrt(e1 / n1), sqrt(e0), sqrt(e1)};
@@ -110,16 +117,18 @@ static inline pdk_model_opts pg_model_opts(pdk_galerkin_basis basis, pdk_galerki
   return mo;
 }
 
-/* Solves the patch test with Newton on a model built over p (fields "u_exact" and "t_load" are
- * added: the Dirichlet values and the Neumann body force P A_k / V_k); returns the errors. */
-static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, pdk_static_stats *stats) {
+/* Solves the patch test of the affine field Hx (Hx or pg_uniaxial) with Newton on a model
+ * built over p (fields "u_exact" and "t_load" are added: the Dirichlet values and, with load, the
+ * Neumann body force P A_k / V_k on "top"; without, the top is free); returns the errors. */
+static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m,
+                                 const double Hx[2][2], int load, pdk_static_stats *stats) {
   const pdk_index n = pdk_particles_count(p);
   const double lam = pg_lambda(), mu = pg_mu();
-  const double tr = pg_H[0][0] + pg_H[1][1];
+  const double tr = Hx[0][0] + Hx[1][1];
   double P[2][2];
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c)
-      P[r][c] = mu * (pg_H[r][c] + pg_H[c][r]) + (r == c ? lam * tr : 0.0);
+      P[r][c] = mu * (Hx[r][c] + Hx[c][r]) + (r == c ? lam * tr : 0.0);
   T_OK(ctx, pdk_particles_field_add(p, "u_exact", PDK_F64, 2));
   T_OK(ctx, pdk_particles_field_add(p, "t_load", PDK_F64, 2));
   const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1), *V = pdk_particles_volume(p);
@@ -129,7 +138,7 @@ static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, p
     double *ue = pdk_particles_field_data(p, "u_exact", c);
     double *tl = pdk_particles_field_data(p, "t_load", c);
     for (pdk_index k = 0; k < n; ++k) {
-      ue[k] = pg_H[c][0] * X[k] + pg_H[c][1] * Y[k];
+      ue[k] = Hx[c][0] * X[k] + Hx[c][1] * Y[k];
       tl[k] = (P[c][0] * A[0][k] + P[c][1] * A[1][k]) / V[k];
     }
   }
@@ -147,7 +156,7 @@ static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, p
   bcs[1].scale_field = "t_load";
   pdk_static_opts so = pdk_static_opts_default(PDK_STATIC_NEWTON);
   so.bcs = bcs;
-  so.num_bcs = 2;
+  so.num_bcs = load ? 2 : 1;
   so.rtol = 1e-15; /* to the round-off floor: the discretization error is what is measured */
   pdk_static *s;
   T_OK(ctx, pdk_static_create(m, &so, &s));
@@ -155,7 +164,7 @@ static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m, p
   if (stats) *stats = *pdk_static_stats_get(s);
   pdk_static_destroy(&s);
   T_OK(ctx, pdk_model_force_trial(m, NULL)); /* F at the solution */
-  return pg_measure(p);
+  return pg_measure(p, Hx);
 }
 
 #endif

@@ -96,9 +96,17 @@ typedef struct pdk_galerkin_opts {
   pdk_galerkin_form form;             /* default bubnov */
   pdk_galerkin_correction correction; /* default none */
   /* VC1: the name of the particle set (uint8 field "set:<name>") of the particles on the body's
-   * surface: their alpha is held at 0 and their area vector is what the correction leaves (the
-   * thesis' correction boundary condition "s"); NULL otherwise. */
+   * surface. Without normals their alpha is held at 0 and their area vector is what the
+   * correction leaves, tangential components included (the thesis' correction boundary condition
+   * "s"). */
   const char *surface;
+  /* VC1, optional: the name of an f64 field of dim components holding the outward unit normal of
+   * every surface particle (the thesis' default boundary condition "sn"): only the normal
+   * component of alpha is held at 0 and only the normal component of the area vector is left
+   * free, so the area vectors of the surface are normal to it (a traction-free surface carries no
+   * force under a constant stress with P n = 0). A zero normal (corners, edges) means "s" at that
+   * particle. NULL: "s" everywhere. */
+  const char *normals;
 } pdk_galerkin_opts;
 
 /* Oterkus law: how the dilatation coefficient a is set (src/model_dil2.c). */
