@@ -378,6 +378,8 @@ static int galerkin_setup(pdk_model *m) {
   PDK_CHECK((unsigned)o->galerkin.correction <= PDK_GALERKIN_VC1, ctx, PDK_ERR_ARG,
             "galerkin model: correction %d unknown; use none (0) or vc1 (1)",
             (int)o->galerkin.correction);
+  if (o->stencil == PDK_STENCIL_AUTO)
+    snprintf(m->stencil_why, sizeof m->stencil_why, "the galerkin model has no stencil path");
   galerkin_impl *im = calloc(1, sizeof *im);
   PDK_CHECK(im, ctx, PDK_ERR_MEMORY, "out of memory creating the galerkin model");
   m->impl = im;
