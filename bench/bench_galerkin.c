@@ -39,7 +39,8 @@ int main(int argc, char **argv) {
                           "galerkin taylor vc1"};
   double *t = malloc((size_t)passes * sizeof(double));
   for (int v = 0; v < 4; ++v) {
-    pdk_model_opts mo = pg_model_opts(PDK_GALERKIN_TAYLOR, v == 3 ? PDK_GALERKIN_VC1 : PDK_GALERKIN_NONE);
+    pdk_model_opts mo =
+        pg_model_opts(PDK_GALERKIN_TAYLOR, v == 3 ? PDK_GALERKIN_VC1 : PDK_GALERKIN_NONE);
     if (v < 2) {
       mo.kind = PDK_MODEL_CORRESPONDENCE;
       mo.influence = PDK_INFLUENCE_INV_R2;

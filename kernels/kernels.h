@@ -673,6 +673,10 @@ void pdk_kernel_corr_ul_pass2_ref(const pdk_corr_consts *k, const pdk_corr_ul_ar
  * symmetric). The derivative table of family k starts at dstart[k] and holds
  * d[(j (N_k + 1) + i) dim + c], the c-th component of dN^{kji}/dX: family k, evaluation point
  * (member) j, support node (member) i. */
+/* Members of a family at most (the particle and its neighbours): the passes keep a family's
+ * displacements and forces in local arrays of this size; the driver refuses larger families. */
+#define PDK_GALERKIN_MAX_MEMBERS 512
+
 typedef struct pdk_galerkin_consts {
   int dim;       /* 2 (plane strain) or 3 */
   int basis;     /* pdk_galerkin_basis: 0 taylor (MTE1), 1 wls (WLS1) */

@@ -101,19 +101,20 @@ static void galerkin_area(pdk_model *m) {
   const pdk_galerkin_consts *k = &im->k;
   const int64_t nb = im->num_blocks;
   const pdk_index n = im->n;
-#pragma omp parallel for default(none) shared(a, k, nb, n) schedule(static)                      \
+  const pdk_kernel_table *kt = &m->ctx->kernels;
+#pragma omp parallel for default(none) shared(a, k, nb, n, kt) schedule(static)                    \
     num_threads(m->ctx->num_threads)
   for (int64_t b = 0; b < nb; ++b) {
     const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
     const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-    pdk_kernel_galerkin_pass1_ref(k, &a, 1, i0, i1);
+    kt->galerkin_pass1(k, &a, 1, i0, i1);
   }
-#pragma omp parallel for default(none) shared(a, k, nb, n) schedule(static)                      \
+#pragma omp parallel for default(none) shared(a, k, nb, n, kt) schedule(static)                    \
     num_threads(m->ctx->num_threads)
   for (int64_t b = 0; b < nb; ++b) {
     const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
     const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-    pdk_kernel_galerkin_pass2_ref(k, &a, 1, i0, i1);
+    kt->galerkin_pass2(k, &a, 1, i0, i1);
   }
 }
 
@@ -190,12 +191,11 @@ static int galerkin_vc1(pdk_model *m) {
   if (nname) {
     pdk_type type;
     int comp = 0;
-    PDK_CHECK(pdk_particles_field_exists(m->p, nname) &&
-                  !pdk_particles_field_info(m->p, nname, &type, &comp) && type == PDK_F64 &&
-                  comp == dim,
-              ctx, PDK_ERR_ARG,
-              "galerkin model: the normals field '%s' must exist, f64 with %d components", nname,
-              dim);
+    PDK_CHECK(
+        pdk_particles_field_exists(m->p, nname) &&
+            !pdk_particles_field_info(m->p, nname, &type, &comp) && type == PDK_F64 && comp == dim,
+        ctx, PDK_ERR_ARG,
+        "galerkin model: the normals field '%s' must exist, f64 with %d components", nname, dim);
     for (int c = 0; c < dim; ++c)
       nrm[c] = pdk_particles_field_data(m->p, nname, c);
   }
@@ -213,12 +213,13 @@ static int galerkin_vc1(pdk_model *m) {
   {
     const pdk_galerkin_consts *k = &im->k;
     const int64_t nb = im->num_blocks;
-#pragma omp parallel for default(none) shared(a, k, nb, n, psi) schedule(static)                \
+    const pdk_kernel_table *kt = &ctx->kernels;
+#pragma omp parallel for default(none) shared(a, k, nb, n, psi, kt) schedule(static)                \
     num_threads(ctx->num_threads) reduction(+ : bad)
     for (int64_t b = 0; b < nb; ++b) {
       const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
       const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-      bad += pdk_kernel_galerkin_psi_ref(k, &a, psi, i0, i1);
+      bad += kt->galerkin_psi(k, &a, psi, i0, i1);
     }
   }
   PDK_CHECK_GOTO(bad == 0, ctx, PDK_ERR_ARG,
@@ -263,8 +264,7 @@ static int galerkin_vc1(pdk_model *m) {
     maxlen = bs[k + 1] - bs[k] > maxlen ? (pdk_index)(bs[k + 1] - bs[k]) : maxlen;
   col = malloc((size_t)(maxlen + 1) * (size_t)dim * sizeof *col);
   PDK_CHECK_GOTO(Ap && Ai && Ax && rhs && sol && im->alpha && col, ctx, PDK_ERR_MEMORY,
-                 "galerkin model: out of memory for the vc1 system (%lld entries)",
-                 (long long)nnz);
+                 "galerkin model: out of memory for the vc1 system (%lld entries)", (long long)nnz);
   nnz = 0;
   for (pdk_index k = 0; k < n; ++k) {
     const double(*Bk)[3] = (const double(*)[3])(basis + 9 * (size_t)k);
@@ -308,8 +308,8 @@ static int galerkin_vc1(pdk_model *m) {
         rhs[off[i] + r] = -dot;
       }
     }
-    PDK_UMFPACK_CALL_GOTO(ctx, umfpack_di_solve(UMFPACK_A, Ap, Ai, Ax, sol, rhs, numeric, control,
-                                                info));
+    PDK_UMFPACK_CALL_GOTO(
+        ctx, umfpack_di_solve(UMFPACK_A, Ap, Ai, Ax, sol, rhs, numeric, control, info));
     for (pdk_index i = 0; i < n; ++i) {
       const double(*Bi)[3] = (const double(*)[3])(basis + 9 * (size_t)i);
       for (int c = 0; c < dim; ++c) {
@@ -325,7 +325,7 @@ static int galerkin_vc1(pdk_model *m) {
     const double *alpha = im->alpha;
     double *d = im->d;
     const int64_t *dstart = im->dstart;
-#pragma omp parallel for default(none) shared(n, bs, psi, alpha, d, dstart, dim) schedule(static) \
+#pragma omp parallel for default(none) shared(n, bs, psi, alpha, d, dstart, dim) schedule(static)  \
     num_threads(ctx->num_threads)
     for (pdk_index k = 0; k < n; ++k) {
       const int nm = (int)(bs[k + 1] - bs[k]) + 1;
@@ -399,8 +399,8 @@ static int galerkin_setup(pdk_model *m) {
   im->dstart = malloc(nn * sizeof(int64_t));
   im->vfam = malloc(nn * sizeof(double));
   im->W = calloc(nn, sizeof(double));
-  im->G = malloc((size_t)dim * (size_t)(im->num_members > 0 ? im->num_members : 1) *
-                 sizeof(double));
+  im->G =
+      malloc((size_t)dim * (size_t)(im->num_members > 0 ? im->num_members : 1) * sizeof(double));
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->rev && im->dstart && im->vfam && im->W && im->G && im->block_energy, ctx,
             PDK_ERR_MEMORY, "galerkin model: out of memory for %lld bonds", (long long)nb);
@@ -422,6 +422,16 @@ static int galerkin_setup(pdk_model *m) {
             "galerkin model: the families are not symmetric (particle id %lld has a neighbour "
             "whose family does not hold it); build them with one horizon",
             (long long)pdk_particles_id(p)[missing]);
+  pdk_index big = -1;
+  for (pdk_index k = 0; k < n && big < 0; ++k)
+    if (bs[k + 1] - bs[k] >= PDK_GALERKIN_MAX_MEMBERS) big = k;
+  PDK_CHECK(big < 0, ctx, PDK_ERR_UNSUPPORTED,
+            "galerkin model: particle id %lld has %lld neighbours, more than the %d the passes "
+            "take (and its shape functions would need %.3g MB); lower the horizon",
+            (long long)pdk_particles_id(p)[big], big >= 0 ? (long long)(bs[big + 1] - bs[big]) : 0LL,
+            PDK_GALERKIN_MAX_MEMBERS - 1,
+            big >= 0 ? 8e-6 * dim * (double)(bs[big + 1] - bs[big] + 1) * (bs[big + 1] - bs[big] + 1)
+                     : 0.0);
   const double *vol = pdk_particles_volume(p);
   int64_t total = 0;
   for (pdk_index k = 0; k < n; ++k) {
@@ -446,12 +456,13 @@ static int galerkin_setup(pdk_model *m) {
   {
     const pdk_galerkin_consts *k = &im->k;
     const int64_t nblk = im->num_blocks;
-#pragma omp parallel for default(none) shared(a, k, nblk, n) schedule(static)                   \
+    const pdk_kernel_table *kt = &ctx->kernels;
+#pragma omp parallel for default(none) shared(a, k, nblk, n, kt) schedule(static)                   \
     num_threads(ctx->num_threads) reduction(+ : bad)
     for (int64_t b = 0; b < nblk; ++b) {
       const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
       const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-      bad += pdk_kernel_galerkin_shape_ref(k, &a, i0, i1);
+      bad += kt->galerkin_shape(k, &a, i0, i1);
     }
   }
   PDK_CHECK(bad == 0, ctx, PDK_ERR_ARG,
@@ -480,14 +491,15 @@ static int galerkin_force(pdk_model *m, int commit, double *energy) {
   const pdk_index n = im->n;
   double *W = im->W, *be = im->block_energy;
   pdk_index bad = 0;
-#pragma omp parallel default(none) shared(a, k, nb, n, W, be) num_threads(m->ctx->num_threads)   \
+  const pdk_kernel_table *kt = &m->ctx->kernels;
+#pragma omp parallel default(none) shared(a, k, nb, n, W, be, kt) num_threads(m->ctx->num_threads)   \
     reduction(+ : bad)
   {
 #pragma omp for schedule(static)
     for (int64_t b = 0; b < nb; ++b) {
       const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
       const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-      bad += pdk_kernel_galerkin_pass1_ref(k, &a, 0, i0, i1);
+      bad += kt->galerkin_pass1(k, &a, 0, i0, i1);
       double e = 0.0;
       for (pdk_index i = i0; i < i1; ++i)
         e += W[i];
@@ -497,7 +509,7 @@ static int galerkin_force(pdk_model *m, int commit, double *energy) {
     for (int64_t b = 0; b < nb; ++b) {
       const pdk_index i0 = (pdk_index)(b * PDK_GALERKIN_BLOCK);
       const pdk_index i1 = i0 + PDK_GALERKIN_BLOCK < n ? i0 + PDK_GALERKIN_BLOCK : n;
-      pdk_kernel_galerkin_pass2_ref(k, &a, 0, i0, i1);
+      kt->galerkin_pass2(k, &a, 0, i0, i1);
     }
   }
   m->num_flagged = bad;

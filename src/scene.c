@@ -1487,8 +1487,7 @@ static int resolve_galerkin(loader *ld, const sc_model *mo) {
   if (!sg || !has(ld, "model.galerkin")) return PDK_SUCCESS;
   if (has(ld, "model.galerkin.basis")) g->basis = (pdk_galerkin_basis)sg->basis;
   if (has(ld, "model.galerkin.form")) g->form = (pdk_galerkin_form)sg->form;
-  if (has(ld, "model.galerkin.correction"))
-    g->correction = (pdk_galerkin_correction)sg->correction;
+  if (has(ld, "model.galerkin.correction")) g->correction = (pdk_galerkin_correction)sg->correction;
   if (has(ld, "model.galerkin.surface")) {
     REQUIRE(ld, g->correction == PDK_GALERKIN_VC1, "model.galerkin.surface",
             "only the vc1 correction uses it; set model.galerkin.correction: vc1 or remove it");

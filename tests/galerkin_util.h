@@ -43,7 +43,8 @@ static inline pdk_particles *pg_cloud(pdk_ctx *ctx, int n1, double jitter, uint6
   T_OK(ctx, pdk_particles_field_add(p, "set:dirichlet", PDK_U8, 1));
   T_OK(ctx, pdk_particles_field_add(p, "set:top", PDK_U8, 1));
   T_OK(ctx, pdk_particles_field_add(p, "normal", PDK_F64, 2));
-  double *nx = pdk_particles_field_data(p, "normal", 0), *ny = pdk_particles_field_data(p, "normal", 1);
+  double *nx = pdk_particles_field_data(p, "normal", 0),
+         *ny = pdk_particles_field_data(p, "normal", 1);
   uint8_t *surf = pdk_particles_field_data(p, "set:surface", 0);
   uint8_t *dir = pdk_particles_field_data(p, "set:dirichlet", 0);
   uint8_t *top = pdk_particles_field_data(p, "set:top", 0);
@@ -85,8 +86,7 @@ static inline pg_errors pg_measure(pdk_particles *p, const double Hx[2][2]) {
     F[t] = pdk_particles_field_data(p, "F", t);
   double e0 = 0, n0 = 0, e1 = 0, n1 = 0;
   for (pdk_index k = 0; k < n; ++k) {
-    const double ue[2] = {Hx[0][0] * X[k] + Hx[0][1] * Y[k],
-                          Hx[1][0] * X[k] + Hx[1][1] * Y[k]};
+    const double ue[2] = {Hx[0][0] * X[k] + Hx[0][1] * Y[k], Hx[1][0] * X[k] + Hx[1][1] * Y[k]};
     const double uh[2] = {x[k] - X[k], y[k] - Y[k]};
     for (int c = 0; c < 2; ++c) {
       e0 += V[k] * (uh[c] - ue[c]) * (uh[c] - ue[c]);

@@ -70,10 +70,12 @@ int main(void) {
       }
       free(fg[c]);
     }
-    T_INFO("law %d: force difference %.3e of %.3e, energies %.17g %.17g\n", (int)laws[l], dmax,
-           fm, eg, ec);
-    T_ASSERT(fm > 0 && dmax <= 1e-9 * fm, "law %d: galerkin wls and correspondence differ by "
-             "%.3e (max |f| %.3e)", (int)laws[l], dmax, fm);
+    T_INFO("law %d: force difference %.3e of %.3e, energies %.17g %.17g\n", (int)laws[l], dmax, fm,
+           eg, ec);
+    T_ASSERT(fm > 0 && dmax <= 1e-9 * fm,
+             "law %d: galerkin wls and correspondence differ by "
+             "%.3e (max |f| %.3e)",
+             (int)laws[l], dmax, fm);
     T_NEAR(eg, ec, 1e-10, 0.0, "law %d: energies", (int)laws[l]);
     pdk_model_destroy(&mc);
     pdk_families_destroy(&fam);

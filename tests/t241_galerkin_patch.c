@@ -24,8 +24,8 @@
  */
 #include "galerkin_util.h"
 
-static pg_errors run(pdk_ctx *ctx, pdk_galerkin_basis basis, pdk_galerkin_correction corr,
-                     int sn, const double H[2][2], int load, double *amax_int, double *amax_surf) {
+static pg_errors run(pdk_ctx *ctx, pdk_galerkin_basis basis, pdk_galerkin_correction corr, int sn,
+                     const double H[2][2], int load, double *amax_int, double *amax_surf) {
   const int n1 = 37;
   const double h = 2.0 / (n1 - 1);
   pdk_particles *p = pg_cloud(ctx, n1, 0.3, 20260426);
@@ -50,7 +50,8 @@ static pg_errors run(pdk_ctx *ctx, pdk_galerkin_basis basis, pdk_galerkin_correc
   }
   pdk_static_stats st;
   pg_errors e = pg_solve(ctx, p, m, H, load, &st);
-  T_INFO("basis %d correction %d sn %d load %d: L2 %.3e H1 %.3e (absolute %.3e %.3e), interior |A| %.3e of "
+  T_INFO("basis %d correction %d sn %d load %d: L2 %.3e H1 %.3e (absolute %.3e %.3e), interior |A| "
+         "%.3e of "
          "surface %.3e, %ld Newton iterations\n",
          (int)basis, (int)corr, sn, load, e.l2, e.h1, e.l2_abs, e.h1_abs, *amax_int, *amax_surf,
          st.iterations);
@@ -64,24 +65,26 @@ int main(void) {
   pdk_ctx *ctx = t_ctx(2);
   double ai, as;
   const pg_errors none = run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_NONE, 0, pg_H, 1, &ai, &as);
-  T_ASSERT(ai > 1e-3 * as, "uncorrected interior area vectors %.3e of %.3e: expected clearly "
-           "non-zero on irregular particles", ai, as);
+  T_ASSERT(ai > 1e-3 * as,
+           "uncorrected interior area vectors %.3e of %.3e: expected clearly "
+           "non-zero on irregular particles",
+           ai, as);
   const pg_errors vc = run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1, 0, pg_H, 1, &ai, &as);
   T_ASSERT(ai <= 1e-12 * as, "VC1 interior area vectors %.3e of %.3e", ai, as);
   T_ASSERT(vc.l2 <= 1e-12 && vc.h1 <= 1e-12, "VC1 taylor: L2 %.3e H1 %.3e", vc.l2, vc.h1);
   T_ASSERT(none.l2 > 1e-4 && none.h1 > 1e-4, "uncorrected: L2 %.3e H1 %.3e", none.l2, none.h1);
   T_ASSERT(none.l2 > 1e6 * vc.l2 && none.h1 > 1e6 * vc.h1,
-           "uncorrected L2 %.3e H1 %.3e not clearly above VC1's %.3e %.3e", none.l2, none.h1,
-           vc.l2, vc.h1);
+           "uncorrected L2 %.3e H1 %.3e not clearly above VC1's %.3e %.3e", none.l2, none.h1, vc.l2,
+           vc.h1);
   const pg_errors wvc = run(ctx, PDK_GALERKIN_WLS, PDK_GALERKIN_VC1, 0, pg_H, 1, &ai, &as);
   T_ASSERT(ai <= 1e-12 * as, "VC1 wls interior area vectors %.3e of %.3e", ai, as);
   T_ASSERT(wvc.l2 <= 1e-12 && wvc.h1 <= 1e-12, "VC1 wls: L2 %.3e H1 %.3e", wvc.l2, wvc.h1);
   const pg_errors snp = run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1, 1, pg_H, 1, &ai, &as);
   T_ASSERT(ai <= 1e-12 * as, "VC1 sn interior area vectors %.3e of %.3e", ai, as);
   T_ASSERT(snp.l2 <= 1e-12 && snp.h1 <= 1e-12, "VC1 sn: L2 %.3e H1 %.3e", snp.l2, snp.h1);
-  const pg_errors snf = run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1, 1, pg_uniaxial, 0, &ai, &as);
-  T_ASSERT(snf.l2 <= 1e-12 && snf.h1 <= 1e-12, "VC1 sn, free top: L2 %.3e H1 %.3e", snf.l2,
-           snf.h1);
+  const pg_errors snf =
+      run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1, 1, pg_uniaxial, 0, &ai, &as);
+  T_ASSERT(snf.l2 <= 1e-12 && snf.h1 <= 1e-12, "VC1 sn, free top: L2 %.3e H1 %.3e", snf.l2, snf.h1);
   const pg_errors sf = run(ctx, PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1, 0, pg_uniaxial, 0, &ai, &as);
   T_ASSERT(sf.l2 > 1e-6, "VC1 s, free top: L2 %.3e H1 %.3e (expected visible)", sf.l2, sf.h1);
   pdk_ctx_destroy(&ctx);

@@ -119,8 +119,7 @@ int main(void) {
     T_INFO("3-D correction %d: L2 %.3e H1 %.3e\n", corr, err[corr][0], err[corr][1]);
     pdk_model_destroy(&m);
   }
-  T_ASSERT(err[1][0] <= 1e-12 && err[1][1] <= 1e-12, "VC1: L2 %.3e H1 %.3e", err[1][0],
-           err[1][1]);
+  T_ASSERT(err[1][0] <= 1e-12 && err[1][1] <= 1e-12, "VC1: L2 %.3e H1 %.3e", err[1][0], err[1][1]);
   T_ASSERT(err[0][0] > 1e-4 && err[0][1] > 1e-4 && err[0][0] > 1e6 * err[1][0] &&
                err[0][1] > 1e6 * err[1][1],
            "uncorrected L2 %.3e H1 %.3e not clearly above VC1's", err[0][0], err[0][1]);

@@ -216,67 +216,80 @@ static inline int law_eval(const pdk_galerkin_consts *k, const double F[3][3], d
   return 0;
 }
 
+/* Pass 1 of one family in dimension D (a constant at each call, so the small loops unroll): the
+ * family's displacements relative to u_k are gathered once into du, the per-member forces summed
+ * in g and stored once. */
+static inline pdk_index pass1_family(const int D, const pdk_galerkin_consts *k,
+                                     const pdk_galerkin_arrays *a, int unit, pdk_index kk) {
+  double du[3][PDK_GALERKIN_MAX_MEMBERS], g[3][PDK_GALERKIN_MAX_MEMBERS];
+  const int nm = (int)(a->bond_start[kk + 1] - a->bond_start[kk]) + 1;
+  const double *dk = a->d + a->dstart[kk];
+  const pdk_bond_index s0 = a->bond_start[kk] + kk;
+  const pdk_index *nbr = a->bond_j + a->bond_start[kk] - 1; /* nbr[i], i >= 1 */
+  double uk[3] = {0, 0, 0};
+  for (int c = 0; c < D; ++c)
+    uk[c] = a->x[c][kk] - a->X[c][kk];
+  for (int i = 1; i < nm; ++i)
+    for (int c = 0; c < D; ++c) {
+      du[c][i] = (a->x[c][nbr[i]] - a->X[c][nbr[i]]) - uk[c];
+      g[c][i] = 0.0;
+    }
+  const double wk = a->volume[kk] / a->vfam[kk];
+  double energy = 0.0;
+  pdk_index bad = 0;
+  for (int j = 0; j < nm; ++j) {
+    const double *dj = dk + (size_t)j * nm * D;
+    const double w = wk * a->volume[j == 0 ? kk : nbr[j]];
+    if (unit) {
+      for (int i = 1; i < nm; ++i)
+        for (int c = 0; c < D; ++c)
+          g[c][i] += w * dj[i * D + c];
+      continue;
+    }
+    double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int i = 1; i < nm; ++i)
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c)
+          F[r][c] += du[r][i] * dj[i * D + c];
+    if (j == 0)
+      for (int r = 0; r < D; ++r)
+        for (int c = 0; c < D; ++c)
+          a->F[r * D + c][kk] = F[r][c];
+    double P[3][3] = {{0}}, Wj = 0.0;
+    if (!law_eval(k, F, P, &Wj)) {
+      ++bad;
+      continue;
+    }
+    energy += w * Wj;
+    double wP[3][3];
+    for (int r = 0; r < D; ++r)
+      for (int c = 0; c < D; ++c)
+        wP[r][c] = w * P[r][c];
+    for (int i = 1; i < nm; ++i)
+      for (int r = 0; r < D; ++r) {
+        double t = 0.0;
+        for (int c = 0; c < D; ++c)
+          t += wP[r][c] * dj[i * D + c];
+        g[r][i] += t;
+      }
+  }
+  for (int c = 0; c < D; ++c) {
+    double sum = 0.0;
+    for (int i = 1; i < nm; ++i) {
+      a->G[c][s0 + i] = g[c][i];
+      sum += g[c][i];
+    }
+    a->G[c][s0] = -sum;
+  }
+  if (a->W) a->W[kk] = energy;
+  return bad;
+}
+
 pdk_index pdk_kernel_galerkin_pass1_ref(const pdk_galerkin_consts *k, const pdk_galerkin_arrays *a,
                                         int unit, pdk_index k0, pdk_index k1) {
-  const int d = k->dim;
   pdk_index bad = 0;
-  for (pdk_index kk = k0; kk < k1; ++kk) {
-    const int nm = (int)(a->bond_start[kk + 1] - a->bond_start[kk]) + 1;
-    const double *dk = a->d + a->dstart[kk];
-    const pdk_bond_index s0 = a->bond_start[kk] + kk;
-    for (int c = 0; c < d; ++c)
-      for (int i = 0; i < nm; ++i)
-        a->G[c][s0 + i] = 0.0;
-    double uk[3] = {0, 0, 0};
-    for (int c = 0; c < d; ++c)
-      uk[c] = a->x[c][kk] - a->X[c][kk];
-    const double wk = a->volume[kk] / a->vfam[kk];
-    double energy = 0.0;
-    for (int j = 0; j < nm; ++j) {
-      const double *dj = dk + (size_t)j * nm * d;
-      const double w = wk * a->volume[member_j(a, kk, j)];
-      if (unit) {
-        for (int i = 1; i < nm; ++i)
-          for (int c = 0; c < d; ++c)
-            a->G[c][s0 + i] += w * dj[i * d + c];
-        continue;
-      }
-      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-      for (int i = 1; i < nm; ++i) {
-        const pdk_index pi = member_j(a, kk, i);
-        double du[3];
-        for (int c = 0; c < d; ++c)
-          du[c] = (a->x[c][pi] - a->X[c][pi]) - uk[c];
-        for (int r = 0; r < d; ++r)
-          for (int c = 0; c < d; ++c)
-            F[r][c] += du[r] * dj[i * d + c];
-      }
-      if (j == 0)
-        for (int r = 0; r < d; ++r)
-          for (int c = 0; c < d; ++c)
-            a->F[r * d + c][kk] = F[r][c];
-      double P[3][3] = {{0}}, Wj = 0.0;
-      if (!law_eval(k, F, P, &Wj)) {
-        ++bad;
-        continue;
-      }
-      energy += w * Wj;
-      for (int i = 1; i < nm; ++i)
-        for (int r = 0; r < d; ++r) {
-          double s = 0.0;
-          for (int c = 0; c < d; ++c)
-            s += P[r][c] * dj[i * d + c];
-          a->G[r][s0 + i] += w * s;
-        }
-    }
-    for (int c = 0; c < d; ++c) {
-      double s = 0.0;
-      for (int i = 1; i < nm; ++i)
-        s += a->G[c][s0 + i];
-      a->G[c][s0] = -s;
-    }
-    if (a->W) a->W[kk] = energy;
-  }
+  for (pdk_index kk = k0; kk < k1; ++kk)
+    bad += k->dim == 3 ? pass1_family(3, k, a, unit, kk) : pass1_family(2, k, a, unit, kk);
   return bad;
 }
 
