@@ -1,11 +1,14 @@
-/* Force models: bond-based PMB, ordinary state-based LPS, and correspondence.
+/* Force models: bond-based PMB, ordinary state-based LPS, correspondence, and Peridynamic
+ * Galerkin.
  *
  * A model is built over a particle store and its families. It declares the particle fields it
  * needs (only those are allocated):
  *   "x"  f64 x dim  current position [length] (read; the solver advances it)
  *   "f"  f64 x dim  internal force density [force/length^dim] (written by pdk_model_force)
  * plus what its kind needs (LPS: "m" weighted volume, "theta" dilation; correspondence: "Kinv"
- * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag).
+ * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag;
+ * galerkin: "F" the family's gradient at its own particle, "area" the area vector of the test
+ * functions, src/model_galerkin.c).
  * Bond state (intact = 1, broken = 0) exists only when the model can break bonds: a critical
  * stretch is set, or the correspondence model uses the Johnson-Cook law with damage and failed
  * particles break their bonds.
