@@ -665,4 +665,58 @@ void pdk_kernel_corr_ul_pass1_ref(const pdk_corr_consts *k, const pdk_corr_ul_ar
 void pdk_kernel_corr_ul_pass2_ref(const pdk_corr_consts *k, const pdk_corr_ul_arrays *a,
                                   pdk_index i0, pdk_index i1);
 
+/* ---- Peridynamic Galerkin (kernels/ref/galerkin.c; formulas at the top of that file) ----------
+ * Families: particle k's family is the list of its members m = 0 .. N_k, member 0 the particle
+ * itself and member m >= 1 its bond bond_start[k] + m - 1 (neighbour bond_j of it). A member's
+ * slot, for the per-member arrays, is bond_start[k] + k + m (n + num_bonds slots in all). rev[b]
+ * of bond b = (k -> j) is the member index (>= 1) of k in j's family (the families are
+ * symmetric). The derivative table of family k starts at dstart[k] and holds
+ * d[(j (N_k + 1) + i) dim + c], the c-th component of dN^{kji}/dX: family k, evaluation point
+ * (member) j, support node (member) i. */
+/* Members of a family at most (the particle and its neighbours): the passes keep a family's
+ * displacements and forces in local arrays of this size; the driver refuses larger families. */
+#define PDK_GALERKIN_MAX_MEMBERS 512
+
+typedef struct pdk_galerkin_consts {
+  int dim;       /* 2 (plane strain) or 3 */
+  int basis;     /* pdk_galerkin_basis: 0 taylor (MTE1), 1 wls (WLS1) */
+  int law;       /* PDK_KERNEL_LAW_* (elastic laws) */
+  double lambda; /* Lame constants of the law */
+  double mu;
+} pdk_galerkin_consts;
+
+typedef struct pdk_galerkin_arrays {
+  const pdk_bond_index *bond_start; /* [n+1] */
+  const pdk_index *bond_j;          /* [num_bonds] */
+  const int32_t *rev;               /* [num_bonds] */
+  const int64_t *dstart;            /* [n] */
+  double *d;                        /* derivative table (written by the shape kernel) */
+  const double *X[3], *x[3];        /* reference and current positions [n] */
+  const double *volume;             /* [n] */
+  const double *vfam;               /* [n] V_H of each family: the sum of its members' volumes */
+  double *G[3];                     /* [n + num_bonds] per-member force of a family (pass 1) */
+  double *F[9];                     /* [n] F^{kk} (pass 1), component [a][c] at a dim + c */
+  double *W;                        /* [n] family energy sum_j w_kj W(F^{kj}) [energy] (pass 1) */
+  double *f[3];                     /* [n] force density (pass 2) */
+} pdk_galerkin_arrays;
+
+/* Shape: the derivative table of families [k0, k1) from X and the volumes. Returns how many
+ * (family, point) moment matrices were singular (their derivatives are set to 0). */
+pdk_index pdk_kernel_galerkin_shape_ref(const pdk_galerkin_consts *k, const pdk_galerkin_arrays *a,
+                                        pdk_index k0, pdk_index k1);
+/* psi[slot] = N^{kki}_MLS1 - delta_ki (the VC1 correction functions) of families [k0, k1):
+ * returns how many moment matrices were singular (psi = 0 there). */
+pdk_index pdk_kernel_galerkin_psi_ref(const pdk_galerkin_consts *k, const pdk_galerkin_arrays *a,
+                                      double *psi, pdk_index k0, pdk_index k1);
+/* Pass 1 over families [k0, k1): F^{kj} at every member, the law, G, F, W. Returns how many
+ * points the law is undefined at (their stress and energy are 0). With unit = 1 no law is
+ * evaluated: G gets sum_j w_kj d^{kji} (the terms of the area vectors, eq. 4.35) instead. */
+pdk_index pdk_kernel_galerkin_pass1_ref(const pdk_galerkin_consts *k, const pdk_galerkin_arrays *a,
+                                        int unit, pdk_index k0, pdk_index k1);
+/* Pass 2 over particles [i0, i1): f_i = -(1/V_i) (G of i's own member 0 + G of i's member in
+ * each neighbour's family, in bond order). With area = 1 the sum without -1/V_i (the area vector
+ * after a unit pass 1). */
+void pdk_kernel_galerkin_pass2_ref(const pdk_galerkin_consts *k, const pdk_galerkin_arrays *a,
+                                   int area, pdk_index i0, pdk_index i1);
+
 #endif

@@ -53,7 +53,7 @@ static const error_case cases[] = {
      "    D3: -2.12\n    D_c: 0.3\n",
      "", NULL, AT_LOAD, PDK_ERR_ARG, "material.johnson_cook", "give the Johnson-Cook parameters"},
     {"jc law with pmb", "  kind: correspondence\n", "  kind: pmb\n", NULL, AT_LOAD, PDK_ERR_ARG,
-     "model.law", "only the correspondence model"},
+     "model.law", "only the correspondence and galerkin models"},
     {"missing A", "    A: 792e6\n", "", NULL, AT_LOAD, PDK_ERR_ARG, "material.johnson_cook.A",
      "required key is missing"},
     {"unknown Johnson-Cook key", "    D_c: 0.3\n", "    D_c: 0.3\n    D6: 1 #<\n", NULL, AT_LOAD,

@@ -134,8 +134,8 @@ static void check_scenes(pdk_ctx *ctx) {
   {
     const char *o[] = {"model.kind=pmb", "model.law=svk"};
     load(ctx, elastic, o, 2,
-         "only the correspondence model uses it (model.kind is pmb); remove it "
-         "or set model.kind: correspondence",
+         "only the correspondence and galerkin models use it (model.kind is pmb); remove it "
+         "or set model.kind: correspondence or galerkin",
          NULL);
   }
   {

@@ -1,11 +1,14 @@
-/* Force models: bond-based PMB, ordinary state-based LPS, and correspondence.
+/* Force models: bond-based PMB, ordinary state-based LPS, correspondence, and Peridynamic
+ * Galerkin.
  *
  * A model is built over a particle store and its families. It declares the particle fields it
  * needs (only those are allocated):
  *   "x"  f64 x dim  current position [length] (read; the solver advances it)
  *   "f"  f64 x dim  internal force density [force/length^dim] (written by pdk_model_force)
  * plus what its kind needs (LPS: "m" weighted volume, "theta" dilation; correspondence: "Kinv"
- * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag).
+ * inverse shape tensor, "F" deformation gradient, "A" = P K^-1, "flag" family-spans-space flag;
+ * galerkin: "F" the family's gradient at its own particle, "area" the area vector of the test
+ * functions, src/models/model_galerkin.c).
  * Bond state (intact = 1, broken = 0) exists only when the model can break bonds: a critical
  * stretch is set, or the correspondence model uses the Johnson-Cook law with damage and failed
  * particles break their bonds.
@@ -60,9 +63,54 @@ typedef enum pdk_model_kind {
   PDK_MODEL_PMB = 0,           /* prototype microelastic brittle, as LAMMPS peri/pmb */
   PDK_MODEL_LPS = 1,           /* linear peridynamic solid, as LAMMPS peri/lps */
   PDK_MODEL_CORRESPONDENCE = 2, /* non-ordinary state-based, total Lagrangian */
-  PDK_MODEL_OTERKUS = 3 /* Oterkus' dilatation law, plane strain, any influence function (2-D;
+  PDK_MODEL_OTERKUS = 3, /* Oterkus' dilatation law, plane strain, any influence function (2-D;
                            Queiruga & Moridis 2017 section 2.3; src/models/model_dil2.c) */
+  PDK_MODEL_GALERKIN = 4 /* Peridynamic Galerkin (Bode et al. 2022; Bode 2021 ch. 4-5): the
+                            correspondence weak form with shape functions inside each family,
+                            deformation gradient and stress at every family member, optional
+                            variationally consistent test functions (opts.galerkin;
+                            src/models/model_galerkin.c, kernels/ref/galerkin.c) */
 } pdk_model_kind;
+
+/* Peridynamic Galerkin options (kind galerkin; docs/validation/galerkin.md). */
+typedef enum pdk_galerkin_basis {
+  PDK_GALERKIN_TAYLOR = 0, /* moving Taylor expansion MTE1 (Bode 2021 eq. 5.52, Table 5.1): linear,
+                              centred at every evaluation point, moving weights 1/r^2 (5.42) */
+  PDK_GALERKIN_WLS = 1     /* weighted least squares WLS1/WTE1 centred at the family's particle,
+                              static weights 1/r^2 (5.41): one gradient per family, the classical
+                              correspondence model without stabilization (t240 checks it) */
+} pdk_galerkin_basis;
+
+typedef enum pdk_galerkin_form {
+  PDK_GALERKIN_BUBNOV = 0 /* PBG: test = trial, inverse averaging weights V_k V_j / V_H (eq. 4.25,
+                             4.30): symmetric tangent for elastic laws */
+} pdk_galerkin_form;
+
+typedef enum pdk_galerkin_correction {
+  PDK_GALERKIN_NONE = 0, /* the shape functions as they are */
+  PDK_GALERKIN_VC1 = 1   /* first-order variational consistency (Bode 2021 section 5.3.2): the
+                            derivatives get a correction alpha_k psi_ki, alpha from one global
+                            sparse solve at creation, so a constant stress gives no force inside
+                            the body; needs the surface set */
+} pdk_galerkin_correction;
+
+typedef struct pdk_galerkin_opts {
+  pdk_galerkin_basis basis;           /* default taylor */
+  pdk_galerkin_form form;             /* default bubnov */
+  pdk_galerkin_correction correction; /* default none */
+  /* VC1: the name of the particle set (uint8 field "set:<name>") of the particles on the body's
+   * surface. Without normals their alpha is held at 0 and their area vector is what the
+   * correction leaves, tangential components included (the thesis' correction boundary condition
+   * "s"). */
+  const char *surface;
+  /* VC1, optional: the name of an f64 field of dim components holding the outward unit normal of
+   * every surface particle (the thesis' default boundary condition "sn"): only the normal
+   * component of alpha is held at 0 and only the normal component of the area vector is left
+   * free, so the area vectors of the surface are normal to it (a traction-free surface carries no
+   * force under a constant stress with P n = 0). A zero normal (corners, edges) means "s" at that
+   * particle. NULL: "s" everywhere. */
+  const char *normals;
+} pdk_galerkin_opts;
 
 /* Oterkus law: how the dilatation coefficient a is set (src/models/model_dil2.c). */
 typedef enum pdk_oterkus_a {
@@ -291,6 +339,8 @@ typedef struct pdk_model_opts {
    * off here (scenes default to auto unless they name model.layout). lps with lps_use_influence
    * accepts off and auto (which then means off), refuses on. */
   pdk_stencil_mode stencil;
+  /* Kind galerkin: basis, form, correction (see pdk_galerkin_opts); ignored by the others. */
+  pdk_galerkin_opts galerkin;
 } pdk_model_opts;
 
 PDK_EXPORT pdk_model_opts pdk_model_opts_default(void);

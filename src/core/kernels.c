@@ -37,6 +37,10 @@ static void fill_ref(pdk_kernel_table *t) {
   t->lps_stencil_force = pdk_kernel_lps_stencil_force_base;
   t->corr_stencil_pass1 = pdk_kernel_corr_stencil_pass1_base;
   t->corr_stencil_pass2 = pdk_kernel_corr_stencil_pass2_base;
+  t->galerkin_shape = pdk_kernel_galerkin_shape_ref;
+  t->galerkin_psi = pdk_kernel_galerkin_psi_ref;
+  t->galerkin_pass1 = pdk_kernel_galerkin_pass1_ref;
+  t->galerkin_pass2 = pdk_kernel_galerkin_pass2_ref;
 }
 
 static void fill_simd(pdk_kernel_table *t, unsigned isa) {

@@ -27,6 +27,8 @@ struct pdk_stencil_arrays;
  * variants themselves. */
 struct pdk_corr_consts; /* kernels/kernels.h */
 struct pdk_corr_arrays;
+struct pdk_galerkin_consts;
+struct pdk_galerkin_arrays;
 
 typedef struct pdk_kernel_table {
   const char *name; /* "ref" or "simd" */
@@ -83,6 +85,17 @@ typedef struct pdk_kernel_table {
                              const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
   void (*corr_stencil_pass2)(const struct pdk_corr_consts *k, const struct pdk_corr_arrays *c,
                              const struct pdk_stencil_arrays *a, int64_t r0, int64_t r1);
+  /* Peridynamic Galerkin (kernels/ref/galerkin.c; the reference in every family for now). */
+  pdk_index (*galerkin_shape)(const struct pdk_galerkin_consts *k,
+                              const struct pdk_galerkin_arrays *a, pdk_index k0, pdk_index k1);
+  pdk_index (*galerkin_psi)(const struct pdk_galerkin_consts *k,
+                            const struct pdk_galerkin_arrays *a, double *psi, pdk_index k0,
+                            pdk_index k1);
+  pdk_index (*galerkin_pass1)(const struct pdk_galerkin_consts *k,
+                              const struct pdk_galerkin_arrays *a, int unit, pdk_index k0,
+                              pdk_index k1);
+  void (*galerkin_pass2)(const struct pdk_galerkin_consts *k, const struct pdk_galerkin_arrays *a,
+                         int area, pdk_index i0, pdk_index i1);
 } pdk_kernel_table;
 
 struct pdk_ctx {

@@ -33,7 +33,8 @@ pdk_model_opts pdk_model_opts_default(void) {
 
 static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
   PDK_CHECK(pdk_model_kind_info_of(o->kind), ctx, PDK_ERR_ARG,
-            "model kind %d is not one of pmb (0), lps (1), correspondence (2), oterkus (3)",
+            "model kind %d is not one of pmb (0), lps (1), correspondence (2), oterkus (3), "
+            "galerkin (4)",
             (int)o->kind);
   PDK_CHECK(o->lps_use_influence == 0 || o->lps_use_influence == 1, ctx, PDK_ERR_ARG,
             "lps_use_influence must be 0 or 1, got %d", o->lps_use_influence);

@@ -8,7 +8,7 @@
 
 /* The kinds, in the order scenes list them (the first is the scenes' default model.kind): each
  * defines pdk_model_kind_<name> in its own file. */
-#define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus)
+#define PDK_MODEL_KINDS(X) X(pmb) X(lps) X(corr) X(oterkus) X(galerkin)
 
 #define PDK_DECLARE_KIND(k) extern const pdk_model_kind_info pdk_model_kind_##k;
 #define PDK_LIST_KIND(k) &pdk_model_kind_##k,

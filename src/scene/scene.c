@@ -222,6 +222,7 @@ void pdk_scene_destroy(pdk_scene **sp) {
   regions_free(s->sets, s->num_sets);
   regions_free(s->mat_regions, s->num_mat_regions);
   free(s->materials);
+  free(s->galerkin_surface);
   free(s->precracks);
   free(s->crack_vertices);
   if (s->points) pdk_points_free(s->points);

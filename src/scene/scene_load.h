@@ -93,7 +93,13 @@ typedef struct sc_material {
   double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
   sc_jc *johnson_cook;
 } sc_material;
+/* model.galerkin (kind galerkin) */
+typedef struct sc_galerkin {
+  int basis, form, correction;
+  char *surface;
+} sc_galerkin;
 typedef struct sc_model {
+  sc_galerkin *galerkin;
   int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
   int stabilization_softening, damage_triaxiality, break_stress;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
@@ -174,6 +180,7 @@ typedef struct scene_schema {
       polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
       precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
       material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS], model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS],
+      galerkin[SC_MAX_FIELDS],
       initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS], output[SC_MAX_FIELDS], limits[SC_MAX_FIELDS],
       scene[SC_MAX_FIELDS];
   /* model.kind and model.law: the names the model registry lists (src/models/model_registry.h) */

@@ -268,6 +268,28 @@ static int resolve_softening(loader *ld, const sc_model *mo) {
   return PDK_SUCCESS;
 }
 
+/* model.galerkin (kind galerkin; refused for the others by its scene_keys entry). */
+static int resolve_galerkin(loader *ld, const sc_model *mo) {
+  pdk_scene *s = ld->s;
+  pdk_galerkin_opts *g = &s->model.galerkin;
+  const sc_galerkin *sg = mo->galerkin;
+  if (!sg || !has(ld, "model.galerkin")) return PDK_SUCCESS;
+  if (has(ld, "model.galerkin.basis")) g->basis = (pdk_galerkin_basis)sg->basis;
+  if (has(ld, "model.galerkin.form")) g->form = (pdk_galerkin_form)sg->form;
+  if (has(ld, "model.galerkin.correction")) g->correction = (pdk_galerkin_correction)sg->correction;
+  if (has(ld, "model.galerkin.surface")) {
+    REQUIRE(ld, g->correction == PDK_GALERKIN_VC1, "model.galerkin.surface",
+            "only the vc1 correction uses it; set model.galerkin.correction: vc1 or remove it");
+    s->galerkin_surface = strdup(sg->surface);
+    REQUIRE(ld, s->galerkin_surface, "model.galerkin.surface", "out of memory");
+    g->surface = s->galerkin_surface;
+  }
+  REQUIRE(ld, g->correction != PDK_GALERKIN_VC1 || g->surface, "model.galerkin.correction",
+          "vc1 needs model.galerkin.surface: the name of the set of the particles on the body's "
+          "surface");
+  return PDK_SUCCESS;
+}
+
 int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const sc_model *mo) {
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
@@ -381,6 +403,7 @@ int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const s
   PDK_CALL(resolve_johnson_cook(ld, mat, mo));
   PDK_CALL(resolve_connectivity(ld, mo));
   PDK_CALL(resolve_softening(ld, mo));
+  PDK_CALL(resolve_galerkin(ld, mo));
   return PDK_SUCCESS;
 }
 

@@ -33,6 +33,11 @@ static const cyaml_strval_t triaxiality_names[] = {{"local", PDK_TRIAX_LOCAL},
                                                    {"family", PDK_TRIAX_FAMILY}};
 static const cyaml_strval_t break_stress_names[] = {{"refit", PDK_BREAK_STRESS_REFIT},
                                                     {"continuous", PDK_BREAK_STRESS_CONTINUOUS}};
+static const cyaml_strval_t galerkin_basis_names[] = {{"taylor", PDK_GALERKIN_TAYLOR},
+                                                      {"wls", PDK_GALERKIN_WLS}};
+static const cyaml_strval_t galerkin_form_names[] = {{"bubnov", PDK_GALERKIN_BUBNOV}};
+static const cyaml_strval_t galerkin_correction_names[] = {{"none", PDK_GALERKIN_NONE},
+                                                           {"vc1", PDK_GALERKIN_VC1}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
@@ -226,6 +231,14 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(model, CYAML_FIELD_FLOAT("compact_fraction", OPT, sc_model, compact_fraction));
   ADD(model, CYAML_FIELD_FLOAT("ul_skin", OPT, sc_model, ul_skin));
   ADD(model, CYAML_FIELD_BOOL("failed_keeps_bonds", OPT, sc_model, failed_keeps_bonds));
+  ADD(model, CYAML_FIELD_MAPPING_PTR("galerkin", OPT_PTR, sc_model, galerkin, sc->galerkin));
+  ADD(galerkin, CYAML_FIELD_ENUM("basis", ENUM_FLAGS, sc_galerkin, basis, galerkin_basis_names,
+                                 N_OF(galerkin_basis_names)));
+  ADD(galerkin, CYAML_FIELD_ENUM("form", ENUM_FLAGS, sc_galerkin, form, galerkin_form_names,
+                                 N_OF(galerkin_form_names)));
+  ADD(galerkin, CYAML_FIELD_ENUM("correction", ENUM_FLAGS, sc_galerkin, correction,
+                                 galerkin_correction_names, N_OF(galerkin_correction_names)));
+  ADD(galerkin, CYAML_FIELD_STRING_PTR("surface", OPT, sc_galerkin, surface, 1, 255));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
   ADD(bc,
