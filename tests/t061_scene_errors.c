@@ -108,7 +108,7 @@ static const error_case cases[] = {
     {"E with K", "  poisson_ratio: 0.3\n", "  poisson_ratio: 0.3\n  bulk_modulus: 1e9 #<\n", NULL,
      AT_LOAD, PDK_ERR_ARG, "material.bulk_modulus", "either youngs_modulus and poisson_ratio"},
     {"correspondence key with pmb", "solver:\n", "model: {influence: cubic} #<\nsolver:\n", NULL,
-     AT_LOAD, PDK_ERR_ARG, "model.influence", "only the correspondence model"},
+     AT_LOAD, PDK_ERR_ARG, "model.influence", "only the correspondence and oterkus models"},
     {"duplicate set name", "  - name: top\n", "  - name: bottom #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
      "sets[1].name", "already defined"},
     {"set selects nothing", "  - name: top\n    box: {lo: [-1, 0.0188], hi: [1, 1]}\n",

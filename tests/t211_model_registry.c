@@ -152,8 +152,8 @@ static void check_scenes(pdk_ctx *ctx) {
   {
     const char *o[] = {"model.kind=lps"};
     load(ctx, two_materials, o, 1,
-         "several materials are implemented for pmb and correspondence, "
-         "not lps; use one material or model.kind pmb or correspondence",
+         "several materials are implemented for pmb, correspondence and oterkus, "
+         "not lps; use one material or model.kind pmb, correspondence or oterkus",
          NULL);
   }
 }

@@ -435,10 +435,14 @@ static const pdk_model_ops *oterkus_ops_for(const pdk_model_opts *o) {
   return &pdk_model_ops_dil2;
 }
 
+static const char *const oterkus_scene_keys[] = {"model.influence", "model.gaussian_width",
+                                                 "model.oterkus_a", NULL};
+
 const pdk_model_kind_info pdk_model_kind_oterkus = {
     .kind = PDK_MODEL_OTERKUS,
     .name = "oterkus",
-    .caps = PDK_KIND_SHEAR | PDK_KIND_MATERIALS | PDK_KIND_TANGENT,
+    .caps = PDK_KIND_SCENE | PDK_KIND_SHEAR | PDK_KIND_MATERIALS | PDK_KIND_TANGENT,
+    .scene_keys = oterkus_scene_keys,
     .hops = 2,
     .scene_stabilization = PDK_STAB_NONE,
     .mem_point = 640,

@@ -102,6 +102,7 @@ typedef struct sc_model {
   sc_galerkin *galerkin;
   int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
   int stabilization_softening, damage_triaxiality, break_stress;
+  int oterkus_a;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,
       ul_skin, stabilization_softening_floor;
   bool partial_volume, failed_keeps_bonds;

@@ -355,6 +355,7 @@ int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const s
          pdk_model_key_kinds(key, " or ", alt, sizeof alt, NULL));
   }
   if (has(ld, "model.influence")) m->influence = (pdk_influence)mo->influence;
+  if (has(ld, "model.oterkus_a")) m->oterkus_a = (pdk_oterkus_a)mo->oterkus_a;
   if (has(ld, "model.gaussian_width")) {
     REQUIRE(ld, m->influence == PDK_INFLUENCE_GAUSSIAN, "model.gaussian_width",
             "only the gaussian influence function uses it; set model.influence: gaussian or "

@@ -16,7 +16,10 @@ const cyaml_strval_t pdk_scene_lattice_names[] = {
 static const cyaml_strval_t influence_names[] = {
     {"constant", PDK_INFLUENCE_CONSTANT}, {"inv_r", PDK_INFLUENCE_INV_R},
     {"inv_r2", PDK_INFLUENCE_INV_R2},     {"linear", PDK_INFLUENCE_LINEAR},
-    {"cubic", PDK_INFLUENCE_CUBIC},       {"gaussian", PDK_INFLUENCE_GAUSSIAN}};
+    {"cubic", PDK_INFLUENCE_CUBIC},       {"quadratic", PDK_INFLUENCE_QUADRATIC},
+    {"gaussian", PDK_INFLUENCE_GAUSSIAN}};
+static const cyaml_strval_t oterkus_a_names[] = {{"published", PDK_OTERKUS_A_PUBLISHED},
+                                                 {"calibrated", PDK_OTERKUS_A_CALIBRATED}};
 static const cyaml_strval_t stab_names[] = {
     {"none", PDK_STAB_NONE}, {"silling", PDK_STAB_SILLING}, {"hourglass", PDK_STAB_HOURGLASS}};
 const cyaml_strval_t pdk_scene_connectivity_names[] = {{"tl", PDK_CONNECTIVITY_TL},
@@ -231,6 +234,8 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(model, CYAML_FIELD_FLOAT("compact_fraction", OPT, sc_model, compact_fraction));
   ADD(model, CYAML_FIELD_FLOAT("ul_skin", OPT, sc_model, ul_skin));
   ADD(model, CYAML_FIELD_BOOL("failed_keeps_bonds", OPT, sc_model, failed_keeps_bonds));
+  ADD(model, CYAML_FIELD_ENUM("oterkus_a", ENUM_FLAGS, sc_model, oterkus_a, oterkus_a_names,
+                              N_OF(oterkus_a_names)));
   ADD(model, CYAML_FIELD_MAPPING_PTR("galerkin", OPT_PTR, sc_model, galerkin, sc->galerkin));
   ADD(galerkin, CYAML_FIELD_ENUM("basis", ENUM_FLAGS, sc_galerkin, basis, galerkin_basis_names,
                                  N_OF(galerkin_basis_names)));
