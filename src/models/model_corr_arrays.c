@@ -9,6 +9,18 @@
 #include "pdk/particles.h"
 
 /* Points the kernel arrays at the current fields. */
+void pdk_corr_jc_arrays_of(pdk_particles *p, struct pdk_corr_arrays *a) {
+  for (int t = 0; t < 6; ++t)
+    a->cp_inv[t] = pdk_particles_field_data(p, "cp_inv", t);
+  a->eps_p = pdk_particles_field_data(p, "eps_p", 0);
+  a->damage = pdk_particles_field_data(p, "damage", 0);
+  a->temp_rise = pdk_particles_field_data(p, "temp_rise", 0); /* NULL unless thermal */
+  a->failed = pdk_particles_field_data(p, "failed", 0);
+  a->eps_p_rate = pdk_particles_field_data(p, "eps_p_rate", 0);
+  a->w_plastic = pdk_particles_field_data(p, "w_plastic", 0);
+  a->w_damage = pdk_particles_field_data(p, "w_damage", 0);
+}
+
 void pdk_corr_arrays_of(pdk_model *m, pdk_corr_arrays *a) {
   corr_impl *c = m->impl;
   pdk_particles *p = m->p;
@@ -55,15 +67,7 @@ void pdk_corr_arrays_of(pdk_model *m, pdk_corr_arrays *a) {
   a->s0 = m->s0;
   a->s0_next = c->s0_next;
   if (m->opts.law == PDK_LAW_JC) {
-    for (int t = 0; t < 6; ++t)
-      a->cp_inv[t] = pdk_particles_field_data(p, "cp_inv", t);
-    a->eps_p = pdk_particles_field_data(p, "eps_p", 0);
-    a->damage = pdk_particles_field_data(p, "damage", 0);
-    a->temp_rise = pdk_particles_field_data(p, "temp_rise", 0); /* NULL unless thermal */
-    a->failed = pdk_particles_field_data(p, "failed", 0);
-    a->eps_p_rate = pdk_particles_field_data(p, "eps_p_rate", 0);
-    a->w_plastic = pdk_particles_field_data(p, "w_plastic", 0);
-    a->w_damage = pdk_particles_field_data(p, "w_damage", 0);
+    pdk_corr_jc_arrays_of(p, a);
     if (m->opts.stab_softening) {
       a->stab_factor = pdk_particles_field_data(p, "stab_factor", 0);
       a->w_stab = pdk_particles_field_data(p, "w_stab", 0);

@@ -126,17 +126,7 @@ static void ul_arrays(pdk_model *m, pdk_corr_ul_arrays *ua) {
   a->m = c->m;
   a->flag = pdk_particles_field_data(p, "flag", 0);
   a->W = c->W;
-  if (m->opts.law == PDK_LAW_JC) {
-    for (int t = 0; t < 6; ++t)
-      a->cp_inv[t] = pdk_particles_field_data(p, "cp_inv", t);
-    a->eps_p = pdk_particles_field_data(p, "eps_p", 0);
-    a->damage = pdk_particles_field_data(p, "damage", 0);
-    a->temp_rise = pdk_particles_field_data(p, "temp_rise", 0); /* NULL unless thermal */
-    a->failed = pdk_particles_field_data(p, "failed", 0);
-    a->eps_p_rate = pdk_particles_field_data(p, "eps_p_rate", 0);
-    a->w_plastic = pdk_particles_field_data(p, "w_plastic", 0);
-    a->w_damage = pdk_particles_field_data(p, "w_damage", 0);
-  }
+  if (m->opts.law == PDK_LAW_JC) pdk_corr_jc_arrays_of(p, a);
 }
 
 static void ul_destroy(pdk_model *m) {

@@ -103,6 +103,9 @@ extern const pdk_model_ops pdk_model_ops_dil2; /* lps with influence, oterkus (m
 extern const pdk_model_ops pdk_model_ops_corr_ul; /* correspondence, UL connectivity */
 /* Derived fields of the correspondence kinds (TL and UL; src/models/model_corr_derived.c). */
 int pdk_model_corr_derived(const pdk_model *m, const char *name, double dt, double *out);
+/* Points the kernel arrays at the Johnson-Cook history fields (law jc; TL and UL;
+ * src/models/model_corr_arrays.c). */
+void pdk_corr_jc_arrays_of(pdk_particles *p, struct pdk_corr_arrays *a);
 /* Correspondence with the Johnson-Cook law, after a committing pass (src/models/model_corr.c): the
  * particles whose update failed (their count, the first in *first) and the error naming it. */
 pdk_index pdk_model_corr_jc_first_failure(const pdk_model *m, const uint8_t *flag,
