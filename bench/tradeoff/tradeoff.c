@@ -1034,7 +1034,27 @@ static int csv_read(const char *path, row **out) {
 
 static int row_ok(const row *r) { return !strcmp(r->status, "ok"); }
 
-/* Marks the runs no other run of the same problem dominates (cost: CPU time). */
+/* Whether the series of rows[i] converges: its error falls by at least a quarter when h halves
+ * between its two finest resolutions that ran (order >= 0.4). A setting whose error stalls at a
+ * model error (PMB or LPS at fixed m, unstabilized correspondence at large m) is not a choice
+ * that buys accuracy with cost, so its runs stay off the front however cheap they are. */
+static int series_converges(const row *rows, int n, int i) {
+  const row *fine = NULL, *next = NULL;
+  for (int j = 0; j < n; ++j) {
+    const row *r = &rows[j];
+    if (r->problem != rows[i].problem || r->series != rows[i].series || !row_ok(r)) continue;
+    if (!fine || r->h < fine->h) {
+      next = fine;
+      fine = r;
+    } else if (!next || r->h < next->h) {
+      next = r;
+    }
+  }
+  return fine && next && fine->error <= 0.75 * next->error;
+}
+
+/* Marks the runs no other run of the same problem dominates (cost: CPU time), among the runs of
+ * converging series (series_converges). */
 static void pareto_mark(row *rows, int n) {
   /* compare the values as the CSV stores them, so a reader of the CSV finds the same front */
   for (int i = 0; i < n; ++i) {
@@ -1044,18 +1064,25 @@ static void pareto_mark(row *rows, int n) {
     snprintf(buf, sizeof buf, "%.6e", rows[i].error);
     rows[i].error = atof(buf);
   }
+  int *eligible = malloc((size_t)(n > 0 ? n : 1) * sizeof *eligible);
+  if (!eligible) {
+    fprintf(stderr, "bench_tradeoff: out of memory\n");
+    exit(1);
+  }
+  for (int i = 0; i < n; ++i) eligible[i] = row_ok(&rows[i]) && series_converges(rows, n, i);
   for (int i = 0; i < n; ++i) {
     rows[i].pareto = 0;
-    if (!row_ok(&rows[i])) continue;
+    if (!eligible[i]) continue;
     int dominated = 0;
     for (int j = 0; j < n && !dominated; ++j) {
-      if (j == i || !row_ok(&rows[j]) || rows[j].problem != rows[i].problem) continue;
+      if (j == i || !eligible[j] || rows[j].problem != rows[i].problem) continue;
       const row *a = &rows[j], *b = &rows[i];
       if (a->cpu <= b->cpu && a->error <= b->error && (a->cpu < b->cpu || a->error < b->error))
         dominated = 1;
     }
     rows[i].pareto = !dominated;
   }
+  free(eligible);
 }
 
 static const char *sweep_names[] = {"model", "m", "influence", "influence-rf1.5", "precision",
