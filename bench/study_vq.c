@@ -8,7 +8,9 @@
  *   study_vq table3|table4|table5|vq7|table7|table8  one table, Markdown on stdout
  *   study_vq table8f                                 Table 8's two F columns only
  *   options: --np a,b,c (NP list of the convergence fits), --threads N,
- *            --rf a,b (the RF rows of table4 and table5; default 1.5,2,2.5,3,3.5)
+ *            --rf a,b (the RF rows of table4 and table5; default 1.5,2,2.5,3,3.5),
+ *            --shift S (crack: its centre moved along x by S spacings; the grid offset at the
+ *            crack tips), --rows R (crack: the outer R rows/columns hold the exact field, not 1)
  * docs/validation/queiruga.md lists the commands and their output; bench/run_vq_study.sh runs all.
  */
 #include "../tests/vq_util.h"
@@ -17,6 +19,8 @@ static int g_threads = 2;
 static int g_np[64], g_nnp = 0;
 static double g_rf[5];
 static int g_nrf = 0; /* --rf: the RF rows of tables 4 and 5 (default all five) */
+static double g_shift = 0.0; /* --shift: the crack's centre moved along x by this many spacings */
+static int g_rows = 1;       /* --rows: outer rows holding the exact field in the crack problem */
 
 static const int np_default[] = {100, 140, 200, 280};
 
@@ -34,6 +38,8 @@ static int parse_law(const char *s, vq_law *law, pdk_oterkus_a *oa) {
 
 static int run(pdk_ctx *ctx, vq_case c, vq_result *r) {
   c.threads = g_threads;
+  c.crack_shift = g_shift;
+  c.crack_rows = g_rows;
   if (vq_run(ctx, &c, r)) exit(1);
   fprintf(stderr, "  %s %s %s RF %.1f NP %d: probe %.6e err %.4e spur %.3e crack %.4f/%.4f %.1f s\n",
           vq_law_name[c.law], vq_problem_name[c.problem], "", c.rf, c.np, r->probe, r->rel_error,
@@ -46,7 +52,7 @@ static double order(pdk_ctx *ctx, vq_law law, pdk_oterkus_a oa, vq_problem pb, p
                     double rf, double *finest) {
   double err[64] = {0};
   for (int k = 0; k < g_nnp; ++k) {
-    vq_case c = {pb, law, w, rf, g_np[k], oa, g_threads};
+    vq_case c = {pb, law, w, rf, g_np[k], oa, g_threads, 0.0, 0};
     vq_result r;
     run(ctx, c, &r);
     err[k] = r.rel_error;
@@ -84,6 +90,10 @@ int main(int argc, char **argv) {
       char *s = argv[++k];
       g_nrf = 0;
       for (char *t = strtok(s, ","); t && g_nrf < 5; t = strtok(NULL, ",")) g_rf[g_nrf++] = atof(t);
+    } else if (!strcmp(argv[k], "--shift") && k + 1 < argc) {
+      g_shift = atof(argv[++k]);
+    } else if (!strcmp(argv[k], "--rows") && k + 1 < argc) {
+      g_rows = atoi(argv[++k]);
     } else {
       fprintf(stderr, "study_vq: unknown option '%s'\n", argv[k]);
       return 2;
@@ -195,7 +205,7 @@ int main(int argc, char **argv) {
     const double rf[3] = {3.5, 1.5, 3.5};
     for (int k = 0; k < 4; ++k) {
       vq_case c = {VQ_SHEAR, k < 3 ? laws[k] : VQ_OTERKUS, PDK_INFLUENCE_CUBIC, k < 3 ? rf[k] : 3.5,
-                   np, 0, g_threads};
+                   np, 0, g_threads, 0.0, 0};
       vq_result r;
       run(ctx, c, &r);
       printf("| %s | %.1f | %.4f | %.4f | %.4f |\n", vq_law_name[c.law], c.rf, r.spurious,
@@ -211,7 +221,7 @@ int main(int argc, char **argv) {
     printf("| RF | Unsmoothed | Const | Linear | Cubic | max opening (exact 1.1667 mm) |\n");
     printf("|---|---|---|---|---|---|\n");
     for (int ri = 0; ri < 5; ++ri) {
-      vq_case c = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, rfs[ri], np, 0, g_threads};
+      vq_case c = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, rfs[ri], np, 0, g_threads, 0.0, 0};
       vq_result r;
       run(ctx, c, &r);
       printf("| %.1f | %.4f (%.4f) | %.4f (%.4f) | %.4f (%.4f) | %.4f (%.4f) | %.4f |\n", rfs[ri],
@@ -230,14 +240,14 @@ int main(int argc, char **argv) {
     printf("|---|---|---|%s\n", ncol == 4 ? "---|---|" : "");
     double e[4][64];
     for (int k = 0; k < g_nnp; ++k) {
-      vq_case cf = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, g_np[k], 0, g_threads};
+      vq_case cf = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, g_np[k], 0, g_threads, 0.0, 0};
       vq_result rf;
       run(ctx, cf, &rf);
       e[0][k] = rf.err_all;
       e[1][k] = rf.err_all_s[1];
       if (ncol == 4) {
-        vq_case cs = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
-        vq_case co2 = {VQ_CRACK, VQ_OTERKUS, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads};
+        vq_case cs = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads, 0.0, 0};
+        vq_case co2 = {VQ_CRACK, VQ_OTERKUS, PDK_INFLUENCE_CUBIC, 3.5, g_np[k], 0, g_threads, 0.0, 0};
         vq_result rs, ro;
         run(ctx, cs, &rs);
         run(ctx, co2, &ro);

@@ -22,7 +22,7 @@
 
 /* The block and probe of tests/vq_util.h (the setup described above). */
 static double probe(pdk_ctx *ctx, int np) {
-  vq_case c = {VQ_UNIAXIAL, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, np, PDK_OTERKUS_A_PUBLISHED, 2};
+  vq_case c = {VQ_UNIAXIAL, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, np, PDK_OTERKUS_A_PUBLISHED, 2, 0.0, 0};
   vq_result r;
   T_ASSERT(vq_run(ctx, &c, &r) == 0, "NP = %d: the solve failed", np);
   T_ASSERT(r.exact == -1e-5, "exact top displacement %g", r.exact);

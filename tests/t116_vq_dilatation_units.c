@@ -283,12 +283,12 @@ int main(void) {
 
   /* 8. V-Q8 pressurized crack at small sizes */
   {
-    vq_case c = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, 50, 0, 2};
+    vq_case c = {VQ_CRACK, VQ_SILLING, PDK_INFLUENCE_CUBIC, 3.5, 50, 0, 2, 0.0, 0};
     vq_result r;
     T_ASSERT(vq_run(ctx, &c, &r) == 0, "crack, Silling, NP 50");
     if (getenv("PDK_TEST_VERBOSE")) printf("Silling RF 3.5 NP 50: error %.4f\n", r.err_all);
     T_NEAR(r.err_all, 0.379, 0.15, 0.0, "Silling crack error at NP 50 vs the authors' code");
-    vq_case cf = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, 100, 0, 2};
+    vq_case cf = {VQ_CRACK, VQ_F, PDK_INFLUENCE_CUBIC, 1.5, 100, 0, 2, 0.0, 0};
     T_ASSERT(vq_run(ctx, &cf, &r) == 0, "crack, F, NP 100");
     if (getenv("PDK_TEST_VERBOSE"))
       printf("F RF 1.5 NP 100: window error %.4f, linear-smoothed %.4f, opening %.4f\n", r.err_win,

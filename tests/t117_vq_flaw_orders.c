@@ -25,7 +25,7 @@
 
 static vq_result solve(pdk_ctx *ctx, vq_law law, vq_problem pb, pdk_influence w, double rf,
                        int np) {
-  vq_case c = {pb, law, w, rf, np, PDK_OTERKUS_A_PUBLISHED, 2};
+  vq_case c = {pb, law, w, rf, np, PDK_OTERKUS_A_PUBLISHED, 2, 0.0, 0};
   vq_result r;
   T_ASSERT(vq_run(ctx, &c, &r) == 0, "%s %s RF %.1f NP %d did not solve", vq_law_name[law],
            vq_problem_name[pb], rf, np);

@@ -52,7 +52,7 @@ static moments lattice_moments(double rf) {
 
 static vq_result solve(pdk_ctx *ctx, vq_law law, pdk_oterkus_a oa, vq_problem pb, double rf,
                        int np) {
-  vq_case c = {pb, law, PDK_INFLUENCE_CUBIC, rf, np, oa, 2};
+  vq_case c = {pb, law, PDK_INFLUENCE_CUBIC, rf, np, oa, 2, 0.0, 0};
   vq_result r;
   T_ASSERT(vq_run(ctx, &c, &r) == 0, "%s %s RF %.1f NP %d did not solve", vq_law_name[law],
            vq_problem_name[pb], rf, np);

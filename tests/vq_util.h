@@ -49,6 +49,8 @@ typedef struct vq_case {
   int np;    /* h = W / np */
   pdk_oterkus_a oterkus_a;
   int threads;
+  double crack_shift; /* crack: its centre moved along x by this many spacings (0: W/2) */
+  int crack_rows;     /* crack: outer rows/columns holding the exact field (0 or 1: one) */
 } vq_case;
 
 typedef struct vq_result {
@@ -130,7 +132,7 @@ static inline int vq_run(pdk_ctx *ctx, const vq_case *c, vq_result *res) {
   const pdk_index n = res->n = pdk_particles_count(p);
   const double V = pdk_particles_volume(p)[0];
   const double e = 0.25 * h, big = 2.0 * W;
-  const double a = 0.5 * VQ_CL, xc = 0.5 * W, yc = 0.5 * H;
+  const double a = 0.5 * VQ_CL, xc = 0.5 * W + (crack ? c->crack_shift * h : 0.0), yc = 0.5 * H;
   pdk_bc bcs[8];
   memset(bcs, 0, sizeof bcs);
   int nb = 0;
@@ -209,8 +211,11 @@ static inline int vq_run(pdk_ctx *ctx, const vq_case *c, vq_result *res) {
     }
     VQ_OK(ctx, pdk_particles_field_add(p, "set:outer", PDK_U8, 1));
     uint8_t *outer = pdk_particles_field_data(p, "set:outer", 0);
-    for (pdk_index i = 0; i < n; ++i)
-      outer[i] = X[i] < h || X[i] > W - h || Y[i] < h || Y[i] > H - h;
+    {
+      const double rows = c->crack_rows > 1 ? (double)c->crack_rows : 1.0;
+      for (pdk_index i = 0; i < n; ++i)
+        outer[i] = X[i] < rows * h || X[i] > W - rows * h || Y[i] < rows * h || Y[i] > H - rows * h;
+    }
     bcs[nb].kind = PDK_BC_DISPLACEMENT;
     bcs[nb].set = "set:outer";
     bcs[nb].components = 3;
