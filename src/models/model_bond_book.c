@@ -49,7 +49,7 @@ int pdk_bond_book_setup(pdk_model *m) {
   m->book_pending = pdk_alloc_aligned(n_pad > 0 ? n_pad : 1, sizeof(double));
   PDK_CHECK(m->book_prev && m->book_pending, ctx, PDK_ERR_MEMORY,
             "%s model: out of memory for the bond state of the breaking energy (%lld bonds)",
-            pdk_model_kind_name(m->opts.kind), (long long)nb);
+            m->info->name, (long long)nb);
   memcpy(m->book_prev, m->bond_alive, (size_t)nb);
   memset(m->book_pending, 0, n_pad * sizeof(double));
   m->book_has_pending = 0;
@@ -65,8 +65,7 @@ int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W) {
   if (!m->book_prev || !m->book_has_pending) return PDK_SUCCESS;
   double *w_broken = pdk_particles_field_data(m->p, "w_broken", 0);
   PDK_CHECK(w_broken, m->ctx, PDK_ERR_NOT_FOUND,
-            "%s model: the field \"w_broken\" is missing from the particle store",
-            pdk_model_kind_name(m->opts.kind));
+            "%s model: the field \"w_broken\" is missing from the particle store", m->info->name);
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index n = pdk_particles_count(m->p);
   uint8_t *prev = m->book_prev;

@@ -278,7 +278,7 @@ static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *ali
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index *bj = pdk_families_bond_j(m->fam);
   const double *V = pdk_particles_volume(m->p);
-  const float *bond_r0 = im->bd.bond_r0;
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
   double sum = 0.0, sum_all = 0.0;
   for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
     const pdk_index j = bj[b];
@@ -287,7 +287,7 @@ static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *ali
       const double d0 = pdk_particles_X(m->p, c)[j] - pdk_particles_X(m->p, c)[i];
       r0 += d0 * d0;
     }
-    r0 = bond_r0 ? (double)bond_r0[b] : sqrt(r0);
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
     const double t = r0 * V[j] * fmin(1.0, (im->k.vs_a - r0) * im->k.vs_b);
     sum_all += t;
     if (alive[b]) sum += t;
@@ -340,7 +340,7 @@ static double lps_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
     x[c] = pdk_particles_field_data(m->p, "x", c);
   }
   const double *V = pdk_particles_volume(m->p);
-  const float *bond_r0 = im->bd.bond_r0;
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
   const double inv_m_i = im->inv_m[i], d = k->theta_factor;
   double sum_e = 0.0, sum_e2 = 0.0;
   for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
@@ -352,7 +352,7 @@ static double lps_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
       r0 += d0 * d0;
       r += d1 * d1;
     }
-    r0 = bond_r0 ? (double)bond_r0[b] : sqrt(r0);
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
     const double e = sqrt(r) - r0;
     const double vol = V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
     sum_e += e * vol;

@@ -224,7 +224,7 @@ static double pmb_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
     x[c] = pdk_particles_field_data(m->p, "x", c);
   }
   const double *V = pdk_particles_volume(m->p);
-  const float *bond_r0 = im->bd.bond_r0;
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
   const double *cp = k->c_particle;
   double wi = 0.0;
   for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
@@ -236,7 +236,7 @@ static double pmb_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
       r0 += d0 * d0;
       r += d1 * d1;
     }
-    r0 = bond_r0 ? (double)bond_r0[b] : sqrt(r0);
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
     r = sqrt(r);
     const double d = r - r0, q = r > 0.0 ? 1.0 / (r0 * r) : 0.0;
     const double vol = V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
