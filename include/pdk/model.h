@@ -12,6 +12,12 @@
  * Bond state (intact = 1, broken = 0) exists only when the model can break bonds: a critical
  * stretch is set, or the correspondence model uses the Johnson-Cook law with damage and failed
  * particles break their bonds.
+ * PMB and LPS with bond state also declare
+ *   "w_broken"   f64 x 1  energy released by bond breaking so far [energy/length^3]: the stored
+ *                         energy the breaks removed at fixed positions, booked half at the pass
+ *                         that broke the bonds and half at the next committing pass
+ *                         (src/models/model_bond_book.c), so external work = kinetic + strain +
+ *                         breaking closes to second order in the time step.
  *
  * Johnson-Cook law (PDK_LAW_JC, correspondence only; the material point is pdk/plasticity.h).
  * History, declared only with this law, committed by pdk_model_force and never touched by

@@ -355,6 +355,7 @@ void pdk_model_destroy(pdk_model **mp) {
   pdk_free_aligned(m->s0);
   pdk_free_aligned(m->book_prev);
   pdk_free_aligned(m->book_pending);
+  pdk_free_aligned(m->book_lost);
   pdk_free_aligned(m->mat_bulk);
   pdk_free_aligned(m->mat_shear);
   pdk_free_aligned(m->mat_density);

@@ -98,6 +98,9 @@ typedef double (*pdk_bond_row_energy_fn)(const pdk_model *m, pdk_index i, const 
 int pdk_bond_book_setup(pdk_model *m);
 int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W);
 int pdk_bond_book_end(pdk_model *m, pdk_bond_index broken, pdk_bond_row_energy_fn W);
+/* book_lost from bond_alive (setup, checkpoint restore): 1 for every particle with a broken bond;
+ * book_end keeps it current. */
+void pdk_bond_book_mark_lost(pdk_model *m);
 
 const double *pdk_model_pmb_energy_density(const pdk_model *m);
 /* pdk_model_padding_fraction of a PMB or LPS model (0 for layout csr or another kind). */

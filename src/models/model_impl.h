@@ -100,6 +100,7 @@ struct pdk_model {
   uint8_t *book_prev;
   double *book_pending;
   int book_has_pending;
+  uint8_t *book_lost; /* [n_pad] 1: the particle's family in bond_alive has a broken bond */
 };
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */

@@ -265,12 +265,14 @@ static int lps_pass(pdk_model *m, int commit, double *energy) {
  * m_i the weighted volume of all bonds (fixed at setup, as LAMMPS's wvolume). The kernels report
  * W_i in the form e_bulk theta_i^2 / 2 + e_dev / m_i sum_b alive_b (e - theta_i r0 / d)^2 / r0
  * beta V_j (kernels/ref/lps.c), which equals it while i's family is intact but differs by
- *   W_i - W_kernel,i = e_dev theta_i^2 (m_i - m'_i) / (m_i d^2),   m'_i = sum_b alive_b r0 beta V_j,
+ *   W_i - W_kernel,i = e_dev theta_i^2 (m_i - m'_i) / (m_i d^2),
+ *   m'_i = sum_b alive_b r0 beta V_j,
  * once i lost bonds (expand the square, use sum_b alive_b e beta V_j = theta_i m_i / d and the
- * constants of lps_setup: c_dil = d e_bulk - 2 e_dev / d, c_dev = 2 e_dev). lps_fix_energy adds that
- * difference for the particles whose family (in the state the pass read) lost bonds, so the
+ * constants of lps_setup: c_dil = d e_bulk - 2 e_dev / d, c_dev = 2 e_dev). lps_fix_energy adds
+ * that difference for the particles whose family (in the state the pass read) lost bonds, so the
  * strain energy of a run with breaking is the force's potential and the energy account closes;
- * a particle with an intact family gets nothing, and a run in which no bond broke never gets here. */
+ * a particle with an intact family gets nothing, and a run in which no bond broke never gets
+ * here. */
 
 /* m'_i over i's bonds intact in `alive`, as the kernels compute r0 and beta. */
 static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *alive, double *all) {
@@ -279,12 +281,14 @@ static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *ali
   const pdk_index *bj = pdk_families_bond_j(m->fam);
   const double *V = pdk_particles_volume(m->p);
   const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < im->dim; ++c) X[c] = pdk_particles_X(m->p, c);
   double sum = 0.0, sum_all = 0.0;
   for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
     const pdk_index j = bj[b];
     double r0 = 0.0;
     for (int c = 0; c < im->dim; ++c) {
-      const double d0 = pdk_particles_X(m->p, c)[j] - pdk_particles_X(m->p, c)[i];
+      const double d0 = X[c][j] - X[c][i];
       r0 += d0 * d0;
     }
     r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
@@ -297,11 +301,12 @@ static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *ali
 }
 
 /* After a pass that reported the energy with bond state `alive` (the state it read): W_i of
- * every particle whose family lost bonds gets the difference above, and *energy its sum
+ * every particle whose family lost bonds (lost[i], one byte per particle: the pass costs a scan
+ * of n bytes and the rows of those particles) gets the difference above, and *energy its sum
  * (V_i-weighted, in index order: the same bits for any thread count). */
-static int lps_fix_energy(pdk_model *m, const uint8_t *alive, double *energy) {
+static int lps_fix_energy(pdk_model *m, const uint8_t *alive, const uint8_t *lost,
+                          double *energy) {
   lps_impl *im = m->impl;
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const double *theta = pdk_particles_field_data(m->p, "theta", 0);
   const double *V = pdk_particles_volume(m->p);
   const pdk_index n = im->n;
@@ -309,12 +314,11 @@ static int lps_fix_energy(pdk_model *m, const uint8_t *alive, double *energy) {
   double *w = im->w, *fix = im->fix;
   const double *inv_m = im->inv_m;
   const pdk_model *mc = m;
-#pragma omp parallel for default(none) shared(bs, theta, n, d2, e_dev, w, fix, inv_m, alive, mc)  \
+#pragma omp parallel for default(none) shared(theta, n, d2, e_dev, w, fix, inv_m, alive, lost, mc) \
     schedule(static) num_threads(m->ctx->num_threads)
   for (pdk_index i = 0; i < n; ++i) {
     fix[i] = 0.0;
-    const pdk_bond_index b0 = bs[i], b1 = bs[i + 1];
-    if (b1 == b0 || !memchr(alive + b0, 0, (size_t)(b1 - b0))) continue;
+    if (!lost[i]) continue;
     double m_all;
     const double m_alive = lps_row_volume(mc, i, alive, &m_all);
     fix[i] = e_dev * theta[i] * theta[i] * inv_m[i] * (m_all - m_alive) / d2;
@@ -376,7 +380,8 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
       PDK_CHECK(im->fix, m->ctx, PDK_ERR_MEMORY, "lps model: out of memory for %d particles",
                 (int)im->n);
     }
-    PDK_CALL(lps_fix_energy(m, commit ? m->book_prev : m->bond_alive, energy));
+    /* book_lost marks the families of that state with a broken bond until book_end */
+    PDK_CALL(lps_fix_energy(m, commit ? m->book_prev : m->bond_alive, m->book_lost, energy));
   }
   if (commit) PDK_CALL(pdk_bond_book_end(m, m->num_broken - before, lps_row_energy));
   return PDK_SUCCESS;

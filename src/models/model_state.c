@@ -15,6 +15,7 @@
  */
 #include <string.h>
 
+#include "model_bond.h"
 #include "model_impl.h"
 #include "core/state.h"
 #include "pdk/ctx.h"
@@ -73,6 +74,7 @@ int pdk_model_state_load(pdk_model *m, pdk_state *s) {
       memset(m->book_pending, 0, (size_t)n * sizeof(double));
       m->book_has_pending = 0;
     }
+    pdk_bond_book_mark_lost(m);
   }
   if (m->ops->state_load) PDK_CALL(m->ops->state_load(m, s));
   PDK_CALL(pdk_state_get_i64(s, "num_broken", &v));
