@@ -3,8 +3,10 @@
 # more than 3% of the energy put in:
 #   - the bar of t092 without breaking: the line is printed, off by less than 1e-4 (velocity
 #     Verlet with a smooth ramp: measured 7e-6), no warning;
-#   - the same bar with PMB critical-stretch breaking: PMB does not book what a broken bond held,
-#     so the line says the account does not close, and no warning is given for it;
+#   - the same bar with PMB critical-stretch breaking (586 bonds break): PMB books what the broken
+#     bonds held ("w_broken", the breaking column), so the account closes: no warning and off by
+#     less than 1% (measured 0.65%, first order here: the grip's velocity ramps, see t102; before
+#     the breaking energy was booked it was off by about 41% of the energy put in);
 #   - the two-hole plate at 2 mm with softened stabilization and the family triaxiality to 3 ms:
 #     failures and breaks in weakly stabilized families make F jump, which the scene's step does
 #     not resolve (docs/validation/plate_two_holes.md, item 8): off by 8.6% (measured), the
@@ -45,8 +47,8 @@ if(pct GREATER 0.01 OR run_err MATCHES "warning")
 endif()
 
 run(bar_breaking ${bar})
-if(NOT run_err MATCHES "this model does not book the energy they held" OR run_err MATCHES "warning")
-  message(FATAL_ERROR "bar with PMB breaking: no 'does not book' note, or warned\n${run_err}")
+if(NOT run_err MATCHES "breaking 0\\.[1-9]" OR run_err MATCHES "warning|does not book" OR NOT pct LESS 1)
+  message(FATAL_ERROR "bar with PMB breaking: nothing booked, warned, or off by ${pct}%\n${run_err}")
 endif()
 
 set(plate ${PDK_SOURCE_DIR}/scenes/plate_two_holes.yaml)

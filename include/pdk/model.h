@@ -12,6 +12,12 @@
  * Bond state (intact = 1, broken = 0) exists only when the model can break bonds: a critical
  * stretch is set, or the correspondence model uses the Johnson-Cook law with damage and failed
  * particles break their bonds.
+ * PMB and LPS with bond state also declare
+ *   "w_broken"   f64 x 1  energy released by bond breaking so far [energy/length^3]: the stored
+ *                         energy the breaks removed at fixed positions, booked half at the pass
+ *                         that broke the bonds and half at the next committing pass
+ *                         (src/models/model_bond_book.c), so external work = kinetic + strain +
+ *                         breaking closes to second order in the time step.
  *
  * Johnson-Cook law (PDK_LAW_JC, correspondence only; the material point is pdk/plasticity.h).
  * History, declared only with this law, committed by pdk_model_force and never touched by
@@ -394,6 +400,16 @@ PDK_EXPORT int pdk_model_stencil_active(const pdk_model *m);
 PDK_EXPORT const char *pdk_model_stencil_reason(const pdk_model *m);
 /* Particles that have failed (D >= D_c, Johnson-Cook law), after the last force pass. */
 PDK_EXPORT pdk_index pdk_model_num_failed(const pdk_model *m);
+/* Bond damage of every particle into out [n]: d_i = 1 - (sum over i's intact bonds of w_b) /
+ * (sum over all its bonds at creation of w_b), with w_b = V_j, the volume of the bond's other
+ * end, times the partial-volume factor min(1, (vs_a - |xi|) vs_b) where the model scales V_j with
+ * it (pmb and lps with lattice_constant > 0; 1 otherwise) -- LAMMPS's compute damage/atom and
+ * Peridigm's damage, which weigh by V_j. In [0, 1]: 0 with every bond intact, 1 once a particle
+ * lost all its bonds; 0 for a particle that had none, and 0 everywhere when bonds cannot break
+ * (no critical stretch, no failing law, ul connectivity). From the bond state after the last
+ * committing pass; bitwise the same for any thread count. Scenes: output field "bond_damage"
+ * (and "damage" for every model whose law has no damage D of its own). */
+PDK_EXPORT int pdk_model_bond_damage(const pdk_model *m, double *out);
 /* Largest Johnson-Cook damage D of any particle (the "damage" field); 0 without it. */
 PDK_EXPORT double pdk_model_damage_max(const pdk_model *m);
 /* semi-TL: how many times the bond list was compacted (0 in TL). */

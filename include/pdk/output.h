@@ -168,7 +168,9 @@ PDK_EXPORT int pdk_output_adopt(pdk_output *o, const char *part, const char *fin
  * external_work, and the dt_update state dt_stable, dt_step0, dt_time0, est_step, est_broken,
  * num_estimates, num_dt_changes;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
- * s0 f64 [n] when the model can break bonds; with ul connectivity also attributes ul_rebuilt,
+ * s0 f64 [n] when the model can break bonds (pmb and lps also the breaking energy's pending
+ * state: attribute book_has_pending, datasets book_prev uint8 [num_bonds], book_pending f64 [n]);
+ * with ul connectivity also attributes ul_rebuilt,
  * ul_num_rebuilds and, after a rebuild, the rebuilt families ul_bond_start i64 [n+1] and
  * ul_bond_j i32; /fields/<name> [num_comp][n] in the field's type, attributes type (pdk_type)
  * and components. */

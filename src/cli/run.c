@@ -297,9 +297,6 @@ static void warn_float_roundoff(pdk_sim *sim) {
  * plate with softened stabilization 5-13% (tests/t095) */
 #define PDK_ENERGY_WARN 0.03
 static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history *h) {
-  /* PMB and LPS do not book what a broken bond held ("w_broken" is the correspondence model's) */
-  const int unbooked = h->broken > h0->broken &&
-                       !pdk_particles_field_exists(pdk_sim_particles(sim), "w_broken");
   const double e0 = h0->kinetic + h0->strain + h0->plastic_work + h0->damage_work +
                     h0->breaking_work;
   const double e1 = h->kinetic + h->strain + h->plastic_work + h->damage_work + h->breaking_work;
@@ -312,11 +309,8 @@ static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history
           h->breaking_work - h0->breaking_work, imb);
   const double in = ext + fabs(e0); /* the energy put in: work done, and any initial energy */
   if (in > 0.0) fprintf(stderr, " (%.2g%% of the energy put in)", 100.0 * fabs(imb) / in);
-  if (unbooked)
-    fprintf(stderr, "; bonds broke and this model does not book the energy they held, so the "
-                    "account does not close");
   fputc('\n', stderr);
-  if (!unbooked && in > 0.0 && fabs(imb) > PDK_ENERGY_WARN * in) {
+  if (in > 0.0 && fabs(imb) > PDK_ENERGY_WARN * in) {
     /* Johnson-Cook correspondence runs that broke bonds: what fixed their account on the
      * two-hole plate (docs/validation/plate_two_holes.md, items 9 and 10) */
     const pdk_model_opts *mo = pdk_model_opts_get(pdk_sim_model(sim));

@@ -173,8 +173,8 @@ static int name_in(const char *name, const char *const *list, int n) {
  * has none (ids, indices, set flags). "1": dimensionless. */
 const char *pdk_out_field_unit(const pdk_output *o, const char *field, char *buf, size_t len) {
   static const char *const length[] = {"x", "X", "u", "ul_X"};
-  static const char *const one[] = {"eps_p", "damage", "failed", "stab_factor", "theta",
-                                    "F",     "ul_F",   "ul_J",   "flag"};
+  static const char *const one[] = {"eps_p", "damage", "bond_damage", "failed", "stab_factor",
+                                    "theta", "F",      "ul_F",        "ul_J",   "flag"};
   static const char *const stress[] = {"von_mises", "sigma_m", "sigma_m_avg"};
   static const char *const energy_density[] = {"w_plastic", "w_damage", "w_broken", "w_stab",
                                                "w_silling"};

@@ -353,6 +353,9 @@ void pdk_model_destroy(pdk_model **mp) {
   pdk_stencil_destroy(&m->stencil);
   pdk_free_aligned(m->bond_alive);
   pdk_free_aligned(m->s0);
+  pdk_free_aligned(m->book_prev);
+  pdk_free_aligned(m->book_pending);
+  pdk_free_aligned(m->book_lost);
   pdk_free_aligned(m->mat_bulk);
   pdk_free_aligned(m->mat_shear);
   pdk_free_aligned(m->mat_density);
@@ -382,8 +385,18 @@ int pdk_model_stencil_active(const pdk_model *m) { return m && m->stencil != NUL
 const char *pdk_model_stencil_reason(const pdk_model *m) { return m ? m->stencil_why : ""; }
 pdk_index pdk_model_num_failed(const pdk_model *m) { return m ? m->num_failed : 0; }
 
+/* 1 when the model's law declares history field `name` (law jc: "damage", ...). */
+static int law_declares(const pdk_model *m, const char *name) {
+  if (!pdk_model_opts_has(&m->opts, PDK_KIND_LAWS)) return 0;
+  const pdk_law_info *law = pdk_law_info_of(m->opts.law);
+  for (const char *const *h = law ? law->history_fields : NULL; h && *h; ++h)
+    if (!strcmp(*h, name)) return 1;
+  return 0;
+}
+
 double pdk_model_damage_max(const pdk_model *m) {
-  if (!m) return 0.0;
+  /* the law's D only: a scene's output field "damage" of another model is the bond damage */
+  if (!m || !law_declares(m, "damage")) return 0.0;
   const double *D = pdk_particles_field_data(m->p, "damage", 0);
   if (!D) return 0.0;
   const pdk_index n = pdk_particles_count(m->p);
@@ -517,8 +530,70 @@ int pdk_model_plastic_work(pdk_model *m, double *plastic, double *damage, double
   return PDK_SUCCESS;
 }
 
+int pdk_model_bond_damage(const pdk_model *m, double *out) {
+  PDK_CHECK_ARG(m, NULL);
+  PDK_CHECK_ARG(out, m->ctx);
+  const pdk_index n = pdk_particles_count(m->p);
+  const uint8_t *alive = m->bond_alive;
+  if (!alive) { /* bonds cannot break */
+    memset(out, 0, (size_t)n * sizeof *out);
+    return PDK_SUCCESS;
+  }
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const int dim = pdk_particles_dim(m->p);
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) X[c] = pdk_particles_X(m->p, c);
+  const double *V = pdk_particles_volume(m->p);
+  /* the partial-volume factor of the kinds that scale V_j with it (kernels/ref/pmb.c) */
+  const double lattice = m->ops->partial_volumes ? m->opts.lattice_constant : 0.0;
+  const double delta = pdk_families_horizon(m->fam);
+  const double vs_a = lattice > 0 ? delta + 0.5 * lattice : HUGE_VAL;
+  const double vs_b = lattice > 0 ? 1.0 / lattice : 1.0;
+#pragma omp parallel for default(none) shared(n, alive, bs, bj, dim, X, V, vs_a, vs_b, out)           schedule(static) num_threads(m->ctx->num_threads)
+  for (pdk_index i = 0; i < n; ++i) {
+    double all = 0.0, intact = 0.0;
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      const pdk_index j = bj[b];
+      double r0 = 0.0;
+      for (int c = 0; c < dim; ++c) r0 += (X[c][j] - X[c][i]) * (X[c][j] - X[c][i]);
+      const double w = V[j] * fmin(1.0, (vs_a - sqrt(r0)) * vs_b);
+      all += w;
+      if (alive[b]) intact += w;
+    }
+    out[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
+  }
+  return PDK_SUCCESS;
+}
+
+/* Derived fields of every model: the bond damage, also as "damage" when the law has no damage
+ * variable of its own. */
+static const pdk_model_derived_info common_derived[] = {{"bond_damage", "bond damage"},
+                                                        {"damage", "bond damage"}};
+
+const pdk_model_derived_info *pdk_model_derived_at(const pdk_model *m, int i) {
+  if (!m || i < 0) return NULL;
+  const pdk_model_derived_info *own = m->info->derived;
+  int count = 0;
+  while (own && own[count].name) ++count;
+  if (i < count) return &own[i];
+  i -= count;
+  if (i == 1 && law_declares(m, "damage")) return NULL;
+  return i < 2 ? &common_derived[i] : NULL;
+}
+
+const pdk_model_derived_info *pdk_model_derived_of(const pdk_model *m, const char *name) {
+  const pdk_model_derived_info *d;
+  for (int i = 0; name && (d = pdk_model_derived_at(m, i)) != NULL; ++i)
+    if (!strcmp(d->name, name)) return d;
+  return NULL;
+}
+
 int pdk_model_derived(const pdk_model *m, const char *name, double dt, double *out) {
   PDK_CHECK_ARG(m, NULL);
+  const pdk_model_derived_info *d = pdk_model_derived_of(m, name);
+  if (d && (d == &common_derived[0] || d == &common_derived[1]))
+    return pdk_model_bond_damage(m, out);
   PDK_CHECK(m->ops->derived && pdk_model_kind_derived(m->opts.kind, name), m->ctx,
             PDK_ERR_NOT_FOUND, "the %s model derives no field '%s'",
             pdk_model_kind_name(m->opts.kind), name);

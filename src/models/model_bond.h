@@ -88,6 +88,20 @@ static inline void pdk_bond_pass_finish(pdk_model *m, double **s0_next, int swap
   }
 }
 
+/* The energy bond breaking releases (src/models/model_bond_book.c, which says what is booked and
+ * why): W(m, i, alive) is particle i's strain energy density at the current "x" with bond state
+ * `alive` ([num_bonds], the families' bonds), from i's own row; it may be called by several
+ * threads at once. setup (when bonds can break: declares "w_broken", copies the bond state) at the
+ * kind's setup; start at the beginning of a committing pass (books what the last breaking pass
+ * left pending); end after it, with the count it broke. */
+typedef double (*pdk_bond_row_energy_fn)(const pdk_model *m, pdk_index i, const uint8_t *alive);
+int pdk_bond_book_setup(pdk_model *m);
+int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W);
+int pdk_bond_book_end(pdk_model *m, pdk_bond_index broken, pdk_bond_row_energy_fn W);
+/* book_lost from bond_alive (setup, checkpoint restore): 1 for every particle with a broken bond;
+ * book_end keeps it current. */
+void pdk_bond_book_mark_lost(pdk_model *m);
+
 const double *pdk_model_pmb_energy_density(const pdk_model *m);
 /* pdk_model_padding_fraction of a PMB or LPS model (0 for layout csr or another kind). */
 double pdk_model_pmb_padding_fraction(const pdk_model *m);

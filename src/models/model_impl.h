@@ -59,6 +59,9 @@ typedef struct pdk_model_ops {
   int float_bond_lengths;
   /* 1: layout sell is implemented. */
   int layout_sell;
+  /* 1: a bond's volume V_j is scaled by the partial-volume factor min(1, (vs_a - r0) vs_b) of
+   * opts.lattice_constant (PMB, LPS); the bond damage weighs the bonds the same way. */
+  int partial_volumes;
 } pdk_model_ops;
 
 struct pdk_model {
@@ -89,6 +92,15 @@ struct pdk_model {
    * or NULL; why auto fell back to the general path. */
   struct pdk_stencil *stencil;
   char stencil_why[512];
+  /* PMB and LPS with bonds that can break: the energy the breaks released, booked into
+   * "w_broken" over two committing passes (src/models/model_bond_book.c): book_prev [num_bonds]
+   * the bond state before the last committing pass that broke bonds (equal to bond_alive when
+   * nothing is pending), book_pending [n_pad] the half booked at that pass's positions, not yet
+   * added to "w_broken"; NULL for other kinds. */
+  uint8_t *book_prev;
+  double *book_pending;
+  int book_has_pending;
+  uint8_t *book_lost; /* [n_pad] 1: the particle's family in bond_alive has a broken bond */
 };
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */

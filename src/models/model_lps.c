@@ -51,6 +51,7 @@ typedef struct lps_impl {
   double *inv_m;        /* [n_pad] 1/m_i, 0 for an empty family */
   double *s0_next;      /* [n_pad] when bonds can break */
   double *w;            /* [n_pad] strain energy density, allocated on first request */
+  double *fix;          /* [n_pad] lps_fix_energy's differences, allocated on first use */
   double *block_energy; /* [num_blocks] */
   pdk_bond_data bd;     /* packed rows (extra column: 1/m), float bond lengths */
   /* analytic tangent, allocated on first use: q_i = theta_i / m_i and
@@ -123,6 +124,7 @@ static int lps_setup(pdk_model *m) {
   }
 
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "lps"));
+  PDK_CALL(pdk_bond_book_setup(m));
   pdk_bond_arrays arrays;
   PDK_CHECK(pdk_bond_arrays_get(m, &im->bd, &arrays), ctx, PDK_ERR_NOT_FOUND,
             "lps model: fields \"x\" and \"f\" are missing from the particle store");
@@ -155,7 +157,7 @@ static int lps_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
-static int lps_force(pdk_model *m, int commit, double *energy) {
+static int lps_pass(pdk_model *m, int commit, double *energy) {
   pdk_ctx *ctx = m->ctx;
   lps_impl *im = m->impl;
   pdk_particles *p = m->p;
@@ -257,12 +259,141 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
+/* The energy whose gradient the LPS force is, with broken bonds too. The force (LAMMPS's, pdk's
+ * kernels) is -grad of E = sum_i V_i W_i with
+ *   W_i = c_dil theta_i^2 / (2 d) + c_dev / (2 m_i) sum_b alive_b e^2 / r0 beta V_j,
+ * m_i the weighted volume of all bonds (fixed at setup, as LAMMPS's wvolume). The kernels report
+ * W_i in the form e_bulk theta_i^2 / 2 + e_dev / m_i sum_b alive_b (e - theta_i r0 / d)^2 / r0
+ * beta V_j (kernels/ref/lps.c), which equals it while i's family is intact but differs by
+ *   W_i - W_kernel,i = e_dev theta_i^2 (m_i - m'_i) / (m_i d^2),
+ *   m'_i = sum_b alive_b r0 beta V_j,
+ * once i lost bonds (expand the square, use sum_b alive_b e beta V_j = theta_i m_i / d and the
+ * constants of lps_setup: c_dil = d e_bulk - 2 e_dev / d, c_dev = 2 e_dev). lps_fix_energy adds
+ * that difference for the particles whose family (in the state the pass read) lost bonds, so the
+ * strain energy of a run with breaking is the force's potential and the energy account closes;
+ * a particle with an intact family gets nothing, and a run in which no bond broke never gets
+ * here. */
+
+/* m'_i over i's bonds intact in `alive`, as the kernels compute r0 and beta. */
+static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *alive, double *all) {
+  const lps_impl *im = m->impl;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *V = pdk_particles_volume(m->p);
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < im->dim; ++c) X[c] = pdk_particles_X(m->p, c);
+  double sum = 0.0, sum_all = 0.0;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    const pdk_index j = bj[b];
+    double r0 = 0.0;
+    for (int c = 0; c < im->dim; ++c) {
+      const double d0 = X[c][j] - X[c][i];
+      r0 += d0 * d0;
+    }
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
+    const double t = r0 * V[j] * fmin(1.0, (im->k.vs_a - r0) * im->k.vs_b);
+    sum_all += t;
+    if (alive[b]) sum += t;
+  }
+  *all = sum_all;
+  return sum;
+}
+
+/* After a pass that reported the energy with bond state `alive` (the state it read): W_i of
+ * every particle whose family lost bonds (lost[i], one byte per particle: the pass costs a scan
+ * of n bytes and the rows of those particles) gets the difference above, and *energy its sum
+ * (V_i-weighted, in index order: the same bits for any thread count). */
+static int lps_fix_energy(pdk_model *m, const uint8_t *alive, const uint8_t *lost,
+                          double *energy) {
+  lps_impl *im = m->impl;
+  const double *theta = pdk_particles_field_data(m->p, "theta", 0);
+  const double *V = pdk_particles_volume(m->p);
+  const pdk_index n = im->n;
+  const double d2 = im->k.theta_factor * im->k.theta_factor, e_dev = im->k.e_dev;
+  double *w = im->w, *fix = im->fix;
+  const double *inv_m = im->inv_m;
+  const pdk_model *mc = m;
+#pragma omp parallel for default(none) shared(theta, n, d2, e_dev, w, fix, inv_m, alive, lost, mc) \
+    schedule(static) num_threads(m->ctx->num_threads)
+  for (pdk_index i = 0; i < n; ++i) {
+    fix[i] = 0.0;
+    if (!lost[i]) continue;
+    double m_all;
+    const double m_alive = lps_row_volume(mc, i, alive, &m_all);
+    fix[i] = e_dev * theta[i] * theta[i] * inv_m[i] * (m_all - m_alive) / d2;
+    w[i] += fix[i];
+  }
+  double sum = 0.0;
+  for (pdk_index i = 0; i < n; ++i) sum += V[i] * fix[i];
+  *energy += sum;
+  return PDK_SUCCESS;
+}
+
+/* W_i at the current x with bond state `alive` (the potential above, its dilatation from the same
+ * state; families' bonds; src/models/model_bond_book.c). */
+static double lps_row_energy(const pdk_model *m, pdk_index i, const uint8_t *alive) {
+  const lps_impl *im = m->impl;
+  const pdk_lps_consts *k = &im->k;
+  const int dim = im->dim;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const double *V = pdk_particles_volume(m->p);
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
+  const double inv_m_i = im->inv_m[i], d = k->theta_factor;
+  double sum_e = 0.0, sum_e2 = 0.0;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    if (!alive[b]) continue;
+    const pdk_index j = bj[b];
+    double r0 = 0.0, r = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      const double d0 = X[c][j] - X[c][i], d1 = x[c][j] - x[c][i];
+      r0 += d0 * d0;
+      r += d1 * d1;
+    }
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
+    const double e = sqrt(r) - r0;
+    const double vol = V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
+    sum_e += e * vol;
+    sum_e2 += e * e / r0 * vol;
+  }
+  const double theta = d * inv_m_i * sum_e;
+  return k->c_dil * theta * theta / (2.0 * d) + 0.5 * k->c_dev * inv_m_i * sum_e2;
+}
+
+/* A pass, with the energy the breaks release booked (src/models/model_bond_book.c) and, once
+ * bonds broke, the strain energy made the force's potential (above). */
+static int lps_force(pdk_model *m, int commit, double *energy) {
+  if (commit) PDK_CALL(pdk_bond_book_start(m, lps_row_energy));
+  const pdk_bond_index before = m->num_broken;
+  PDK_CALL(lps_pass(m, commit, energy));
+  /* the state the pass read: book_prev after book_start in a committing pass, else bond_alive */
+  if (energy && before > 0) {
+    lps_impl *im = m->impl;
+    if (!im->fix) {
+      im->fix = pdk_alloc_aligned((size_t)pdk_particles_count_padded(m->p), sizeof(double));
+      PDK_CHECK(im->fix, m->ctx, PDK_ERR_MEMORY, "lps model: out of memory for %d particles",
+                (int)im->n);
+    }
+    /* book_lost marks the families of that state with a broken bond until book_end */
+    PDK_CALL(lps_fix_energy(m, commit ? m->book_prev : m->bond_alive, m->book_lost, energy));
+  }
+  if (commit) PDK_CALL(pdk_bond_book_end(m, m->num_broken - before, lps_row_energy));
+  return PDK_SUCCESS;
+}
+
 static void lps_destroy(pdk_model *m) {
   lps_impl *im = m->impl;
   if (!im) return;
   pdk_free_aligned(im->inv_m);
   pdk_free_aligned(im->s0_next);
   pdk_free_aligned(im->w);
+  pdk_free_aligned(im->fix);
   free(im->block_energy);
   free(im->tan_q);
   for (int c = 0; c < 3; ++c) free(im->tan_s[c]);
@@ -467,7 +598,8 @@ const pdk_model_ops pdk_model_ops_lps = {.setup = lps_setup,
                                          .tangent_column = lps_tangent_column,
                                          .padding_fraction = pdk_model_lps_padding_fraction,
                                          .float_bond_lengths = 1,
-                                         .layout_sell = 1};
+                                         .layout_sell = 1,
+                                         .partial_volumes = 1};
 
 double pdk_model_lps_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return 0.0;

@@ -111,6 +111,7 @@ static int pmb_setup(pdk_model *m) {
   im->block_energy = calloc((size_t)(im->num_blocks > 0 ? im->num_blocks : 1), sizeof(double));
   PDK_CHECK(im->block_energy, ctx, PDK_ERR_MEMORY, "pmb model: out of memory for energy blocks");
   PDK_CALL(pdk_bond_data_setup(m, &im->bd, "pmb"));
+  PDK_CALL(pdk_bond_book_setup(m));
   PDK_CALL(pdk_stencil_model_setup(m, im->bd.bond_r0, im->c_particle != NULL));
   /* the stencil pass reads neither the packed rows nor the per-bond float lengths */
   if (m->stencil) pdk_bond_data_free(&im->bd);
@@ -123,7 +124,7 @@ static int pmb_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
-static int pmb_force(pdk_model *m, int commit, double *energy) {
+static int pmb_pass(pdk_model *m, int commit, double *energy) {
   pdk_ctx *ctx = m->ctx;
   pmb_impl *im = m->impl;
   pdk_particles *p = m->p;
@@ -209,6 +210,52 @@ static int pmb_force(pdk_model *m, int commit, double *energy) {
   return PDK_SUCCESS;
 }
 
+/* W_i at the current x with bond state `alive` (the force pass's energy of row i, with the
+ * families' bonds; src/models/model_bond_book.c). */
+static double pmb_row_energy(const pdk_model *m, pdk_index i, const uint8_t *alive) {
+  const pmb_impl *im = m->impl;
+  const pdk_pmb_consts *k = &im->k;
+  const int dim = im->dim;
+  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
+  const pdk_index *bj = pdk_families_bond_j(m->fam);
+  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    X[c] = pdk_particles_X(m->p, c);
+    x[c] = pdk_particles_field_data(m->p, "x", c);
+  }
+  const double *V = pdk_particles_volume(m->p);
+  const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
+  const double *cp = k->c_particle;
+  double wi = 0.0;
+  for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+    if (!alive[b]) continue;
+    const pdk_index j = bj[b];
+    double r0 = 0.0, r = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      const double d0 = X[c][j] - X[c][i], d1 = x[c][j] - x[c][i];
+      r0 += d0 * d0;
+      r += d1 * d1;
+    }
+    r0 = float_r0 ? (double)(float)sqrt(r0) : sqrt(r0); /* as bond_r0, also on the stencil path */
+    r = sqrt(r);
+    const double d = r - r0, q = r > 0.0 ? 1.0 / (r0 * r) : 0.0;
+    const double vol = V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
+    const double c_b = cp ? 2.0 * (cp[i] * cp[j]) / (cp[i] + cp[j]) : k->c;
+    const double g = c_b * vol * d * q;
+    wi += 0.25 * g * d * r; /* c s^2 r0 beta V_j / 4, as kernels/ref/pmb.c */
+  }
+  return wi;
+}
+
+/* A pass, with the energy of the bonds it breaks booked (src/models/model_bond_book.c). */
+static int pmb_force(pdk_model *m, int commit, double *energy) {
+  if (commit) PDK_CALL(pdk_bond_book_start(m, pmb_row_energy));
+  const pdk_bond_index before = m->num_broken;
+  PDK_CALL(pmb_pass(m, commit, energy));
+  if (commit) PDK_CALL(pdk_bond_book_end(m, m->num_broken - before, pmb_row_energy));
+  return PDK_SUCCESS;
+}
+
 static void pmb_destroy(pdk_model *m) {
   pmb_impl *im = m->impl;
   if (!im) return;
@@ -287,7 +334,8 @@ const pdk_model_ops pdk_model_ops_pmb = {.setup = pmb_setup,
                                          .tangent_column = pmb_tangent_column,
                                          .padding_fraction = pdk_model_pmb_padding_fraction,
                                          .float_bond_lengths = 1,
-                                         .layout_sell = 1};
+                                         .layout_sell = 1,
+                                         .partial_volumes = 1};
 
 double pdk_model_pmb_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;

@@ -143,6 +143,11 @@ const char *pdk_model_key_kinds(const char *key, const char *last, char *buf, si
 /* Derived output field `name` of every particle into out [n] (the kind's pdk_model_ops.derived;
  * dt: the step of the last force pass). */
 int pdk_model_derived(const pdk_model *m, const char *name, double dt, double *out);
+/* The derived fields of this model (NULL past the end): its kind's, then "bond_damage" (every
+ * model, pdk_model_bond_damage) and "damage" (the same, when the law declares no "damage" of its
+ * own); and the one named `name`, or NULL. */
+const pdk_model_derived_info *pdk_model_derived_at(const pdk_model *m, int i);
+const pdk_model_derived_info *pdk_model_derived_of(const pdk_model *m, const char *name);
 /* 1 when the model has an analytic Newton tangent (pdk_model_ops.tangent_column). */
 int pdk_model_has_tangent(const pdk_model *m);
 #endif

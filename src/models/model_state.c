@@ -4,12 +4,18 @@
  *   has_bond_state               1 when bonds can break (the model keeps bond_alive)
  *   bond_alive  u8  [num_bonds]  the bond state, indexed by the families given at creation
  *   s0          f64 [n]          LAMMPS's critical stretch per particle, when the model keeps it
+ *   book_prev   u8  [num_bonds]  PMB, LPS: the breaking energy's pending state
+ *   book_pending f64 [n]         (src/models/model_bond_book.c), and book_has_pending; a
+ *                                checkpoint without them (older) restarts with nothing pending
  * Everything else a kind keeps is rebuilt identically from the scene or is scratch that the next
  * force pass overwrites (PMB/LPS s0_next, correspondence W). The correspondence model's private
  * num_alive (intact bonds when K^-1 was last computed) is not stored: after a restore it holds the
  * full family counts, so the next pass recomputes K^-1 for every particle with broken bonds, from
  * the same bond state, giving the same bits as the stored "Kinv" field it overwrites.
  */
+#include <string.h>
+
+#include "model_bond.h"
 #include "model_impl.h"
 #include "core/state.h"
 #include "pdk/ctx.h"
@@ -26,6 +32,12 @@ int pdk_model_state_save(const pdk_model *m, pdk_state *s) {
     PDK_CALL(pdk_state_put_array(s, "bond_alive", PDK_U8, (size_t)pdk_families_num_bonds(m->fam),
                                  m->bond_alive));
   if (m->s0) PDK_CALL(pdk_state_put_array(s, "s0", PDK_F64, (size_t)n, m->s0));
+  if (m->book_prev) {
+    PDK_CALL(pdk_state_put_i64(s, "book_has_pending", m->book_has_pending));
+    PDK_CALL(pdk_state_put_array(s, "book_prev", PDK_U8, (size_t)pdk_families_num_bonds(m->fam),
+                                 m->book_prev));
+    PDK_CALL(pdk_state_put_array(s, "book_pending", PDK_F64, (size_t)n, m->book_pending));
+  }
   if (m->ops->state_save) PDK_CALL(m->ops->state_save(m, s));
   return PDK_SUCCESS;
 }
@@ -50,6 +62,20 @@ int pdk_model_state_load(pdk_model *m, pdk_state *s) {
                                  m->bond_alive));
   }
   if (m->s0) PDK_CALL(pdk_state_get_array(s, "s0", PDK_F64, (size_t)n, m->s0));
+  if (m->book_prev) {
+    const size_t nb = (size_t)pdk_families_num_bonds(m->fam);
+    if (pdk_state_has(s, "book_prev")) {
+      PDK_CALL(pdk_state_get_i64(s, "book_has_pending", &v));
+      m->book_has_pending = v != 0;
+      PDK_CALL(pdk_state_get_array(s, "book_prev", PDK_U8, nb, m->book_prev));
+      PDK_CALL(pdk_state_get_array(s, "book_pending", PDK_F64, (size_t)n, m->book_pending));
+    } else {
+      memcpy(m->book_prev, m->bond_alive, nb);
+      memset(m->book_pending, 0, (size_t)n * sizeof(double));
+      m->book_has_pending = 0;
+    }
+    pdk_bond_book_mark_lost(m);
+  }
   if (m->ops->state_load) PDK_CALL(m->ops->state_load(m, s));
   PDK_CALL(pdk_state_get_i64(s, "num_broken", &v));
   m->num_broken = (pdk_bond_index)v;

@@ -10,9 +10,11 @@
  *
  * Derived output fields, refreshed by pdk_sim_update_output_fields before each field output:
  *   "u"          f64 x dim  displacement x - X
- *   the model kind's derived fields (pdk_model_kind_info.derived, src/models/model_registry.h), f64 x 1,
- *   computed by the model (pdk_model_derived) from its state after the last force pass: the
- *   correspondence kinds derive "von_mises" (src/models/model_corr_derived.c).
+ *   the model's derived fields (pdk_model_derived_at: its kind's, pdk_model_kind_info.derived in
+ *   src/models/model_registry.h, and those of every model), f64 x 1, computed by the model
+ *   (pdk_model_derived) from its state after the last force pass: the correspondence kinds derive
+ *   "von_mises" (src/models/model_corr_derived.c), every model "bond_damage", and "damage" (the
+ *   bond damage) when its law has no damage D of its own.
  *
  * The time step: the solver is created with force_dt set, and the scene's solver.dt is compared
  * here with the solver's stable estimate, so that a dt above it is refused with a message citing
@@ -365,7 +367,7 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
       sim->has_u = 1;
     }
     const char *name = s->output.fields[k];
-    const pdk_model_derived_info *dv = pdk_model_kind_derived(s->model.kind, name), *od = NULL;
+    const pdk_model_derived_info *dv = pdk_model_derived_of(sim->m, name), *od = NULL;
     const pdk_model_kind_info *owner = pdk_model_derived_owner(name, &od);
     if (!dv && owner) {
       char key[64];
@@ -398,8 +400,8 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
       for (const char *const *h = pdk_law_at(l)->history_fields; h && *h; ++h)
         if (!strcmp(*h, name) && !*hint) hint = pdk_law_at(l)->history_hint;
     /* the derived fields the kind offers and the scene did not ask for */
-    const pdk_model_kind_info *ki = pdk_model_kind_info_of(s->model.kind);
-    for (const pdk_model_derived_info *d = ki ? ki->derived : NULL; d && d->name; ++d)
+    const pdk_model_derived_info *d;
+    for (int q = 0; (d = pdk_model_derived_at(sim->m, q)) != NULL; ++q)
       if (!pdk_particles_field_exists(sim->p, d->name)) {
         const size_t len = strlen(derived);
         snprintf(derived + len, sizeof derived - len, ", %s (%s)", d->name, d->what);
