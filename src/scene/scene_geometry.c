@@ -246,6 +246,8 @@ static int resolve_points(loader *ld, const sc_geometry *g) {
     s->points = NULL;
     return pdk_scene_blame(s, ld->ctx, err, "geometry.points");
   }
+  s->points->path = strdup(path);
+  if (!s->points->path) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
   s->num_points = s->points->n;
   memcpy(s->lattice.lo, s->points->lo, sizeof s->lattice.lo);
   memcpy(s->lattice.hi, s->points->hi, sizeof s->lattice.hi);

@@ -76,6 +76,8 @@ struct pdk_scene {
   pdk_scene_region *mat_regions; /* [num_mat_regions] the materials list: material k + 1 */
   int num_mat_regions;
   pdk_material *materials; /* [num_mat_regions + 1]; 0 is `material` (NULL without a list) */
+  int mat_from_points;     /* the cloud's material column places the materials (points->material
+                              then holds each particle's material index; the regions are unused) */
   char *galerkin_surface;  /* model.galerkin.surface (model.galerkin.surface points here) */
 
   pdk_solver_type solver_type;

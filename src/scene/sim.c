@@ -215,7 +215,8 @@ static int create_static(pdk_sim *sim, const pdk_scene *s) {
 }
 
 /* The particles of a point cloud: positions, volumes and its set columns as "set:<name>". */
-static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, pdk_particles **out) {
+static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, int materials,
+                            pdk_particles **out) {
   int err = PDK_SUCCESS;
   pdk_particles *p = NULL;
   PDK_CALL(pdk_particles_create(ctx, pts->dim, pts->n, &p));
@@ -227,6 +228,11 @@ static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, pdk_particles *
     snprintf(field, sizeof field, "set:%s", pts->set_name[k]);
     PDK_CALL_GOTO(pdk_particles_field_add(p, field, PDK_U8, 1));
     memcpy(pdk_particles_field_data(p, field, 0), pts->set[k], (size_t)pts->n);
+  }
+  if (materials) { /* the material column, resolved to material indices */
+    PDK_CALL_GOTO(pdk_particles_field_add(p, "material", PDK_I32, 1));
+    memcpy(pdk_particles_field_data(p, "material", 0), pts->material,
+           (size_t)pts->n * sizeof(int32_t));
   }
   *out = p;
   return PDK_SUCCESS;
@@ -255,7 +261,7 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
 
   /* Body: lattice (or point cloud), holes, notches, sets. */
   if (s->points)
-    err = body_from_points(ctx, s->points, &sim->p);
+    err = body_from_points(ctx, s->points, s->mat_from_points, &sim->p);
   else
     err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
   if (err) {
@@ -274,8 +280,9 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   }
 
   /* Materials: "material" = 0 (`material`), then each entry of the materials list over its region
-   * (a later entry wins where regions overlap). */
-  if (s->num_mat_regions > 0) {
+   * (a later entry wins where regions overlap); or the cloud's material column (made with the
+   * body). */
+  if (s->num_mat_regions > 0 && !s->mat_from_points) {
     PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "material", PDK_I32, 1));
     int32_t *mat = pdk_particles_field_data(sim->p, "material", 0);
     const int dim = pdk_particles_dim(sim->p);

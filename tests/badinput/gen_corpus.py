@@ -587,6 +587,28 @@ def build(c):
     o("ovr_dimension_3", "-", BAR, ["dimension=3"], "dimension|point|lo|hi")
     o("ovr_sets_empty_list", "-", BAR, ["sets=[]"], "left|set")
 
+    # -- point clouds (geometry.points) with a material column: the cloud beside the case -------
+    def cloud_case(cid, cells, msg, materials=True, region=""):
+        rows = "".join(f"{0.0005 + 0.001 * i:g}, 0.0005, 1e-6, {m}, {1 if i < 2 else 0}\n"
+                       for i, m in enumerate(cells))
+        c.files[cid + ".csv"] = ("x, y, area, material, set:left\n" + rows).encode()
+        mats = ("materials:\n  - {name: soft, density: 1100, youngs_modulus: 2.0e9, "
+                f"poisson_ratio: 0.3{region}}}\n") if materials else ""
+        c.scene(cid, "-", "dimension: 2\ngeometry:\n  spacing: 0.001\n"
+                f"  points: {cid}.csv\n"
+                "material: {density: 7800, youngs_modulus: 200.0e9, poisson_ratio: 0.3}\n"
+                + mats + "model: {kind: correspondence, law: linear_elastic}\n"
+                "boundary_conditions:\n  - {set: left, type: displacement, x: 0, y: 0}\n"
+                "solver: {steps: 5}\n", msg)
+    cloud_case("range_points_material_unknown", ["0", "0", "soft", "hard"], "'hard'")
+    cloud_case("range_points_material_index", ["0", "0", "1", "2"], "index 2")
+    cloud_case("type_points_material_cell", ["0", "0", "soft", "so ft"], "'so ft'")
+    cloud_case("range_points_material_no_list", ["0", "0", "1", "1"], "no materials list",
+               materials=False)
+    cloud_case("range_points_material_region", ["0", "0", "1", "1"], "gives a region",
+               region=", box: {lo: [0, 0], hi: [1, 1]}")
+    cloud_case("range_points_material_unused", ["0", "0", "0", "0"], "no particle")
+
     # -- the command line ------------------------------------------------------------------------
     bar = "@BASE:bar@"
     c.cli("cli_no_command", "-", [], msg="usage")
