@@ -111,6 +111,7 @@ typedef struct sc_bc {
   char *set;
   int type, function;
   double x, y, z, duration, period;
+  double direction[3], value;
 } sc_bc;
 typedef struct sc_initial {
   double velocity[3];

@@ -110,6 +110,10 @@ static int cut_regions(pdk_sim *sim, const pdk_scene *s, const pdk_scene_region 
   return PDK_SUCCESS;
 }
 
+static int pdk_bc_directional_scene(const pdk_bc *bc) {
+  return bc->direction[0] != 0.0 || bc->direction[1] != 0.0 || bc->direction[2] != 0.0;
+}
+
 /* Two displacement or velocity conditions must not prescribe the same component of a particle.
  * The solver refuses that too, but checking here lets the message name the scene entries. */
 static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
@@ -118,7 +122,11 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
     for (int j = 0; j < k; ++j) {
       const pdk_bc *a = &s->bcs[j], *b = &s->bcs[k];
       if (a->kind == PDK_BC_BODY_FORCE || b->kind == PDK_BC_BODY_FORCE) continue;
-      unsigned both = a->components & b->components;
+      /* a condition along a direction holds every component of its particles */
+      const int dir = pdk_bc_directional_scene(a) || pdk_bc_directional_scene(b);
+      const unsigned all = (1u << s->dim) - 1;
+      unsigned both = (pdk_bc_directional_scene(a) ? all : a->components) &
+                      (pdk_bc_directional_scene(b) ? all : b->components);
       if (!both) continue;
       const uint8_t *ma = a->set ? pdk_particles_field_data(sim->p, a->set, 0) : NULL;
       const uint8_t *mb = b->set ? pdk_particles_field_data(sim->p, b->set, 0) : NULL;
@@ -134,6 +142,15 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
       while (!(both & (1u << c)))
         ++c;
       snprintf(key, sizeof key, "boundary_conditions[%d]", k);
+      if (dir)
+        return pdk_scene_error(
+            s, sim->ctx, PDK_ERR_ARG, key,
+            "holds %d particles that boundary_conditions[%d] holds too (the first at X = [%g, "
+            "%g%s]), and one of them acts along a direction; a particle under a condition along "
+            "a direction takes no other displacement or velocity condition: make the sets "
+            "disjoint",
+            (int)count, j, pdk_particles_X(sim->p, 0)[first], pdk_particles_X(sim->p, 1)[first],
+            s->dim == 3 ? ", ..." : "");
       return pdk_scene_error(
           s, sim->ctx, PDK_ERR_ARG, key,
           "prescribes %c on %d particles that boundary_conditions[%d] prescribes too (the first "

@@ -587,6 +587,28 @@ def build(c):
     o("ovr_dimension_3", "-", BAR, ["dimension=3"], "dimension|point|lo|hi")
     o("ovr_sets_empty_list", "-", BAR, ["sets=[]"], "left|set")
 
+    # -- boundary conditions along a direction (a roller on an inclined face) --------------------
+    LEFT = "{set: left, type: displacement, x: 0, y: 0}"
+    for cid, new, msg in [
+            ("range_bc_direction_zero", "{set: left, type: displacement, direction: [0, 0], "
+             "value: 0}", "direction"),
+            ("range_bc_direction_nan", "{set: left, type: displacement, direction: [.nan, 1], "
+             "value: 0}", "direction"),
+            ("range_bc_direction_with_x", "{set: left, type: displacement, direction: [1, 1], "
+             "value: 0, x: 0}", "boundary_conditions.0..x"),
+            ("missing_bc_direction_value", "{set: left, type: displacement, direction: [1, 1]}",
+             "value"),
+            ("range_bc_value_alone", "{set: left, type: displacement, value: 0}", "value"),
+            ("range_bc_direction_body_force", "{set: left, type: body_force, direction: [1, 0], "
+             "value: 1}", "direction"),
+            ("type_bc_direction_length", "{set: left, type: displacement, direction: [1, 0, 0], "
+             "value: 0}", "direction"),
+            ("type_bc_direction_scalar", "{set: left, type: displacement, direction: 1, value: 0}",
+             "direction"),
+            ("range_bc_direction_overlap", "{set: left, type: displacement, direction: [1, 1], "
+             "value: 0}\n  - {set: all, type: displacement, y: 0}", "along a direction")]:
+        c.mut(cid, "-", BAR, LEFT, new, msg, cmd="run" if cid.endswith("overlap") else "check")
+
     # -- point clouds (geometry.points) with a material column: the cloud beside the case -------
     def cloud_case(cid, cells, msg, materials=True, region=""):
         rows = "".join(f"{0.0005 + 0.001 * i:g}, 0.0005, 1e-6, {m}, {1 if i < 2 else 0}\n"
