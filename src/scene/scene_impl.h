@@ -63,7 +63,8 @@ struct pdk_scene {
 
   pdk_lattice_opts lattice; /* lo, hi: the cloud's bounding box when points is set */
   pdk_index num_points; /* lattice points (or the cloud's) before holes and notches */
-  struct pdk_points *points; /* geometry.points: the body as read (NULL for a lattice) */
+  struct pdk_points *points; /* geometry.points or mesh: the body as read (NULL for a lattice) */
+  const char *points_key;    /* "geometry.points" or "geometry.mesh" (with points) */
   double horizon_factor;
   double horizon; /* horizon_factor * spacing */
   pdk_scene_region *holes, *notches, *sets;

@@ -72,6 +72,7 @@ typedef struct sc_geometry {
   int lattice;
   double spacing, horizon_factor, jitter, seed, thickness;
   char *points;
+  char *mesh;
   sc_box box;
   sc_region *holes;
   unsigned holes_count;

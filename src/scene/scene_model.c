@@ -409,6 +409,40 @@ int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const s
   return PDK_SUCCESS;
 }
 
+/* A mesh's physical groups of body elements named like materials entries become a material
+ * column (keys: the entry names, and index 0 for the elements in no such group). */
+static int mesh_materials(loader *ld, const sc_scene *d, pdk_points *pts) {
+  int which[PDK_POINTS_MAX_SETS], any = 0;
+  for (int k = 0; k < pts->num_sets; ++k) {
+    which[k] = -1;
+    for (int q = 0; pts->set_body[k] && q < (int)d->materials_count; ++q)
+      if (d->materials[q].name && !strcmp(d->materials[q].name, pts->set_name[k]))
+        which[k] = q, any = 1;
+  }
+  if (!any) return PDK_SUCCESS;
+  pts->mkey = calloc(PDK_POINTS_MAX_MKEYS, sizeof *pts->mkey);
+  pts->material = malloc((size_t)pts->n * sizeof(int32_t) + 1);
+  if (!pts->mkey || !pts->material)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+  for (pdk_index i = 0; i < pts->n; ++i) {
+    int g = -1;
+    for (int k = 0; k < pts->num_sets; ++k) {
+      if (which[k] < 0 || !pts->set[k][i]) continue;
+      REQUIRE(ld, g < 0 || which[g] == which[k], ld->s->points_key,
+              "element %ld of %s is in the physical groups '%s' and '%s', which name two "
+              "materials; an element takes one material",
+              (long)i, pts->path, pts->set_name[g], pts->set_name[k]);
+      g = k;
+    }
+    const char *name = g >= 0 ? pts->set_name[g] : NULL;
+    const int key = pdk_points_mkey_find(pts, name, name ? strlen(name) : 0, 0, 0, i);
+    if (key < 0)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+    pts->material[i] = key;
+  }
+  return PDK_SUCCESS;
+}
+
 /* The material column of a cloud: each key (a name or an index) to its material index, then
  * points->material from keys to indices; every entry of the list must be used. */
 static int points_materials(loader *ld, pdk_points *pts, int nm) {
@@ -431,12 +465,12 @@ static int points_materials(loader *ld, pdk_points *pts, int nm) {
     if (m->name) {
       for (int k = 0; k < nm; ++k)
         if (!strcmp(s->mat_regions[k].name, m->name)) idx[q] = k + 1;
-      REQUIRE(ld, idx[q] > 0, "geometry.points",
+      REQUIRE(ld, idx[q] > 0, s->points_key,
               "the material column of %s names '%s' (%s), which is no entry of materials; the "
               "materials are %s, and 0 for `material`",
               pts->path, m->name, at, names);
     } else {
-      REQUIRE(ld, m->index <= nm, "geometry.points",
+      REQUIRE(ld, m->index <= nm, s->points_key,
               "the material column of %s gives the index %ld (%s), but the scene has materials "
               "0 (`material`) to %d: %s",
               pts->path, m->index, at, nm, names);
@@ -448,8 +482,8 @@ static int points_materials(loader *ld, pdk_points *pts, int nm) {
     for (int q = 0; q < pts->num_mkeys; ++q)
       used |= idx[q] == k;
     REQUIRE(ld, used, K(ld, "materials[%d]", k - 1),
-            "the material '%s' is given to no particle by the material column of %s; remove "
-            "the entry, or name it (or its index %d) in the column",
+            "the material '%s' is given to no particle by the material column (or the physical "
+            "groups) of %s; remove the entry, or name it (or its index %d) in the column",
             s->mat_regions[k - 1].name, pts->path, k);
   }
   for (pdk_index i = 0; i < pts->n; ++i)
@@ -465,6 +499,7 @@ int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
   pdk_model_opts *m = &s->model;
   const int nm = (int)d->materials_count;
   pdk_points *pts = s->points;
+  if (pts && !pts->mkey && nm > 0) PDK_CALL(mesh_materials(ld, d, pts));
   const int column = pts && pts->mkey;
   if (column && nm == 0) {
     const pdk_points_mkey *mk = &pts->mkey[0];
@@ -473,7 +508,7 @@ int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
       snprintf(at, sizeof at, "line %ld", mk->line);
     else
       snprintf(at, sizeof at, "material[%ld]", mk->row);
-    FAIL(ld, "geometry.points",
+    FAIL(ld, s->points_key,
          "the cloud %s has a material column (%s: %s%s), but the scene has no materials list; add "
          "`materials` entries (name, density, elastic constants; no region) for the materials the "
          "column names, or remove the column",
@@ -511,9 +546,9 @@ int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
     const int region = r->box || r->disk || r->ball || r->halfspace || r->polygon;
     if (column)
       REQUIRE(ld, !region, K(ld, "materials[%d]", k),
-              "gives a region, but the material column of %s (geometry.points) places every "
-              "particle's material; remove the region (the entry then only names the material), "
-              "or the column",
+              "gives a region, but the material column (or a mesh's physical groups named as "
+              "materials) of %s places every particle's material; remove the region (the entry "
+              "then only names the material), or the column",
               pts->path);
     else
       PDK_CALL(pdk_scene_region_resolve(ld, r, K(ld, "materials[%d]", k), 1, out));

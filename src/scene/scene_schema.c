@@ -164,6 +164,7 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(geometry, CYAML_FIELD_FLOAT("thickness", OPT, sc_geometry, thickness));
   ADD(geometry, CYAML_FIELD_MAPPING("box", OPT, sc_geometry, box, sc->box));
   ADD(geometry, CYAML_FIELD_STRING_PTR("points", OPT, sc_geometry, points, 1, 4095));
+  ADD(geometry, CYAML_FIELD_STRING_PTR("mesh", OPT, sc_geometry, mesh, 1, 4095));
   ADD(geometry,
       CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
   ADD(geometry,

@@ -282,7 +282,7 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   else
     err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
   if (err) {
-    err = pdk_scene_blame(s, ctx, err, s->points ? "geometry.points" : "geometry");
+    err = pdk_scene_blame(s, ctx, err, s->points ? s->points_key : "geometry");
     goto cleanup;
   }
   PDK_CALL_GOTO(cut_regions(sim, s, s->holes, s->num_holes, 1));

@@ -27,6 +27,8 @@ typedef struct pdk_points {
   int num_sets;
   char *set_name[PDK_POINTS_MAX_SETS]; /* without "set:" */
   uint8_t *set[PDK_POINTS_MAX_SETS];   /* [n] 1 = member */
+  uint8_t set_body[PDK_POINTS_MAX_SETS]; /* a mesh's physical group of body elements (a scene
+                                            materials entry of its name makes it a material) */
   double lo[3], hi[3];                 /* bounding box of the positions */
   /* The material column (CSV) or dataset (HDF5), when the file has one: material[i] is the key
    * (an index into mkey) of particle i; the scene maps each key to a material index. */
@@ -49,6 +51,14 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
  * particles' material indices), optional; at the root, or under /static, so the
  * output file of a pdk run (its reference configuration) is a cloud too. */
 int pdk_points_read_h5(pdk_ctx *ctx, const char *path, int dim, pdk_points *out);
+/* src/space/mesh.c: a Gmsh mesh (ASCII MSH 4.1 or 2.2) as a cloud: one particle per element of
+ * dimension dim (triangles and quadrangles in 2-D, their area x thickness; tetrahedra and
+ * hexahedra in 3-D, their volume) at the element's centroid, in the file's element order; a set
+ * per physical group: of the elements of a body group (set_body 1), of the elements with a node
+ * on a lower-dimension group (its lines, points, faces). Unnamed groups are named
+ * physical_<dim>_<tag>. Every error names the file and line and what to do. */
+int pdk_points_read_msh(pdk_ctx *ctx, const char *path, int dim, double thickness,
+                        pdk_points *out);
 void pdk_points_free(pdk_points *pts);
 /* The key of a material value (name of len chars, or index when name is NULL) in p->mkey, added
  * with its line and row when new; -1 past PDK_POINTS_MAX_MKEYS keys or out of memory. */

@@ -587,6 +587,34 @@ def build(c):
     o("ovr_dimension_3", "-", BAR, ["dimension=3"], "dimension|point|lo|hi")
     o("ovr_sets_empty_list", "-", BAR, ["sets=[]"], "left|set")
 
+    # -- Gmsh meshes (geometry.mesh): the mesh beside the case ---------------------------------
+    HEAD = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    NODES = ("$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1e-3 0 0\n1e-3 1e-3 0\n"
+             "0 1e-3 0\n$EndNodes\n")
+    def mesh_case(cid, mesh, msg, geom=""):
+        c.files[cid + ".msh"] = mesh.encode()
+        c.scene(cid, "-", "dimension: 2\ngeometry:\n  spacing: 0.001\n"
+                f"  mesh: {cid}.msh\n{geom}"
+                "material: {density: 7800, youngs_modulus: 200.0e9, poisson_ratio: 0.3}\n"
+                "model: {kind: correspondence, law: linear_elastic}\n"
+                "boundary_conditions:\n  - {set: all, type: displacement, x: 0}\n"
+                "solver: {steps: 5}\n", msg)
+    mesh_case("range_mesh_binary", "$MeshFormat\n4.1 1 8\n", "binary")
+    mesh_case("range_mesh_version", "$MeshFormat\n3.0 0 8\n", "version 3.0")
+    mesh_case("range_mesh_element_type", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 4 1 2\n$EndElements\n", "element type 9")
+    mesh_case("type_mesh_coordinate", HEAD + "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0.0x1 0\n"
+              "$EndNodes\n", "0.0x1")
+    mesh_case("missing_mesh_nodes", HEAD, "no .Nodes section")
+    mesh_case("range_mesh_undefined_node", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 7\n$EndElements\n", "node 7")
+    mesh_case("range_mesh_3d_element", HEAD + NODES
+              + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n", "3-D element")
+    mesh_case("trunc_mesh_nodes", HEAD + "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n", "file ends")
+    mesh_case("range_mesh_with_box", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 4\n$EndElements\n", "geometry.box",
+              geom="  box: {lo: [0, 0], hi: [1, 1]}\n")
+
     # -- boundary conditions along a direction (a roller on an inclined face) --------------------
     LEFT = "{set: left, type: displacement, x: 0, y: 0}"
     for cid, new, msg in [
