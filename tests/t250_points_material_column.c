@@ -10,7 +10,8 @@
  *    ratio of the moduli, eps_soft / eps_0 = 4; each strain is the least-squares slope of the
  *    column-mean displacement over the columns at least 4 spacings from a grip and from the
  *    interface (the PMB surface and interface layers are about a horizon wide); asserted within
- *    3%, as tests/t146 does for the same construction (measured: printed with PDK_VERBOSE).
+ *    1% (tests/t146 allows 3% for the same construction at a ratio of 10; measured here 3.99939,
+ *    1.5e-4 off; PDK_VERBOSE prints it).
  * 2. The same cloud as HDF5 with an integer dataset material [n] (indices 0 and 1) gives the same
  *    material field.
  * 3. Refusals, each naming geometry.points (or the materials entry), the file and line (or row)
@@ -244,7 +245,7 @@ int main(void) {
   if (getenv("PDK_VERBOSE"))
     printf("strain ratio soft/stiff: lattice %.6f, cloud %.6f (series springs: 4)\n", r_lat,
            r_cloud);
-  T_NEAR(r_cloud, 4.0, 0.03, 0, "eps_soft / eps_0 of the cloud");
+  T_NEAR(r_cloud, 4.0, 0.01, 0, "eps_soft / eps_0 of the cloud");
   T_ASSERT(r_cloud == r_lat, "the cloud's strain ratio %.17g differs from the lattice's %.17g",
            r_cloud, r_lat);
   {
