@@ -53,6 +53,13 @@ typedef struct pdk_bc {
    * value[c] x field[c][i] (a prescribed displacement or body force that varies over the set,
    * e.g. an analytical solution on the boundary). */
   const char *scale_field;
+  /* Displacement and velocity conditions: all zero (the default) for conditions on the x, y, z
+   * components; otherwise a direction d (need not be unit): the condition prescribes the component
+   * along n = d / |d| only, u.n = value[0](t) (or v.n), the components normal to n staying free (a
+   * roller on a face whose normal is n). components must then be 1 (value[0]). A particle under
+   * such a condition takes no other displacement or velocity condition. Explicit, ADR and Newton
+   * with an analytic tangent; not with scale_field. */
+  double direction[3];
 } pdk_bc;
 
 /* Re-estimating the stable step during a run. The stable step of a body is not fixed: a family

@@ -92,6 +92,10 @@ typedef struct pdk_output_opts {
    * names, with or without the "set:" prefix; they name the history columns. At most 8. */
   const char *const *reaction_sets; /* [num_reaction_sets] */
   int num_reaction_sets;
+  /* NULL, or [num_reaction_sets] unit directions (zero: none): a set with one also gets the
+   * history column reaction_<set>_n, its reaction along the direction (the support force of a
+   * boundary condition along a direction, pdk_bc.direction), after all the other columns. */
+  const double (*reaction_normals)[3];
   int plot; /* 1: make the PNG when gnuplot is on the PATH */
   /* Deflate level 0 (off) .. 9 of the field outputs; default 0: deflate 1 costs about 20 times
    * the uncompressed write (1e6 particles, x v f: 1.1 s vs 0.05 s per output) for 44% less disk. */

@@ -68,6 +68,9 @@ typedef struct pdk_scene_output {
   const char *const *fields; /* particle field names to write, e.g. "u", "v", "f" */
   int num_reaction_sets;
   const char *const *reaction_sets; /* set names (without "set:") whose reactions are recorded */
+  /* per reaction set: the unit direction of a boundary condition along a direction on that set
+   * (its history then has reaction_<set>_n, the reaction along it), else zero */
+  double reaction_normal[8][3];
   const char *units; /* output.units: "SI", "mm-N-s-tonne" or NULL (none): pdk_output_opts.units */
   int compression;   /* output.compression: deflate level 0..9 of the field outputs (0: off) */
 } pdk_scene_output;

@@ -25,7 +25,8 @@
  * broken, then reaction_<set>_<c> for every reaction set and component, then disp_<set>_<c> for
  * every reaction set whose "set:<set>" field exists (mean of x - X over its members, in index
  * order), then plastic_work, damage_work, breaking_work, dt (the step size; 0 in static), failed
- * (particles whose Johnson-Cook damage reached D_c) and damage_max (the largest D).
+ * (particles whose Johnson-Cook damage reached D_c) and damage_max (the largest D), then
+ * reaction_<set>_n for every reaction set given a direction (opts->reaction_normals).
  * col_absmax keeps each column's largest |value| so the plot can pick the component that carries
  * the load.
  */
@@ -168,6 +169,15 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
   add_column(o, "dt", o->unit_time); /* the explicit step size (changes with dt_update) */
   add_column(o, "failed", "particles");
   add_column(o, "damage_max", "-");
+  for (int k = 0; k < o->num_reaction; ++k) { /* along the direction of a roller on the set */
+    o->reaction_n_col[k] = -1;
+    const double *d = opts->reaction_normals ? opts->reaction_normals[k] : NULL;
+    if (!d || (d[0] == 0 && d[1] == 0 && d[2] == 0)) continue;
+    memcpy(o->reaction_n[k], d, sizeof o->reaction_n[k]);
+    o->reaction_n_col[k] = o->num_cols;
+    snprintf(buf, sizeof buf, "reaction_%s_n", o->reaction_name[k]);
+    add_column(o, buf, o->unit_force);
+  }
   return PDK_SUCCESS;
 }
 
@@ -432,6 +442,13 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   row[o->work_col + 3] = h->dt;
   row[o->work_col + 4] = (double)h->failed;
   row[o->work_col + 5] = h->damage_max;
+  for (int k = 0; k < o->num_reaction; ++k)
+    if (o->reaction_n_col[k] >= 0) {
+      double rn = 0.0;
+      for (int c = 0; c < o->dim; ++c)
+        rn += h->reaction[k][c] * o->reaction_n[k][c];
+      row[o->reaction_n_col[k]] = rn;
+    }
 
   o->failed = 1; /* until the row is complete */
   hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};

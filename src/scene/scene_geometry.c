@@ -217,35 +217,45 @@ static int resolve_cuts(loader *ld, const sc_geometry *g) {
   return PDK_SUCCESS;
 }
 
-/* geometry.points: the body is the particles of a CSV file (src/space/points.h), its path relative to
- * the scene's folder. geometry.spacing stays the nominal spacing (horizon = horizon_factor x
- * spacing); box, lattice, jitter and seed describe a lattice and are refused. */
+/* geometry.points or geometry.mesh: the body is the particles of a CSV or HDF5 file, or one
+ * particle per element of a Gmsh mesh (src/space/points.h), its path relative to the scene's
+ * folder. geometry.spacing stays the nominal spacing (horizon = horizon_factor x spacing); box,
+ * lattice, jitter and seed describe a lattice and are refused, as is giving both. */
 static int resolve_points(loader *ld, const sc_geometry *g) {
   pdk_scene *s = ld->s;
+  const int mesh = g->mesh != NULL;
+  const char *key = mesh ? "geometry.mesh" : "geometry.points";
+  const char *file = mesh ? g->mesh : g->points;
+  s->points_key = key;
+  REQUIRE(ld, !(has(ld, "geometry.points") && has(ld, "geometry.mesh")), "geometry.mesh",
+          "and geometry.points both give the particles; remove one of them");
   const char *lattice_keys[] = {"geometry.box", "geometry.lattice", "geometry.jitter",
                                 "geometry.seed"};
   for (int k = 0; k < 4; ++k)
     REQUIRE(ld, !has(ld, lattice_keys[k]), lattice_keys[k],
-            "describes a lattice, but geometry.points gives the particles; remove one of them");
+            "describes a lattice, but %s gives the particles; remove one of them", key);
   char path[8192];
-  if (g->points[0] == '/' || !strchr(s->path, '/'))
-    snprintf(path, sizeof path, "%s", g->points);
+  if (file[0] == '/' || !strchr(s->path, '/'))
+    snprintf(path, sizeof path, "%s", file);
   else
     snprintf(path, sizeof path, "%.*s/%s", (int)(strrchr(s->path, '/') - s->path), s->path,
-             g->points);
+             file);
   s->points = calloc(1, sizeof *s->points);
   if (!s->points) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
   const double thickness = s->dim == 2 ? s->lattice.thickness : 1.0;
   const size_t plen = strlen(path);
   const int h5 = (plen > 3 && !strcmp(path + plen - 3, ".h5")) ||
                  (plen > 5 && !strcmp(path + plen - 5, ".hdf5"));
-  int err = h5 ? pdk_points_read_h5(ld->ctx, path, s->dim, s->points)
-               : pdk_points_read_csv(ld->ctx, path, s->dim, thickness, s->points);
+  int err = mesh ? pdk_points_read_msh(ld->ctx, path, s->dim, thickness, s->points)
+             : h5 ? pdk_points_read_h5(ld->ctx, path, s->dim, s->points)
+                  : pdk_points_read_csv(ld->ctx, path, s->dim, thickness, s->points);
   if (err) {
     free(s->points);
     s->points = NULL;
-    return pdk_scene_blame(s, ld->ctx, err, "geometry.points");
+    return pdk_scene_blame(s, ld->ctx, err, key);
   }
+  s->points->path = strdup(path);
+  if (!s->points->path) return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory");
   s->num_points = s->points->n;
   memcpy(s->lattice.lo, s->points->lo, sizeof s->lattice.lo);
   memcpy(s->lattice.hi, s->points->hi, sizeof s->lattice.hi);
@@ -288,10 +298,10 @@ int pdk_scene_resolve_geometry(loader *ld, const sc_geometry *g) {
             "must be > 0, got %g (the out-of-plane thickness, a length)", g->thickness);
     lo->thickness = g->thickness;
   }
-  if (has(ld, "geometry.points")) return resolve_points(ld, g);
+  if (has(ld, "geometry.points") || has(ld, "geometry.mesh")) return resolve_points(ld, g);
   REQUIRE(ld, has(ld, "geometry.box"), "geometry",
-          "has no body: give geometry.box (a lattice over the box) or geometry.points (a point "
-          "cloud file)");
+          "has no body: give geometry.box (a lattice over the box), geometry.points (a point "
+          "cloud file) or geometry.mesh (a Gmsh mesh)");
   PDK_CALL(check_point(ld, "geometry.box.lo", g->box.lo));
   PDK_CALL(check_point(ld, "geometry.box.hi", g->box.hi));
   for (int a = 0; a < dim; ++a)
@@ -348,19 +358,24 @@ int pdk_scene_resolve_sets(loader *ld, const sc_scene *d) {
   const pdk_points *pts = s->points;
   for (int k = 0; pts && k < pts->num_sets; ++k) {
     const char *name = pts->set_name[k];
-    REQUIRE(ld, valid_name(name) && strcmp(name, "all"), "geometry.points",
-            "the column set:%s names no valid set ('all' is reserved; 1 to %d letters, digits, "
-            "'_', '-' or '.')",
-            name, SC_NAME_MAX);
+    char label[300]; /* what defines the set, for messages */
+    if (!strcmp(s->points_key, "geometry.mesh"))
+      snprintf(label, sizeof label, "physical group '%s'", name);
+    else
+      snprintf(label, sizeof label, "column set:%s", name);
+    REQUIRE(ld, valid_name(name) && strcmp(name, "all"), s->points_key,
+            "the %s names no valid set ('all' is reserved; 1 to %d letters, digits, '_', '-' "
+            "or '.')",
+            label, SC_NAME_MAX);
     const int prev = find_set(s, name);
-    REQUIRE(ld, prev < 0, "geometry.points",
-            "the column set:%s defines the set that sets[%d] defines too; rename one", name, prev);
+    REQUIRE(ld, prev < 0, s->points_key,
+            "the %s defines the set that sets[%d] defines too; rename one", label, prev);
     pdk_index count = 0;
     for (pdk_index i = 0; i < pts->n; ++i)
       count += pts->set[k][i];
-    REQUIRE(ld, count > 0, "geometry.points",
-            "the column set:%s selects no particle (every value is 0); remove it or mark members",
-            name);
+    REQUIRE(ld, count > 0, s->points_key,
+            "the %s selects no particle (every value is 0); remove it or mark members",
+            label);
     pdk_scene_region *out = &s->sets[s->num_sets];
     memset(out, 0, sizeof *out);
     out->name = strdup(name);
@@ -371,7 +386,7 @@ int pdk_scene_resolve_sets(loader *ld, const sc_scene *d) {
     s->num_sets++;
     if (!out->name || !out->field)
       return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for sets");
-    snprintf(out->key, sizeof out->key, "geometry.points");
+    snprintf(out->key, sizeof out->key, "%s", s->points_key);
   }
   return PDK_SUCCESS;
 }

@@ -63,7 +63,8 @@ struct pdk_scene {
 
   pdk_lattice_opts lattice; /* lo, hi: the cloud's bounding box when points is set */
   pdk_index num_points; /* lattice points (or the cloud's) before holes and notches */
-  struct pdk_points *points; /* geometry.points: the body as read (NULL for a lattice) */
+  struct pdk_points *points; /* geometry.points or mesh: the body as read (NULL for a lattice) */
+  const char *points_key;    /* "geometry.points" or "geometry.mesh" (with points) */
   double horizon_factor;
   double horizon; /* horizon_factor * spacing */
   pdk_scene_region *holes, *notches, *sets;
@@ -76,6 +77,8 @@ struct pdk_scene {
   pdk_scene_region *mat_regions; /* [num_mat_regions] the materials list: material k + 1 */
   int num_mat_regions;
   pdk_material *materials; /* [num_mat_regions + 1]; 0 is `material` (NULL without a list) */
+  int mat_from_points;     /* the cloud's material column places the materials (points->material
+                              then holds each particle's material index; the regions are unused) */
   char *galerkin_surface;  /* model.galerkin.surface (model.galerkin.surface points here) */
 
   pdk_solver_type solver_type;

@@ -72,6 +72,7 @@ typedef struct sc_geometry {
   int lattice;
   double spacing, horizon_factor, jitter, seed, thickness;
   char *points;
+  char *mesh;
   sc_box box;
   sc_region *holes;
   unsigned holes_count;
@@ -111,6 +112,7 @@ typedef struct sc_bc {
   char *set;
   int type, function;
   double x, y, z, duration, period;
+  double direction[3], value;
 } sc_bc;
 typedef struct sc_initial {
   double velocity[3];

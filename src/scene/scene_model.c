@@ -3,6 +3,7 @@
  * (E, nu -> K, G) happen here (src/scene/scene_load.h).
  */
 #include "models/model_registry.h"
+#include "space/points.h"
 #include "scene_load.h"
 #include "pdk/ctx.h"
 #include "pdk/model.h"
@@ -408,12 +409,111 @@ int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const s
   return PDK_SUCCESS;
 }
 
+/* A mesh's physical groups of body elements named like materials entries become a material
+ * column (keys: the entry names, and index 0 for the elements in no such group). */
+static int mesh_materials(loader *ld, const sc_scene *d, pdk_points *pts) {
+  int which[PDK_POINTS_MAX_SETS], any = 0;
+  for (int k = 0; k < pts->num_sets; ++k) {
+    which[k] = -1;
+    for (int q = 0; pts->set_body[k] && q < (int)d->materials_count; ++q)
+      if (d->materials[q].name && !strcmp(d->materials[q].name, pts->set_name[k]))
+        which[k] = q, any = 1;
+  }
+  if (!any) return PDK_SUCCESS;
+  pts->mkey = calloc(PDK_POINTS_MAX_MKEYS, sizeof *pts->mkey);
+  pts->material = malloc((size_t)pts->n * sizeof(int32_t) + 1);
+  if (!pts->mkey || !pts->material)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+  for (pdk_index i = 0; i < pts->n; ++i) {
+    int g = -1;
+    for (int k = 0; k < pts->num_sets; ++k) {
+      if (which[k] < 0 || !pts->set[k][i]) continue;
+      REQUIRE(ld, g < 0 || which[g] == which[k], ld->s->points_key,
+              "element %ld of %s is in the physical groups '%s' and '%s', which name two "
+              "materials; an element takes one material",
+              (long)i, pts->path, pts->set_name[g], pts->set_name[k]);
+      g = k;
+    }
+    const char *name = g >= 0 ? pts->set_name[g] : NULL;
+    const int key = pdk_points_mkey_find(pts, name, name ? strlen(name) : 0, 0, 0, i);
+    if (key < 0)
+      return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
+    pts->material[i] = key;
+  }
+  return PDK_SUCCESS;
+}
+
+/* The material column of a cloud: each key (a name or an index) to its material index, then
+ * points->material from keys to indices; every entry of the list must be used. */
+static int points_materials(loader *ld, pdk_points *pts, int nm) {
+  pdk_scene *s = ld->s;
+  int32_t idx[PDK_POINTS_MAX_MKEYS];
+  char names[1024];
+  size_t pos = 0;
+  names[0] = '\0';
+  for (int k = 0; k < nm && pos < sizeof names; ++k)
+    pos += (size_t)snprintf(names + pos, sizeof names - pos, "%s%s (%d)", k ? ", " : "",
+                            s->mat_regions[k].name, k + 1);
+  for (int q = 0; q < pts->num_mkeys; ++q) {
+    const pdk_points_mkey *m = &pts->mkey[q];
+    char at[64];
+    if (m->line)
+      snprintf(at, sizeof at, "line %ld", m->line);
+    else
+      snprintf(at, sizeof at, "material[%ld]", m->row);
+    idx[q] = -1;
+    if (m->name) {
+      for (int k = 0; k < nm; ++k)
+        if (!strcmp(s->mat_regions[k].name, m->name)) idx[q] = k + 1;
+      REQUIRE(ld, idx[q] > 0, s->points_key,
+              "the material column of %s names '%s' (%s), which is no entry of materials; the "
+              "materials are %s, and 0 for `material`",
+              pts->path, m->name, at, names);
+    } else {
+      REQUIRE(ld, m->index <= nm, s->points_key,
+              "the material column of %s gives the index %ld (%s), but the scene has materials "
+              "0 (`material`) to %d: %s",
+              pts->path, m->index, at, nm, names);
+      idx[q] = (int32_t)m->index;
+    }
+  }
+  for (int k = 1; k <= nm; ++k) {
+    int used = 0;
+    for (int q = 0; q < pts->num_mkeys; ++q)
+      used |= idx[q] == k;
+    REQUIRE(ld, used, K(ld, "materials[%d]", k - 1),
+            "the material '%s' is given to no particle by the material column (or the physical "
+            "groups) of %s; remove the entry, or name it (or its index %d) in the column",
+            s->mat_regions[k - 1].name, pts->path, k);
+  }
+  for (pdk_index i = 0; i < pts->n; ++i)
+    pts->material[i] = idx[pts->material[i]];
+  s->mat_from_points = 1;
+  return PDK_SUCCESS;
+}
+
 /* materials: further materials over regions (material 0 is `material`). Each entry's elastic
  * constants as `material`'s: E and nu, or K and G (pmb: K alone). */
 int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   pdk_model_opts *m = &s->model;
   const int nm = (int)d->materials_count;
+  pdk_points *pts = s->points;
+  if (pts && !pts->mkey && nm > 0) PDK_CALL(mesh_materials(ld, d, pts));
+  const int column = pts && pts->mkey;
+  if (column && nm == 0) {
+    const pdk_points_mkey *mk = &pts->mkey[0];
+    char at[64];
+    if (mk->line)
+      snprintf(at, sizeof at, "line %ld", mk->line);
+    else
+      snprintf(at, sizeof at, "material[%ld]", mk->row);
+    FAIL(ld, s->points_key,
+         "the cloud %s has a material column (%s: %s%s), but the scene has no materials list; add "
+         "`materials` entries (name, density, elastic constants; no region) for the materials the "
+         "column names, or remove the column",
+         pts->path, at, mk->name ? mk->name : "index ", mk->name ? "" : K(ld, "%ld", mk->index));
+  }
   if (nm == 0) return PDK_SUCCESS;
   char with[128], alt[128];
   const unsigned mats = PDK_KIND_MATERIALS | PDK_KIND_SCENE;
@@ -443,7 +543,15 @@ int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
     s->num_mat_regions = k + 1;
     if (!out->name)
       return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for materials");
-    PDK_CALL(pdk_scene_region_resolve(ld, r, K(ld, "materials[%d]", k), 1, out));
+    const int region = r->box || r->disk || r->ball || r->halfspace || r->polygon;
+    if (column)
+      REQUIRE(ld, !region, K(ld, "materials[%d]", k),
+              "gives a region, but the material column (or a mesh's physical groups named as "
+              "materials) of %s places every particle's material; remove the region (the entry "
+              "then only names the material), or the column",
+              pts->path);
+    else
+      PDK_CALL(pdk_scene_region_resolve(ld, r, K(ld, "materials[%d]", k), 1, out));
     snprintf(out->key, sizeof out->key, "materials[%d]", k);
     pdk_material *q = &s->materials[k + 1];
     REQUIRE(ld, isfinite(r->density) && r->density > 0, K(ld, "materials[%d].density", k),
@@ -481,5 +589,6 @@ int pdk_scene_resolve_materials(loader *ld, const sc_scene *d) {
   }
   m->materials = s->materials;
   m->num_materials = nm + 1;
+  if (column) PDK_CALL(points_materials(ld, pts, nm));
   return PDK_SUCCESS;
 }

@@ -90,6 +90,15 @@ int pdk_scene_resolve_output(loader *ld, const sc_scene *d) {
     snprintf(s->reaction_fields[k], len, "set:%s", names[k]);
   }
   out->reaction_sets = (const char *const *)s->reaction_names;
+  for (int k = 0; k < nr && k < 8; ++k) /* a condition along a direction on the set: its n */
+    for (int b = 0; b < s->num_bcs; ++b) {
+      const pdk_bc *bc = &s->bcs[b];
+      const double *dn = bc->direction;
+      const double len = sqrt(dn[0] * dn[0] + dn[1] * dn[1] + dn[2] * dn[2]);
+      if (len > 0 && s->bc_fields[b] && !strcmp(s->bc_fields[b], s->reaction_fields[k]))
+        for (int a = 0; a < 3; ++a)
+          out->reaction_normal[k][a] = dn[a] / len;
+    }
   s->solver.reaction_sets = (const char *const *)s->reaction_fields;
   s->solver.num_reaction_sets = nr;
   s->static_opts.reaction_sets = (const char *const *)s->reaction_fields;

@@ -164,6 +164,7 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(geometry, CYAML_FIELD_FLOAT("thickness", OPT, sc_geometry, thickness));
   ADD(geometry, CYAML_FIELD_MAPPING("box", OPT, sc_geometry, box, sc->box));
   ADD(geometry, CYAML_FIELD_STRING_PTR("points", OPT, sc_geometry, points, 1, 4095));
+  ADD(geometry, CYAML_FIELD_STRING_PTR("mesh", OPT, sc_geometry, mesh, 1, 4095));
   ADD(geometry,
       CYAML_FIELD_SEQUENCE("holes", OPT_PTR, sc_geometry, holes, &sc->region_entry, 0, 10000));
   ADD(geometry,
@@ -255,6 +256,8 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
                            N_OF(pdk_scene_function_names)));
   ADD(bc, CYAML_FIELD_FLOAT("duration", OPT, sc_bc, duration));
   ADD(bc, CYAML_FIELD_FLOAT("period", OPT, sc_bc, period));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("direction", OPT, sc_bc, direction, &sc->num, d));
+  ADD(bc, CYAML_FIELD_FLOAT("value", OPT, sc_bc, value));
   sc->bc_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_bc, sc->bc)};
 
   ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_initial, velocity, &sc->num, d));

@@ -65,27 +65,64 @@ int pdk_scene_resolve_bcs(loader *ld, const sc_scene *d) {
       REQUIRE(ld, !hper, sub, "only the sine function uses a period (function is %s); remove it",
               fname);
     }
+    const int hdir = has(ld, K(ld, "%s.direction", base));
+    if (hdir) { /* along a direction: value on the unit direction, the tangents free */
+      for (int c = 0; c < 3; ++c)
+        REQUIRE(ld, !has(ld, K(ld, "%s.%c", base, "xyz"[c])), K(ld, "%s.%c", base, "xyz"[c]),
+                "a condition along a direction gives its value as value, the component along "
+                "the direction; remove %c (a particle takes either a direction or components)",
+                "xyz"[c]);
+      snprintf(sub, sizeof sub, "%s.direction", base);
+      REQUIRE(ld, bc->kind != PDK_BC_BODY_FORCE, sub,
+              "a body force acts along x, y%s: give its components; direction is for "
+              "displacement and velocity conditions",
+              s->dim == 3 ? ", z" : "");
+      double d2 = 0.0;
+      for (int a = 0; a < s->dim; ++a) {
+        REQUIRE(ld, isfinite(b->direction[a]), sub, "entry %d is %g; give finite numbers", a,
+                b->direction[a]);
+        d2 += b->direction[a] * b->direction[a];
+      }
+      REQUIRE(ld, d2 > 0 && isfinite(d2), sub,
+              "must not be zero; it is the direction (need not be unit) along which the "
+              "condition prescribes the %s",
+              bc->kind == PDK_BC_DISPLACEMENT ? "displacement" : "velocity");
+      snprintf(sub, sizeof sub, "%s.value", base);
+      REQUIRE(ld, has(ld, sub), sub,
+              "is missing; a condition along a direction needs value, the %s along it",
+              bc->kind == PDK_BC_DISPLACEMENT ? "displacement" : "velocity");
+      for (int a = 0; a < s->dim; ++a)
+        bc->direction[a] = b->direction[a];
+    } else {
+      snprintf(sub, sizeof sub, "%s.value", base);
+      REQUIRE(ld, !has(ld, sub), sub,
+              "only a condition along a direction takes value; give direction, or the "
+              "components x, y%s",
+              s->dim == 3 ? ", z" : "");
+    }
     for (int c = 0; c < 3; ++c) {
       snprintf(sub, sizeof sub, "%s.%c", base, "xyz"[c]);
-      if (!has(ld, sub)) continue;
+      if (hdir && c == 0) snprintf(sub, sizeof sub, "%s.value", base);
+      else if (!has(ld, sub) || hdir) continue;
       REQUIRE(ld, c < s->dim, sub, "z is not a component in a 2-D scene; use x and y");
-      REQUIRE(ld, isfinite(comp[c]), sub, "must be a finite number, got %g", comp[c]);
+      const double cv = hdir ? b->value : comp[c];
+      REQUIRE(ld, isfinite(cv), sub, "must be a finite number, got %g", cv);
       bc->components |= 1u << c;
       pdk_tfun *tf = &bc->value[c];
       tf->kind = fk;
       switch (fk) {
-      case PDK_TFUN_CONSTANT: tf->a = comp[c]; break;
+      case PDK_TFUN_CONSTANT: tf->a = cv; break;
       case PDK_TFUN_LINEAR:
         tf->a = 0;
-        tf->b = comp[c];
+        tf->b = cv;
         break;
       case PDK_TFUN_RAMP:
       case PDK_TFUN_SMOOTH:
-        tf->a = comp[c];
+        tf->a = cv;
         tf->b = b->duration;
         break;
       case PDK_TFUN_SINE:
-        tf->a = comp[c];
+        tf->a = cv;
         tf->b = b->period;
         break;
       }

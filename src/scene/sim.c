@@ -112,6 +112,10 @@ static int cut_regions(pdk_sim *sim, const pdk_scene *s, const pdk_scene_region 
   return PDK_SUCCESS;
 }
 
+static int pdk_bc_directional_scene(const pdk_bc *bc) {
+  return bc->direction[0] != 0.0 || bc->direction[1] != 0.0 || bc->direction[2] != 0.0;
+}
+
 /* Two displacement or velocity conditions must not prescribe the same component of a particle.
  * The solver refuses that too, but checking here lets the message name the scene entries. */
 static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
@@ -120,7 +124,11 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
     for (int j = 0; j < k; ++j) {
       const pdk_bc *a = &s->bcs[j], *b = &s->bcs[k];
       if (a->kind == PDK_BC_BODY_FORCE || b->kind == PDK_BC_BODY_FORCE) continue;
-      unsigned both = a->components & b->components;
+      /* a condition along a direction holds every component of its particles */
+      const int dir = pdk_bc_directional_scene(a) || pdk_bc_directional_scene(b);
+      const unsigned all = (1u << s->dim) - 1;
+      unsigned both = (pdk_bc_directional_scene(a) ? all : a->components) &
+                      (pdk_bc_directional_scene(b) ? all : b->components);
       if (!both) continue;
       const uint8_t *ma = a->set ? pdk_particles_field_data(sim->p, a->set, 0) : NULL;
       const uint8_t *mb = b->set ? pdk_particles_field_data(sim->p, b->set, 0) : NULL;
@@ -136,6 +144,15 @@ static int check_bc_overlap(pdk_sim *sim, const pdk_scene *s) {
       while (!(both & (1u << c)))
         ++c;
       snprintf(key, sizeof key, "boundary_conditions[%d]", k);
+      if (dir)
+        return pdk_scene_error(
+            s, sim->ctx, PDK_ERR_ARG, key,
+            "holds %d particles that boundary_conditions[%d] holds too (the first at X = [%g, "
+            "%g%s]), and one of them acts along a direction; a particle under a condition along "
+            "a direction takes no other displacement or velocity condition: make the sets "
+            "disjoint",
+            (int)count, j, pdk_particles_X(sim->p, 0)[first], pdk_particles_X(sim->p, 1)[first],
+            s->dim == 3 ? ", ..." : "");
       return pdk_scene_error(
           s, sim->ctx, PDK_ERR_ARG, key,
           "prescribes %c on %d particles that boundary_conditions[%d] prescribes too (the first "
@@ -217,7 +234,8 @@ static int create_static(pdk_sim *sim, const pdk_scene *s) {
 }
 
 /* The particles of a point cloud: positions, volumes and its set columns as "set:<name>". */
-static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, pdk_particles **out) {
+static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, int materials,
+                            pdk_particles **out) {
   int err = PDK_SUCCESS;
   pdk_particles *p = NULL;
   PDK_CALL(pdk_particles_create(ctx, pts->dim, pts->n, &p));
@@ -229,6 +247,11 @@ static int body_from_points(pdk_ctx *ctx, const pdk_points *pts, pdk_particles *
     snprintf(field, sizeof field, "set:%s", pts->set_name[k]);
     PDK_CALL_GOTO(pdk_particles_field_add(p, field, PDK_U8, 1));
     memcpy(pdk_particles_field_data(p, field, 0), pts->set[k], (size_t)pts->n);
+  }
+  if (materials) { /* the material column, resolved to material indices */
+    PDK_CALL_GOTO(pdk_particles_field_add(p, "material", PDK_I32, 1));
+    memcpy(pdk_particles_field_data(p, "material", 0), pts->material,
+           (size_t)pts->n * sizeof(int32_t));
   }
   *out = p;
   return PDK_SUCCESS;
@@ -257,11 +280,11 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
 
   /* Body: lattice (or point cloud), holes, notches, sets. */
   if (s->points)
-    err = body_from_points(ctx, s->points, &sim->p);
+    err = body_from_points(ctx, s->points, s->mat_from_points, &sim->p);
   else
     err = pdk_lattice_create(ctx, &s->lattice, &sim->p);
   if (err) {
-    err = pdk_scene_blame(s, ctx, err, s->points ? "geometry.points" : "geometry");
+    err = pdk_scene_blame(s, ctx, err, s->points ? s->points_key : "geometry");
     goto cleanup;
   }
   PDK_CALL_GOTO(cut_regions(sim, s, s->holes, s->num_holes, 1));
@@ -276,8 +299,9 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   }
 
   /* Materials: "material" = 0 (`material`), then each entry of the materials list over its region
-   * (a later entry wins where regions overlap). */
-  if (s->num_mat_regions > 0) {
+   * (a later entry wins where regions overlap); or the cloud's material column (made with the
+   * body). */
+  if (s->num_mat_regions > 0 && !s->mat_from_points) {
     PDK_CALL_GOTO(pdk_particles_field_add(sim->p, "material", PDK_I32, 1));
     int32_t *mat = pdk_particles_field_data(sim->p, "material", 0);
     const int dim = pdk_particles_dim(sim->p);

@@ -174,6 +174,17 @@ int pdk_adr_setup(pdk_static *s) {
         if (a->mass[c][i] < mmin) mmin = a->mass[c][i];
       }
   }
+  /* A particle held along a direction moves in its frame (static_impl.h), whose rows mix the
+   * components': its mass, in every component, is sqrt(dim) times its largest (a bound of the
+   * rotated rows' sums by the components' ones). */
+  for (pdk_index i = 0; s->dir_of && i < n; ++i) {
+    if (s->dir_of[i] < 0) continue;
+    double mi = 0.0;
+    for (int c = 0; c < dim; ++c)
+      mi = fmax(mi, a->mass[c][i]);
+    for (int c = 0; c < dim; ++c)
+      a->mass[c][i] = sqrt((double)dim) * mi;
+  }
   /* Round-off floor (static.h): eps |x|_max ||K||_F, with ||K||_F bounded by the row sums
    * (sum_j K_ij^2 <= (sum_j |K_ij|)^2): ROW_SUM gives them exactly (4 M / safety); for the
    * Lanczos mass ||K||_F <= sqrt(N) lambda_max(K) <= sqrt(N) 4 max M / safety. */
@@ -229,7 +240,8 @@ static void rayleigh_sums(pdk_static *s, double *num, double *den) {
   }
   double *part = s->block_part;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none) shared(x, X, r, rp, v, M, fixed, part, n, num_blocks, dim)  \
+#pragma omp parallel for default(none) shared(s, x, X, r, rp, v, M, fixed, part, n, num_blocks,     \
+                                                  dim)                                             \
     schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_STATIC_BLOCK;
@@ -238,7 +250,13 @@ static void rayleigh_sums(pdk_static *s, double *num, double *den) {
     for (pdk_index i = i0; i < i1; ++i)
       for (int c = 0; c < dim; ++c) {
         if (fixed[c][i]) continue;
-        const double u = x[c][i] - X[c][i];
+        double u = x[c][i] - X[c][i];
+        const double(*R)[3] = pdk_static_frame(s, i);
+        if (R) { /* held along a direction: u in the particle's frame, as r and v are */
+          u = 0.0;
+          for (int e = 0; e < dim; ++e)
+            u += R[e][c] * (x[e][i] - X[e][i]);
+        }
         if (v[c][i] != 0.0) sn += u * u * (-(r[c][i] - rp[c][i]) / (M[c][i] * v[c][i]));
         sd += u * u;
       }
@@ -260,11 +278,13 @@ static void update(pdk_static *s, double cv, double cd) {
   adr_state *a = s->adr;
   const pdk_index n = s->n;
   const int nt = s->ctx->num_threads;
+  const int32_t *dir_of = s->dir_of;
   for (int c = 0; c < s->dim; ++c) {
     double *x = field(s->p, "x", c), *v = a->v[c];
     const double *r = s->r[c], *M = a->mass[c];
     const uint8_t *fixed = s->fixed[c];
-#pragma omp parallel for default(none) shared(x, v, r, M, fixed, n, cv, cd) schedule(static)       \
+#pragma omp parallel for default(none) shared(x, v, r, M, fixed, dir_of, n, cv, cd)               \
+    schedule(static)                                                                               \
     num_threads(nt)
     for (pdk_index i = 0; i < n; ++i) {
       if (fixed[i]) {
@@ -272,7 +292,18 @@ static void update(pdk_static *s, double cv, double cd) {
         continue;
       }
       v[i] = (cv * v[i] + 2.0 * r[i] / M[i]) / cd;
-      x[i] += v[i];
+      if (!dir_of || dir_of[i] < 0) x[i] += v[i];
+    }
+  }
+  /* held along a direction: v is in the particle's frame (its normal 0); x moves by R v */
+  for (pdk_index i = 0; dir_of && i < n; ++i) {
+    const double(*R)[3] = pdk_static_frame(s, i);
+    if (!R) continue;
+    for (int c = 0; c < s->dim; ++c) {
+      double dx = 0.0;
+      for (int q = 1; q < s->dim; ++q)
+        dx += R[c][q] * a->v[q][i];
+      field(s->p, "x", c)[i] += dx;
     }
   }
 }

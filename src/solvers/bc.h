@@ -21,4 +21,23 @@ int pdk_bc_check(pdk_ctx *ctx, pdk_particles *p, const pdk_bc *bc, int k, const 
 int pdk_bc_claim(pdk_ctx *ctx, pdk_particles *p, const pdk_bc *bc, int k, const uint8_t *member,
                  int32_t *const owner[3], uint8_t *const fixed[3], int *num_fixed);
 
+/* 1 when the condition acts along a direction (pdk_bc.direction not all zero). */
+static inline int pdk_bc_directional(const pdk_bc *bc) {
+  return bc->direction[0] != 0.0 || bc->direction[1] != 0.0 || bc->direction[2] != 0.0;
+}
+
+/* The frame of a directional condition: R[a][q] is component a of axis q, axis 0 the unit
+ * direction n, axes 1 (and 2 in 3-D) unit tangents, orthonormal. */
+void pdk_bc_frame(const pdk_bc *bc, int dim, double R[3][3]);
+
+/* Claims the particles of directional condition k: dir_of[i] = k for the members (NULL: every
+ * particle), refusing a particle another directional condition holds already. */
+int pdk_bc_claim_direction(pdk_ctx *ctx, pdk_particles *p, int k, const uint8_t *member,
+                           int32_t *dir_of);
+
+/* After every claim: refuses a particle held both by a directional condition and by a condition
+ * on its components (owner). */
+int pdk_bc_direction_overlap(pdk_ctx *ctx, pdk_particles *p, const int32_t *dir_of,
+                             int32_t *const owner[3]);
+
 #endif

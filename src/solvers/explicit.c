@@ -89,6 +89,8 @@ double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1) {
   return 0.0;
 }
 
+static void apply_direction_bcs(pdk_explicit *e, double t, int drifted);
+
 /* Sets prescribed positions and velocities of constrained components at time t. With drifted = 1
  * (right after the drift x += dt v(t - dt)), a velocity-prescribed position is corrected to the
  * exact integral of the prescribed velocity over the step. */
@@ -115,6 +117,48 @@ static void apply_kinematic_bcs(pdk_explicit *e, double t, int drifted) {
         if (drifted) x[i] += pdk_tfun_integral(&bc->value[c], t - dt, t) - dt * v[i];
         v[i] = pdk_tfun_value(&bc->value[c], t);
       }
+    }
+  }
+  if (e->num_dir) apply_direction_bcs(e, t, drifted);
+}
+
+/* The prescribed normal velocity of directional condition bc at t (its value's rate for a
+ * displacement). */
+static double dir_rate(const pdk_bc *bc, double t) {
+  return bc->kind == PDK_BC_DISPLACEMENT ? pdk_tfun_rate(&bc->value[0], t)
+                                         : pdk_tfun_value(&bc->value[0], t);
+}
+
+/* Conditions along a direction n at time t: the component of x - X (displacement) along n set to
+ * its value, that of v to its rate; with drifted, a velocity condition's position corrected to the
+ * exact integral over the step, as apply_kinematic_bcs does per component. */
+static void apply_direction_bcs(pdk_explicit *e, double t, int drifted) {
+  const int dim = e->dim;
+  double *x[3] = {NULL, NULL, NULL}, *v[3] = {NULL, NULL, NULL};
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c) {
+    x[c] = field(e->p, "x", c);
+    v[c] = field(e->p, "v", c);
+    X[c] = pdk_particles_X(e->p, c);
+  }
+  for (pdk_index q = 0; q < e->num_dir; ++q) {
+    const pdk_index i = e->dir_list[q];
+    const pdk_bc *bc = &e->bcs[e->dir_bc[q]];
+    const double(*R)[3] = e->dir_frame[e->dir_bc[q]];
+    double un = 0.0, vn = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      un += (x[c][i] - X[c][i]) * R[c][0];
+      vn += v[c][i] * R[c][0];
+    }
+    double dx = 0.0;
+    if (bc->kind == PDK_BC_DISPLACEMENT)
+      dx = pdk_tfun_value(&bc->value[0], t) - un;
+    else if (drifted)
+      dx = pdk_tfun_integral(&bc->value[0], t - e->dt, t) - e->dt * vn;
+    const double dv = dir_rate(bc, t) - vn;
+    for (int c = 0; c < dim; ++c) {
+      x[c][i] += dx * R[c][0];
+      v[c][i] += dv * R[c][0];
     }
   }
 }
@@ -160,6 +204,17 @@ static void half_kick(pdk_explicit *e, double t) {
       double b = nb ? body_force(ec, member, i, c, t) : 0.0;
       v[i] += (rho_p ? half_dt / rho_p[i] : h) * (f[i] + b);
     }
+  }
+  /* along a direction n: the kick moves the free (tangential) components only */
+  for (pdk_index q = 0; q < e->num_dir; ++q) {
+    const pdk_index i = e->dir_list[q];
+    const double(*R)[3] = e->dir_frame[e->dir_bc[q]];
+    double vn = 0.0;
+    for (int c = 0; c < dim; ++c)
+      vn += field(e->p, "v", c)[i] * R[c][0];
+    const double dv = dir_rate(&e->bcs[e->dir_bc[q]], t) - vn;
+    for (int c = 0; c < dim; ++c)
+      field(e->p, "v", c)[i] += dv * R[c][0];
   }
 }
 
@@ -294,6 +349,14 @@ static double constrained_kinetic(pdk_explicit *e) {
     for (pdk_index i = 0; i < e->n; ++i)
       if (bc_of[i] >= 0) s += (rho_p ? rho_p[i] * vol[i] : vol[i]) * v[i] * v[i];
   }
+  for (pdk_index q = 0; q < e->num_dir; ++q) { /* the normal component */
+    const pdk_index i = e->dir_list[q];
+    const double(*R)[3] = e->dir_frame[e->dir_bc[q]];
+    double vn = 0.0;
+    for (int c = 0; c < e->dim; ++c)
+      vn += field(e->p, "v", c)[i] * R[c][0];
+    s += (rho_p ? rho_p[i] * vol[i] : vol[i]) * vn * vn;
+  }
   return 0.5 * (rho_p ? 1.0 : e->rho) * s;
 }
 
@@ -313,6 +376,19 @@ static double external_power(pdk_explicit *e, double t) {
       if (bc_of[i] >= 0) power += -vol[i] * f[i] * v[i];
       else if (nb) power += vol[i] * body_force(e, member, i, c, t) * v[i];
     }
+  }
+  /* along a direction: the support force -V (f.n) n on the normal velocity; the body force's
+   * normal part does no work there (the support takes it) */
+  for (pdk_index q = 0; q < e->num_dir; ++q) {
+    const pdk_index i = e->dir_list[q];
+    const double(*R)[3] = e->dir_frame[e->dir_bc[q]];
+    double fn = 0.0, vn = 0.0, bn = 0.0;
+    for (int c = 0; c < e->dim; ++c) {
+      fn += field(e->p, "f", c)[i] * R[c][0];
+      vn += field(e->p, "v", c)[i] * R[c][0];
+      if (nb) bn += body_force(e, member, i, c, t) * R[c][0];
+    }
+    power += -vol[i] * fn * vn - vol[i] * bn * vn;
   }
   return power;
 }
@@ -429,8 +505,29 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
                    k, bc->scale_field);
     const uint8_t *mem = NULL;
     PDK_CALL_GOTO(pdk_bc_check(ctx, e->p, bc, k, &mem));
-    if (bc->kind != PDK_BC_BODY_FORCE)
+    if (pdk_bc_directional(bc)) {
+      if (!e->dir_frame) {
+        e->dir_frame = calloc((size_t)opts.num_bcs, sizeof *e->dir_frame);
+        e->dir_bc = malloc((size_t)e->n * sizeof(int32_t) + 1);
+        PDK_CHECK_GOTO(e->dir_frame && e->dir_bc, ctx, PDK_ERR_MEMORY,
+                       "out of memory for constraint maps");
+        for (pdk_index i = 0; i < e->n; ++i)
+          e->dir_bc[i] = -1;
+      }
+      pdk_bc_frame(bc, e->dim, e->dir_frame[k]);
+      PDK_CALL_GOTO(pdk_bc_claim_direction(ctx, e->p, k, mem, e->dir_bc));
+    } else if (bc->kind != PDK_BC_BODY_FORCE)
       PDK_CALL_GOTO(pdk_bc_claim(ctx, e->p, bc, k, mem, e->bc_of, NULL, NULL));
+  }
+  if (e->dir_bc) { /* dir_bc per particle -> the list of held particles and their conditions */
+    PDK_CALL_GOTO(pdk_bc_direction_overlap(ctx, e->p, e->dir_bc, e->bc_of));
+    e->dir_list = malloc((size_t)e->n * sizeof *e->dir_list + 1);
+    PDK_CHECK_GOTO(e->dir_list, ctx, PDK_ERR_MEMORY, "out of memory for constraint maps");
+    for (pdk_index i = 0; i < e->n; ++i)
+      if (e->dir_bc[i] >= 0) {
+        e->dir_bc[e->num_dir] = e->dir_bc[i]; /* num_dir <= i: overwrites entries read already */
+        e->dir_list[e->num_dir++] = i;
+      }
   }
   for (int k = 0; k < opts.num_reaction_sets; ++k) {
     e->reaction_member[k] = pdk_particles_field_data(e->p, opts.reaction_sets[k], 0);
@@ -481,6 +578,9 @@ void pdk_explicit_destroy(pdk_explicit **ep) {
   if (!ep || !*ep) return;
   pdk_explicit *e = *ep;
   for (int c = 0; c < 3; ++c) free(e->bc_of[c]);
+  free(e->dir_list);
+  free(e->dir_bc);
+  free(e->dir_frame);
   free(e->bcs);
   free(e);
   *ep = NULL;

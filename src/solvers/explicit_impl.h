@@ -35,6 +35,12 @@ struct pdk_explicit {
   int num_estimates, num_dt_changes;
   double rho;
   int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
+  /* conditions along a direction (pdk_bc.direction): the particles they hold, their condition
+   * and the frame of each condition (bc.h) */
+  pdk_index *dir_list;   /* [num_dir] */
+  int32_t *dir_bc;       /* [num_dir] */
+  pdk_index num_dir;
+  double (*dir_frame)[3][3]; /* [num_bcs] */
   uint8_t *reaction_member[PDK_MAX_REACTION_SETS]; /* [n] 1 if in reaction set k (borrowed) */
   int num_reaction;
   double strain;            /* strain energy of the last force pass */

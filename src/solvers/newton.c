@@ -103,6 +103,11 @@ int pdk_newton_setup(pdk_static *s) {
         pdk_model_kind_name(s->m->opts.kind),
         pdk_model_kinds_list(PDK_KIND_TANGENT, PDK_KIND_TANGENT, " and ", kinds, sizeof kinds));
     ns->analytic = has && s->opts.tangent != PDK_TANGENT_DIFFERENCE;
+    PDK_CHECK(ns->analytic || !s->dir_of, ctx, PDK_ERR_UNSUPPORTED,
+              "newton: a boundary condition along a direction needs the analytic tangent (%s "
+              "have one; tangent auto or analytic), not the difference tangent of model '%s'; "
+              "use solver type adr or explicit for it",
+              kinds, pdk_model_kind_name(s->m->opts.kind));
   }
   s->stats.analytic_tangent = ns->analytic;
   s->stats.num_unknowns = nf;
@@ -229,7 +234,17 @@ int pdk_newton_solve_level(pdk_static *s, long *iterations) {
       for (long k = 0; k < ns->nf; ++k) {
         const pdk_index i = ns->dof_particle[k];
         const int c = ns->dof_comp[k];
-        pdk_newton_field(s->p, "x", c)[i] = ns->x0[c][i] + alpha * ns->dx[k];
+        if (!pdk_static_frame(s, i)) pdk_newton_field(s->p, "x", c)[i] = ns->x0[c][i] + alpha * ns->dx[k];
+      }
+      for (pdk_index i = 0; s->dir_of && i < n; ++i) { /* dx in the particle's frame: x += R dx */
+        const double(*R)[3] = pdk_static_frame(s, i);
+        if (!R) continue;
+        for (int c = 0; c < dim; ++c) {
+          double d = 0.0;
+          for (int q = 1; q < dim; ++q)
+            d += R[c][q] * ns->dx[ns->dof_of[q][i]];
+          pdk_newton_field(s->p, "x", c)[i] = ns->x0[c][i] + alpha * d;
+        }
       }
       PDK_CALL(pdk_static_residual(s));
       if (isfinite(s->rnorm) && isfinite(s->fnorm) &&

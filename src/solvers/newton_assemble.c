@@ -115,6 +115,32 @@ static int assemble(pdk_static *s, int num_groups, const pdk_index *group_start,
   return PDK_SUCCESS;
 }
 
+/* Particles held along a direction work in their frame (static_impl.h): the column's blocks
+ * become R_j^T K_ji R_i (block q of row particle list[q], [e][c] at (q dim + e) dim + c). */
+static void rotate_column(int dim, pdk_index i, pdk_index cnt, const pdk_index *list,
+                          const int32_t *dir, const double (*frames)[3][3], double *block) {
+  const double(*Ri)[3] = dir[i] >= 0 ? frames[dir[i]] : NULL;
+  for (pdk_index q = 0; q < cnt; ++q) {
+    const double(*Rj)[3] = dir[list[q]] >= 0 ? frames[dir[list[q]]] : NULL;
+    if (!Ri && !Rj) continue;
+    double *B = block + (size_t)q * (size_t)(dim * dim), T[9];
+    for (int e = 0; e < dim; ++e) /* T = B R_i */
+      for (int c = 0; c < dim; ++c) {
+        double v = 0.0;
+        for (int d = 0; d < dim; ++d)
+          v += B[e * dim + d] * (Ri ? Ri[d][c] : (double)(d == c));
+        T[e * dim + c] = v;
+      }
+    for (int e = 0; e < dim; ++e) /* B = R_j^T T */
+      for (int c = 0; c < dim; ++c) {
+        double v = 0.0;
+        for (int d = 0; d < dim; ++d)
+          v += (Rj ? Rj[d][e] : (double)(d == e)) * T[d * dim + c];
+        B[e * dim + c] = v;
+      }
+  }
+}
+
 /* Analytic tangent at the current x (the model's tangent_column, see model_impl.h): one column
  * particle per iteration of a static parallel loop; each column is computed whole by one thread
  * into a dense block over its coupled particles (the pattern's list, same order), then copied to
@@ -152,9 +178,12 @@ static int assemble_analytic(pdk_static *s) {
   double *const *diag_full = ns->diag_full;
   void (*column)(const pdk_model *, pdk_index, const pdk_index *, double *) =
       m->ops->tangent_column;
+  const int32_t *dir = s->dir_of;
+  const double(*frames)[3][3] = (const double(*)[3][3])s->dir_frame;
   const pdk_model *mc = m;
 #pragma omp parallel default(none) shared(n, dim, hops, bs, bj, scratch, blocks, cap, Ap, Ax,      \
-                                          dof_of, diag_full, column, mc) num_threads(nt)
+                                          dof_of, diag_full, column, mc, dir, frames)              \
+    num_threads(nt)
   {
     const size_t tid = (size_t)omp_get_thread_num();
     pdk_index *stamp = scratch + 3 * (size_t)n * tid;
@@ -169,6 +198,7 @@ static int assemble_analytic(pdk_static *s) {
         loc[list[q]] = q;
       memset(block, 0, (size_t)cnt * (size_t)(dim * dim) * sizeof *block);
       column(mc, i, loc, block);
+      if (dir) rotate_column(dim, i, cnt, list, dir, frames, block);
       const double *Kii = block + (size_t)loc[i] * (size_t)(dim * dim);
       for (int c = 0; c < dim; ++c) {
         diag_full[c][i] = Kii[c * dim + c];
@@ -203,6 +233,9 @@ int pdk_newton_tangent(pdk_static *s, int colored, int *num_cols, const int **co
   newton_state *ns = s->newton;
   PDK_CHECK(ns && ns->Ap, s->ctx, PDK_ERR_ARG,
             "newton: no tangent (not a Newton solver, or no unknowns)");
+  PDK_CHECK(colored == 2 || !s->dir_of, s->ctx, PDK_ERR_UNSUPPORTED,
+            "newton: with a boundary condition along a direction only the analytic tangent "
+            "(colored 2) is available");
   PDK_CHECK(colored != 2 || s->m->ops->tangent_column, s->ctx, PDK_ERR_UNSUPPORTED,
             "newton: model '%s' has no analytic tangent", pdk_model_kind_name(s->m->opts.kind));
   if (colored == 2)

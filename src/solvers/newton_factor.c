@@ -113,6 +113,16 @@ static double null_vector_rho(pdk_static *s, pdk_index *where) {
       *where = i;
     }
   }
+  for (pdk_index i = 0; s->dir_of && i < n; ++i) { /* held along a direction: back to x, y, z */
+    const double(*R)[3] = pdk_static_frame(s, i);
+    if (!R) continue;
+    double g[3] = {0, 0, 0};
+    for (int c = 0; c < dim; ++c)
+      for (int q = 0; q < dim; ++q)
+        g[c] += R[c][q] * u[q][i];
+    for (int c = 0; c < dim; ++c)
+      u[c][i] = g[c];
+  }
   const pdk_bond_index *bs = pdk_families_bond_start(s->fam);
   const pdk_index *bj = pdk_families_bond_j(s->fam);
   const uint8_t *alive = pdk_model_bond_alive(s->m);

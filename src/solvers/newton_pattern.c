@@ -83,17 +83,23 @@ int pdk_newton_check_held(pdk_static *s) {
     double r[3] = {0, 0, 0};
     for (int a = 0; a < dim; ++a)
       r[a] = (X[a][i] - centre[a]) / lref;
+    const double(*R)[3] = pdk_static_frame(s, i);
     for (int c = 0; c < dim; ++c) {
       if (!s->fixed[c][i]) continue;
+      /* the constrained direction: axis c, or the normal n of a condition along a direction */
+      double d[3] = {0, 0, 0};
+      for (int a = 0; a < dim; ++a)
+        d[a] = R ? R[a][c] : (double)(a == c);
       double phi[6] = {0};
-      phi[c] = 1.0; /* translation c */
+      for (int a = 0; a < dim; ++a)
+        phi[a] = d[a]; /* translations */
       if (dim == 2)
-        phi[2] = c == 0 ? -r[1] : r[0];
+        phi[2] = -r[1] * d[0] + r[0] * d[1];
       else {
-        /* rotation about axis a: (e_a x r)_c */
-        phi[3] = c == 0 ? 0.0 : (c == 1 ? -r[2] : r[1]);
-        phi[4] = c == 0 ? r[2] : (c == 1 ? 0.0 : -r[0]);
-        phi[5] = c == 0 ? -r[1] : (c == 1 ? r[0] : 0.0);
+        /* rotation about axis a: (e_a x r).d */
+        phi[3] = -r[2] * d[1] + r[1] * d[2];
+        phi[4] = r[2] * d[0] - r[0] * d[2];
+        phi[5] = -r[1] * d[0] + r[0] * d[1];
       }
       for (int k = 0; k < m; ++k)
         for (int l = 0; l < m; ++l)

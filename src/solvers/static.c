@@ -153,10 +153,32 @@ static int setup_conditions(pdk_static *s) {
                     k, bc->scale_field, (int)i, (long long)pdk_particles_id(s->p)[i], c);
       }
     }
-    if (bc->kind == PDK_BC_BODY_FORCE)
+    if (pdk_bc_directional(bc)) {
+      PDK_CHECK(!bc->scale_field, ctx, PDK_ERR_UNSUPPORTED,
+                "boundary condition %d: a condition along a direction takes no scale_field", k);
+      if (!s->dir_of) {
+        s->dir_of = malloc((size_t)n * sizeof(int32_t) + 1);
+        s->dir_frame = calloc((size_t)s->opts.num_bcs, sizeof *s->dir_frame);
+        PDK_CHECK(s->dir_of && s->dir_frame, ctx, PDK_ERR_MEMORY,
+                  "static solver: out of memory for %d particles", (int)n);
+        for (pdk_index i = 0; i < n; ++i)
+          s->dir_of[i] = -1;
+      }
+      pdk_bc_frame(bc, dim, s->dir_frame[k]);
+      PDK_CALL(pdk_bc_claim_direction(ctx, s->p, k, mem, s->dir_of));
+    } else if (bc->kind == PDK_BC_BODY_FORCE)
       s->has_body_force = 1;
     else
       PDK_CALL(pdk_bc_claim(ctx, s->p, bc, k, mem, s->owner, s->fixed, &s->num_fixed));
+  }
+  if (s->dir_of) { /* the normal component (0 in the particle's frame) is prescribed */
+    PDK_CALL(pdk_bc_direction_overlap(ctx, s->p, s->dir_of, s->owner));
+    for (pdk_index i = 0; i < n; ++i)
+      if (s->dir_of[i] >= 0) {
+        s->fixed[0][i] = 1;
+        s->owner[0][i] = s->dir_of[i];
+        s->num_fixed++;
+      }
   }
   return PDK_SUCCESS;
 }
@@ -297,6 +319,10 @@ void pdk_static_destroy(pdk_static **sp) {
   for (int c = 0; c < 3; ++c) {
     free(s->fixed[c]);
     free(s->owner[c]);
+    if (c == 0) {
+      free(s->dir_of);
+      free(s->dir_frame);
+    }
     free(s->u_level[c]);
     free(s->b_level[c]);
     free(s->r[c]);
@@ -355,6 +381,21 @@ static void emit(pdk_static *s, pdk_static_phase phase, long iterations, double 
   if (s->opts.monitor) s->opts.monitor(s->opts.monitor_user, &ev);
 }
 
+/* The external force on particle i held along a direction n, component c: the body force on the
+ * tangents plus the support along n, from the residual (r holds it in the particle's frame: the
+ * support is V b.n - r.n) or, with commit, from the forces (-V f.n). */
+static double dir_external(const pdk_static *s, pdk_index i, int c, const double *vol,
+                           int commit) {
+  const double(*R)[3] = pdk_static_frame(s, i);
+  double bn = 0.0, fn = 0.0;
+  for (int a = 0; a < s->dim; ++a) {
+    bn += s->b_level[a][i] * R[a][0];
+    fn += field(s->p, "f", a)[i] * R[a][0];
+  }
+  const double support = commit ? -vol[i] * fn : vol[i] * bn - s->r[0][i];
+  return vol[i] * (s->b_level[c][i] - bn * R[c][0]) + support * R[c][0];
+}
+
 /* External work of the step from the last commit to this equilibrium (r: the trial residual at
  * it): trapezoid of the external force (supports and body forces: V b - r on prescribed
  * components, V b on free ones) times the displacement increment, summed in index order. */
@@ -366,7 +407,8 @@ static void work_to_equilibrium(pdk_static *s) {
     const double *b = s->b_level[c], *r = s->r[c], *xp = s->x_prev[c], *fp = s->fext_prev[c];
     const uint8_t *fixed = s->fixed[c];
     for (pdk_index i = 0; i < s->n; ++i) {
-      const double fe = vol[i] * b[i] - (fixed[i] ? r[i] : 0.0);
+      const double fe = pdk_static_frame(s, i) ? dir_external(s, i, c, vol, 0)
+                                               : vol[i] * b[i] - (fixed[i] ? r[i] : 0.0);
       w += 0.5 * (fp[i] + fe) * (x[i] - xp[i]);
     }
   }
@@ -382,7 +424,9 @@ static void work_commit_state(pdk_static *s) {
     const uint8_t *fixed = s->fixed[c];
     double *fp = s->fext_prev[c];
     for (pdk_index i = 0; i < s->n; ++i)
-      fp[i] = fixed[i] ? -vol[i] * f[i] : vol[i] * b[i];
+      fp[i] = pdk_static_frame(s, i) ? dir_external(s, i, c, vol, 1)
+              : fixed[i]             ? -vol[i] * f[i]
+                                     : vol[i] * b[i];
     memcpy(s->x_prev[c], x, (size_t)s->n * sizeof(double));
   }
 }
@@ -393,8 +437,8 @@ static void scale_free(pdk_static *s, double factor) {
     double *x = field(s->p, "x", c);
     const double *X = pdk_particles_X(s->p, c);
     const uint8_t *fixed = s->fixed[c];
-    for (pdk_index i = 0; i < s->n; ++i)
-      if (!fixed[i]) x[i] = X[i] + factor * (x[i] - X[i]);
+    for (pdk_index i = 0; i < s->n; ++i) /* along a direction: the normal is set again after */
+      if (!fixed[i] || pdk_static_frame(s, i)) x[i] = X[i] + factor * (x[i] - X[i]);
   }
 }
 

@@ -27,7 +27,17 @@ void pdk_static_apply_prescribed(pdk_static *s) {
     const uint8_t *fixed = s->fixed[c];
     const double *u = s->u_level[c];
     for (pdk_index i = 0; i < s->n; ++i)
-      if (fixed[i]) x[i] = X[i] + u[i];
+      if (fixed[i] && !pdk_static_frame(s, i)) x[i] = X[i] + u[i];
+  }
+  if (!s->dir_of) return;
+  for (pdk_index i = 0; i < s->n; ++i) { /* along a direction n: u.n = u_level[0] */
+    const double(*R)[3] = pdk_static_frame(s, i);
+    if (!R) continue;
+    double un = 0.0;
+    for (int c = 0; c < s->dim; ++c)
+      un += (field(s->p, "x", c)[i] - pdk_particles_X(s->p, c)[i]) * R[c][0];
+    for (int c = 0; c < s->dim; ++c)
+      field(s->p, "x", c)[i] += (s->u_level[0][i] - un) * R[c][0];
   }
 }
 
@@ -48,16 +58,32 @@ int pdk_static_residual(pdk_static *s) {
   }
   double *part = s->block_part;
   const int nt = s->ctx->num_threads;
-#pragma omp parallel for default(none) shared(f, b, fixed, r, vol, part, n, num_blocks, dim)       \
+#pragma omp parallel for default(none) shared(s, f, b, fixed, r, vol, part, n, num_blocks, dim)    \
     schedule(static) num_threads(nt)
   for (pdk_index blk = 0; blk < num_blocks; ++blk) {
     const pdk_index i0 = blk * PDK_STATIC_BLOCK;
     const pdk_index i1 = i0 + PDK_STATIC_BLOCK < n ? i0 + PDK_STATIC_BLOCK : n;
     double rs = 0.0, fs = 0.0;
-    for (pdk_index i = i0; i < i1; ++i)
+    for (pdk_index i = i0; i < i1; ++i) {
+      double rv[3] = {0, 0, 0}, lv[3] = {0, 0, 0};
       for (int c = 0; c < dim; ++c) {
-        const double load = vol[i] * b[c][i];
-        const double ri = vol[i] * f[c][i] + load;
+        lv[c] = vol[i] * b[c][i];
+        rv[c] = vol[i] * f[c][i] + lv[c];
+      }
+      const double(*R)[3] = pdk_static_frame(s, i);
+      if (R) { /* held along a direction: the residual and load in the particle's frame */
+        double rq[3] = {0, 0, 0}, lq[3] = {0, 0, 0};
+        for (int q = 0; q < dim; ++q)
+          for (int c = 0; c < dim; ++c) {
+            rq[q] += R[c][q] * rv[c];
+            lq[q] += R[c][q] * lv[c];
+          }
+        memcpy(rv, rq, sizeof rv);
+        memcpy(lv, lq, sizeof lv);
+      }
+      for (int c = 0; c < dim; ++c) {
+        const double load = lv[c];
+        const double ri = rv[c];
         r[c][i] = ri;
         if (fixed[c][i])
           fs += ri * ri;
@@ -66,6 +92,7 @@ int pdk_static_residual(pdk_static *s) {
           fs += load * load;
         }
       }
+    }
     part[2 * blk] = rs;
     part[2 * blk + 1] = fs;
   }

@@ -54,6 +54,13 @@ struct pdk_static {
   double *x_prev[3], *fext_prev[3];
   int time_mode;         /* opts.total_time > 0 */
   pdk_static_event last; /* last COMMITTED event */
+  /* conditions along a direction (pdk_bc.direction): dir_of[i] is the condition holding
+   * particle i (-1: none; NULL: no such condition), dir_frame[k] its frame (bc.h). For such a
+   * particle the solvers work in that frame: component 0 is the normal n (fixed[0] = 1, owner[0]
+   * = k, u_level[0] = the prescribed u.n), components 1.. the free tangents, and r holds the
+   * residual's components in the frame; x, f and the reactions stay in x, y, z. */
+  int32_t *dir_of;
+  double (*dir_frame)[3][3];
   int has_body_force;
   int num_fixed;                                          /* prescribed components */
   uint8_t *reaction_member[PDK_STATIC_MAX_REACTION_SETS]; /* borrowed set fields */
@@ -75,6 +82,11 @@ struct pdk_static {
   void *adr;    /* adr.c state */
   void *newton; /* newton.c state */
 };
+
+/* The frame of particle i (NULL unless a condition holds it along a direction). */
+static inline const double (*pdk_static_frame(const pdk_static *s, pdk_index i))[3] {
+  return s->dir_of && s->dir_of[i] >= 0 ? (const double(*)[3])s->dir_frame[s->dir_of[i]] : NULL;
+}
 
 /* static.c */
 /* Trial force pass at the current x, then r and the norms (rnorm, fnorm). */

@@ -11,7 +11,7 @@
 #include <math.h>
 #include <string.h>
 
-enum { COL_X = 0, COL_Y, COL_Z, COL_VOLUME, COL_AREA, COL_SET, COL_NUM_KINDS };
+enum { COL_X = 0, COL_Y, COL_Z, COL_VOLUME, COL_AREA, COL_SET, COL_MATERIAL, COL_NUM_KINDS };
 
 void pdk_points_free(pdk_points *pts) {
   if (!pts) return;
@@ -22,6 +22,11 @@ void pdk_points_free(pdk_points *pts) {
     free(pts->set_name[k]);
     free(pts->set[k]);
   }
+  free(pts->material);
+  free(pts->path);
+  for (int k = 0; k < pts->num_mkeys; ++k)
+    free(pts->mkey[k].name);
+  free(pts->mkey);
   memset(pts, 0, sizeof *pts);
 }
 
@@ -39,7 +44,32 @@ static int grow(pdk_points *p, pdk_index cap) {
     if (!s) return 1;
     p->set[k] = s;
   }
+  if (p->mkey) {
+    int32_t *m = realloc(p->material, (size_t)cap * sizeof(int32_t));
+    if (!m) return 1;
+    p->material = m;
+  }
   return 0;
+}
+
+/* The key of a material cell (name, or index when name is NULL) first seen at line/row: its
+ * number in p->mkey, added when new; -1 when there are too many distinct values or no memory. */
+int pdk_points_mkey_find(pdk_points *p, const char *name, size_t len, long index, long line,
+                         long row) {
+  for (int k = 0; k < p->num_mkeys; ++k) {
+    const pdk_points_mkey *m = &p->mkey[k];
+    if (name ? m->name && strlen(m->name) == len && !strncmp(m->name, name, len)
+             : !m->name && m->index == index)
+      return k;
+  }
+  if (p->num_mkeys >= PDK_POINTS_MAX_MKEYS) return -1;
+  pdk_points_mkey *m = &p->mkey[p->num_mkeys];
+  m->name = NULL;
+  if (name && !(m->name = strndup(name, len))) return -1;
+  m->index = index;
+  m->line = line;
+  m->row = row;
+  return p->num_mkeys++;
 }
 
 /* The next comma-separated cell of *q (blanks around it trimmed) into [*b, *e). */
@@ -89,9 +119,9 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
     char *b, *e;
     next_cell(&q, &b, &e);
     const int w = (int)(e - b);
-    PDK_CHECK_GOTO(num_cols < 3 + 2 + PDK_POINTS_MAX_SETS, ctx, PDK_ERR_ARG,
+    PDK_CHECK_GOTO(num_cols < 3 + 3 + PDK_POINTS_MAX_SETS, ctx, PDK_ERR_ARG,
                    "%s:%ld: more than %d columns; a cloud holds at most %d sets", path, lineno,
-                   3 + 2 + PDK_POINTS_MAX_SETS, PDK_POINTS_MAX_SETS);
+                   3 + 3 + PDK_POINTS_MAX_SETS, PDK_POINTS_MAX_SETS);
     int k = -1;
     if (w == 1 && (*b == 'x' || *b == 'y' || (*b == 'z' && dim == 3)))
       k = *b == 'x' ? COL_X : *b == 'y' ? COL_Y : COL_Z;
@@ -99,6 +129,11 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
       k = COL_VOLUME;
     else if (w == 4 && !strncmp(b, "area", 4) && dim == 2)
       k = COL_AREA;
+    else if (w == 8 && !strncmp(b, "material", 8)) {
+      k = COL_MATERIAL;
+      if (!out->mkey) out->mkey = calloc(PDK_POINTS_MAX_MKEYS, sizeof *out->mkey);
+      PDK_CHECK_GOTO(out->mkey, ctx, PDK_ERR_MEMORY, "out of memory");
+    }
     else if (w > 4 && !strncmp(b, "set:", 4)) {
       k = COL_SET;
       for (const char *c = b + 4; c < e; ++c)
@@ -114,8 +149,8 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
       out->num_sets++;
     }
     PDK_CHECK_GOTO(k >= 0, ctx, PDK_ERR_ARG,
-                   "%s:%ld: unknown column '%.*s'; the columns of a %d-D cloud are x, y%s, %s and "
-                   "set:<name>",
+                   "%s:%ld: unknown column '%.*s'; the columns of a %d-D cloud are x, y%s, %s, "
+                   "set:<name> and material",
                    path, lineno, w, b, dim, dim == 3 ? ", z" : "",
                    dim == 2 ? "volume or area" : "volume");
     PDK_CHECK_GOTO(k == COL_SET || !seen[k], ctx, PDK_ERR_ARG, "%s:%ld: column '%.*s' is named twice",
@@ -154,6 +189,30 @@ int pdk_points_read_csv(pdk_ctx *ctx, const char *path, int dim, double thicknes
                      "%s:%ld: %d values, the header (line %ld) names %d columns", path, lineno, c,
                      header_line, num_cols);
       next_cell(&q, &b, &e);
+      if (kind[c] == COL_MATERIAL) {
+        const int w = (int)(e - b);
+        int digits = w > 0, name_ok = w > 0 && w <= 255;
+        for (const char *t = b; t < e; ++t) {
+          digits &= isdigit((unsigned char)*t) != 0;
+          name_ok &= isalnum((unsigned char)*t) || *t == '_' || *t == '-' || *t == '.';
+        }
+        PDK_CHECK_GOTO(name_ok, ctx, PDK_ERR_ARG,
+                       "%s:%ld: the material is '%.*s'; give a material's name (as in the "
+                       "scene's materials list: letters, digits, _ - .) or its index (0 for "
+                       "`material`, k for materials entry k - 1)",
+                       path, lineno, w, b);
+        const long index = digits && w <= 6 ? strtol(b, NULL, 10) : -1;
+        PDK_CHECK_GOTO(!digits || index >= 0, ctx, PDK_ERR_ARG,
+                       "%s:%ld: the material index %.*s is too large; a scene has at most 256 "
+                       "materials",
+                       path, lineno, w, b);
+        const int key = pdk_points_mkey_find(out, digits ? NULL : b, (size_t)w, index, lineno, i);
+        PDK_CHECK_GOTO(key >= 0, ctx, PDK_ERR_ARG,
+                       "%s:%ld: more than %d different materials in the column material", path,
+                       lineno, PDK_POINTS_MAX_MKEYS);
+        out->material[i] = key;
+        continue;
+      }
       char *end = NULL;
       const char save = *e;
       *e = '\0';
@@ -301,6 +360,37 @@ int pdk_points_read_h5(pdk_ctx *ctx, const char *path, int dim, pdk_points *out)
         PDK_CHECK_GOTO(out->set[s][i] <= 1, ctx, PDK_ERR_ARG,
                        "%s: %ssets/%s[%ld] is %d; a set holds 0 or 1", path, where, name, (long)i,
                        out->set[s][i]);
+    }
+  }
+  /* material: an integer dataset [n], each particle's material index */
+  if (H5Lexists(g, "material", H5P_DEFAULT) > 0) {
+    hsize_t dm[2];
+    int integer = 0;
+    if (dset_dims(g, "material", dm) == 1 && dm[0] == dx[0]) {
+      hid_t d = H5Dopen2(g, "material", H5P_DEFAULT), t = d >= 0 ? H5Dget_type(d) : -1;
+      integer = t >= 0 && H5Tget_class(t) == H5T_INTEGER;
+      if (t >= 0) H5Tclose(t);
+      if (d >= 0) H5Dclose(d);
+    }
+    PDK_CHECK_GOTO(integer, ctx, PDK_ERR_ARG,
+                   "%s: %smaterial is not an integer dataset of %ld values (each particle's "
+                   "material index: 0 for `material`, k for materials entry k - 1)",
+                   path, where, (long)n);
+    out->mkey = calloc(PDK_POINTS_MAX_MKEYS, sizeof *out->mkey);
+    out->material = malloc((size_t)n * sizeof(int32_t));
+    PDK_CHECK_GOTO(out->mkey && out->material, ctx, PDK_ERR_MEMORY, "out of memory");
+    const hsize_t start[1] = {0}, count[1] = {dx[0]};
+    PDK_CALL_GOTO(
+        pdk_h5_read_block(ctx, g, "material", H5T_NATIVE_INT32, 1, start, count, out->material));
+    for (pdk_index i = 0; i < n; ++i) {
+      PDK_CHECK_GOTO(out->material[i] >= 0, ctx, PDK_ERR_ARG,
+                     "%s: %smaterial[%ld] is %d; a material index is >= 0 (0 for `material`, k "
+                     "for materials entry k - 1)",
+                     path, where, (long)i, (int)out->material[i]);
+      const int key = pdk_points_mkey_find(out, NULL, 0, out->material[i], 0, i);
+      PDK_CHECK_GOTO(key >= 0, ctx, PDK_ERR_ARG, "%s: more than %d different materials in %smaterial",
+                     path, PDK_POINTS_MAX_MKEYS, where);
+      out->material[i] = key;
     }
   }
 cleanup:

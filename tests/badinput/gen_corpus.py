@@ -587,6 +587,78 @@ def build(c):
     o("ovr_dimension_3", "-", BAR, ["dimension=3"], "dimension|point|lo|hi")
     o("ovr_sets_empty_list", "-", BAR, ["sets=[]"], "left|set")
 
+    # -- Gmsh meshes (geometry.mesh): the mesh beside the case ---------------------------------
+    HEAD = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+    NODES = ("$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1e-3 0 0\n1e-3 1e-3 0\n"
+             "0 1e-3 0\n$EndNodes\n")
+    def mesh_case(cid, mesh, msg, geom=""):
+        c.files[cid + ".msh"] = mesh.encode()
+        c.scene(cid, "-", "dimension: 2\ngeometry:\n  spacing: 0.001\n"
+                f"  mesh: {cid}.msh\n{geom}"
+                "material: {density: 7800, youngs_modulus: 200.0e9, poisson_ratio: 0.3}\n"
+                "model: {kind: correspondence, law: linear_elastic}\n"
+                "boundary_conditions:\n  - {set: all, type: displacement, x: 0}\n"
+                "solver: {steps: 5}\n", msg)
+    mesh_case("range_mesh_binary", "$MeshFormat\n4.1 1 8\n", "binary")
+    mesh_case("range_mesh_version", "$MeshFormat\n3.0 0 8\n", "version 3.0")
+    mesh_case("range_mesh_element_type", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 4 1 2\n$EndElements\n", "element type 9")
+    mesh_case("type_mesh_coordinate", HEAD + "$Nodes\n1 1 1 1\n2 1 0 1\n1\n0 0.0x1 0\n"
+              "$EndNodes\n", "0.0x1")
+    mesh_case("missing_mesh_nodes", HEAD, "no .Nodes section")
+    mesh_case("range_mesh_undefined_node", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 7\n$EndElements\n", "node 7")
+    mesh_case("range_mesh_3d_element", HEAD + NODES
+              + "$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n", "3-D element")
+    mesh_case("trunc_mesh_nodes", HEAD + "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n", "file ends")
+    mesh_case("range_mesh_with_box", HEAD + NODES
+              + "$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 4\n$EndElements\n", "geometry.box",
+              geom="  box: {lo: [0, 0], hi: [1, 1]}\n")
+
+    # -- boundary conditions along a direction (a roller on an inclined face) --------------------
+    LEFT = "{set: left, type: displacement, x: 0, y: 0}"
+    for cid, new, msg in [
+            ("range_bc_direction_zero", "{set: left, type: displacement, direction: [0, 0], "
+             "value: 0}", "direction"),
+            ("range_bc_direction_nan", "{set: left, type: displacement, direction: [.nan, 1], "
+             "value: 0}", "direction"),
+            ("range_bc_direction_with_x", "{set: left, type: displacement, direction: [1, 1], "
+             "value: 0, x: 0}", "boundary_conditions.0..x"),
+            ("missing_bc_direction_value", "{set: left, type: displacement, direction: [1, 1]}",
+             "value"),
+            ("range_bc_value_alone", "{set: left, type: displacement, value: 0}", "value"),
+            ("range_bc_direction_body_force", "{set: left, type: body_force, direction: [1, 0], "
+             "value: 1}", "direction"),
+            ("type_bc_direction_length", "{set: left, type: displacement, direction: [1, 0, 0], "
+             "value: 0}", "direction"),
+            ("type_bc_direction_scalar", "{set: left, type: displacement, direction: 1, value: 0}",
+             "direction"),
+            ("range_bc_direction_overlap", "{set: left, type: displacement, direction: [1, 1], "
+             "value: 0}\n  - {set: all, type: displacement, y: 0}", "along a direction")]:
+        c.mut(cid, "-", BAR, LEFT, new, msg, cmd="run" if cid.endswith("overlap") else "check")
+
+    # -- point clouds (geometry.points) with a material column: the cloud beside the case -------
+    def cloud_case(cid, cells, msg, materials=True, region=""):
+        rows = "".join(f"{0.0005 + 0.001 * i:g}, 0.0005, 1e-6, {m}, {1 if i < 2 else 0}\n"
+                       for i, m in enumerate(cells))
+        c.files[cid + ".csv"] = ("x, y, area, material, set:left\n" + rows).encode()
+        mats = ("materials:\n  - {name: soft, density: 1100, youngs_modulus: 2.0e9, "
+                f"poisson_ratio: 0.3{region}}}\n") if materials else ""
+        c.scene(cid, "-", "dimension: 2\ngeometry:\n  spacing: 0.001\n"
+                f"  points: {cid}.csv\n"
+                "material: {density: 7800, youngs_modulus: 200.0e9, poisson_ratio: 0.3}\n"
+                + mats + "model: {kind: correspondence, law: linear_elastic}\n"
+                "boundary_conditions:\n  - {set: left, type: displacement, x: 0, y: 0}\n"
+                "solver: {steps: 5}\n", msg)
+    cloud_case("range_points_material_unknown", ["0", "0", "soft", "hard"], "'hard'")
+    cloud_case("range_points_material_index", ["0", "0", "1", "2"], "index 2")
+    cloud_case("type_points_material_cell", ["0", "0", "soft", "so ft"], "'so ft'")
+    cloud_case("range_points_material_no_list", ["0", "0", "1", "1"], "no materials list",
+               materials=False)
+    cloud_case("range_points_material_region", ["0", "0", "1", "1"], "gives a region",
+               region=", box: {lo: [0, 0], hi: [1, 1]}")
+    cloud_case("range_points_material_unused", ["0", "0", "0", "0"], "no particle")
+
     # -- the command line ------------------------------------------------------------------------
     bar = "@BASE:bar@"
     c.cli("cli_no_command", "-", [], msg="usage")
