@@ -325,6 +325,21 @@ static void report_energy(pdk_sim *sim, const pdk_history *h0, const pdk_history
     else if (jc_broke && pdk_explicit_opts_get(e)->dt_update == PDK_DT_UPDATE_NONE)
       hint = "; bonds broke, and the stable step can fall as families lose bonds: "
              "solver.dt_update: breaks follows it";
+    const long rebuilds = pdk_model_num_rebuilds(pdk_sim_model(sim));
+    if (imb > 0.0 && rebuilds > 0) {
+      /* energy lost across family rebuilds (connectivity ul): a rebuild re-weighs the bonds and
+       * restarts the stabilization term, which the account does not book; measured on the
+       * Taylor impact of tests/t261 at safety 0.3: 18% lost with rebuilds, 2.3% without */
+      fprintf(stderr,
+              "pdk: warning: the energy balance is off by %.2g%% of the energy put in (more than "
+              "%.0f%%), energy lost: the families were rebuilt %ld time(s) since step 0 "
+              "(model.connectivity ul), and the rebuilds lose energy this account does not book "
+              "(a rebuild re-weighs the bonds and restarts the stabilization term), so a smaller "
+              "step will not close it; rerun with model.ul_skin: 0 (no rebuilds) or "
+              "model.connectivity: tl to tell the model's loss from the time step's error\n",
+              100.0 * fabs(imb) / in, 100.0 * PDK_ENERGY_WARN, rebuilds);
+      return;
+    }
     fprintf(stderr,
             "pdk: warning: the energy balance is off by %.2g%% of the energy put in (more than "
             "%.0f%%): the time step does not resolve this run; rerun with a smaller solver.dt "

@@ -47,6 +47,15 @@ struct pdk_explicit {
   double external_work;
   double energy0;           /* kinetic + strain energy at creation, for the blow-up check */
   double energy_floor;      /* energies below this are round-off for the blow-up check */
+  /* energy-account runaway check (explicit.c, check_runaway; not checkpointed: a restored or
+   * restarted solver takes its baseline at its first step) */
+  int acct_set;             /* 1 once acct_e0 and acct_w0 hold the baseline */
+  long acct_step0;          /* the step of the baseline */
+  double acct_e0, acct_w0;  /* kinetic + strain + dissipated energy and external work there */
+  double acct_prev;         /* energy created at the previous check */
+  int acct_streak;          /* consecutive checks at which the created energy grew */
+  double *acct_a2;          /* [n] |a|^2 when the streak began (only while a streak runs) */
+  long acct_a2_step;        /* the step of acct_a2 */
 };
 
 /* The solver's scalars stored in a checkpoint. */
