@@ -96,6 +96,8 @@ static void schema_region_kinds(scene_schema *sc, cyaml_schema_field_t *f) {
                                                              halfspace, sc->halfspace));
   field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("polygon", OPT_PTR, sc_region, polygon,
                                                              sc->polygon));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("cylinder", OPT_PTR, sc_region,
+                                                             cylinder, sc->cylinder));
 }
 
 void pdk_scene_schema_build(scene_schema *sc, int dim) {
@@ -124,6 +126,8 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("normal", 0, sc_halfspace, normal, &sc->num, d));
   ADD(polygon, CYAML_FIELD_SEQUENCE("vertices", CYAML_FLAG_POINTER, sc_polygon, vertices,
                                     &sc->point, 3, 4096));
+  ADD(cylinder, CYAML_FIELD_SEQUENCE_FIXED("axis", 0, sc_cylinder, axis, &sc->point, 2));
+  ADD(cylinder, CYAML_FIELD_FLOAT("radius", 0, sc_cylinder, radius));
 
   schema_region_kinds(sc, sc->hole);
   schema_region_kinds(sc, sc->notch);

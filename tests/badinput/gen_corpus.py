@@ -248,6 +248,16 @@ def build(c):
          "    - polygon: {vertices: [[0.02, 0.04], [0.03, 0.06]]}", "polygon"),
         ("range_halfspace_zero_normal", BAR, "{name: right, box: {lo: [0.037, -1], hi: [1, 1]}}",
          "{name: right, halfspace: {point: [0.037, 0], normal: [0, 0]}}", "normal"),
+        ("range_cylinder_zero_axis", BK, "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}",
+         "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}\n  notches:\n"
+         "    - {cylinder: {axis: [[0.02, 0.02, 0], [0.02, 0.02, 0]], radius: 0.01}, invert: true}",
+         r"notches\[0\]\.cylinder\.axis"),
+        ("range_cylinder_radius", BK, "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}",
+         "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}\n  notches:\n"
+         "    - {cylinder: {axis: [[0.02, 0.02, 0], [0.02, 0.02, 0.04]], radius: 0}, invert: true}",
+         r"cylinder\.radius"),
+        ("range_cylinder_in_2d", PH, "    - disk: {center: [0.025, 0.05], radius: 0.005}",
+         "    - cylinder: {axis: [[0.025, 0.04], [0.025, 0.06]], radius: 0.005}", "cylinder"),
     ]
     for cid, base, old, new, key in rng:
         c.mut(cid, "-", base, old, new, key)
