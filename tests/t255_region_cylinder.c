@@ -15,7 +15,8 @@ static int in3(const pdk_region *r, double x, double y, double z) {
   return pdk_region_contains(r, 3, p);
 }
 
-/* Particles of a cubic lattice of spacing h over box lo..hi cut to the cylinder (inverted notch). */
+/* Particles of a cubic lattice of spacing h over box lo..hi cut to the cylinder (inverted notch).
+ */
 static pdk_index lattice_in_cylinder(pdk_ctx *ctx, double h, const double lo[3], const double hi[3],
                                      const pdk_region *cyl) {
   pdk_lattice_opts o = pdk_lattice_opts_default();

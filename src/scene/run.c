@@ -278,6 +278,8 @@ static int run(run_state *r) {
   oo.scene_text = pdk_scene_text(r->scene);
   oo.reaction_sets = r->so->reaction_sets;
   oo.num_reaction_sets = r->so->num_reaction_sets;
+  oo.walls = r->so->walls;
+  oo.num_walls = r->so->num_walls;
   oo.units = r->so->units;
   oo.compression = r->so->compression;
   if (pdk_particles_dim(pdk_sim_particles(sim)) == 2)

@@ -116,6 +116,8 @@ typedef struct sc_bc {
   char *set;
   int type, function;
   double x, y, z, duration, period;
+  double point[3], normal[3], velocity[3]; /* type: wall */
+  char *name;
 } sc_bc;
 typedef struct sc_initial {
   double velocity[3];

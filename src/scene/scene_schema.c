@@ -48,7 +48,8 @@ static const cyaml_strval_t stencil_names[] = {
     {"off", PDK_STENCIL_OFF}, {"auto", PDK_STENCIL_AUTO}, {"on", PDK_STENCIL_ON}};
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
                                                {"velocity", PDK_BC_VELOCITY},
-                                               {"body_force", PDK_BC_BODY_FORCE}};
+                                               {"body_force", PDK_BC_BODY_FORCE},
+                                               {"wall", PDK_BC_WALL}};
 const cyaml_strval_t pdk_scene_function_names[] = {{"constant", PDK_TFUN_CONSTANT},
                                                    {"linear", PDK_TFUN_LINEAR},
                                                    {"ramp", PDK_TFUN_RAMP},
@@ -259,6 +260,10 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
                            N_OF(pdk_scene_function_names)));
   ADD(bc, CYAML_FIELD_FLOAT("duration", OPT, sc_bc, duration));
   ADD(bc, CYAML_FIELD_FLOAT("period", OPT, sc_bc, period));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("point", OPT, sc_bc, point, &sc->num, d));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("normal", OPT, sc_bc, normal, &sc->num, d));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_bc, velocity, &sc->num, d));
+  ADD(bc, CYAML_FIELD_STRING_PTR("name", OPT, sc_bc, name, 1, 255));
   sc->bc_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_bc, sc->bc)};
 
   ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_initial, velocity, &sc->num, d));
