@@ -40,8 +40,23 @@ PDK_EXPORT double pdk_tfun_integral(const pdk_tfun *f, double t0, double t1);
 typedef enum pdk_bc_kind {
   PDK_BC_DISPLACEMENT = 0, /* u_c(t) = value(t) on the chosen components; fixed: value 0 */
   PDK_BC_VELOCITY = 1,     /* v_c(t) = value(t); position integrates it */
-  PDK_BC_BODY_FORCE = 2    /* body force density b_c(t) [force / length^dim] added to f */
+  PDK_BC_BODY_FORCE = 2,   /* body force density b_c(t) [force / length^dim] added to f */
+  PDK_BC_WALL = 3          /* explicit solver only: a rigid frictionless plane, below */
 } pdk_bc_kind;
+
+#define PDK_MAX_WALLS 8
+
+/* A rigid frictionless wall (PDK_BC_WALL): the plane through point + velocity t with unit normal
+ * n = normal / |normal| pointing out of the wall, towards the body; components and value[] are
+ * unused. The particles of the set (NULL: all; particles with a prescribed component are left to
+ * their condition) may not go behind it, (x - point(t)) . n >= 0, and may leave it again: after
+ * each drift, a particle found behind is put back on the plane and the normal component of its
+ * velocity relative to the wall, when it points into the wall, is removed (a kinematic contact:
+ * perfectly plastic in the normal direction for that particle, the tangential motion free). The
+ * wall's impulse on the body (sum of m dv, along n) is the history's wall_impulse[k] (walls in the
+ * order of the list); the energy the wall takes, the kinetic energy removed plus the work of the
+ * position correction against the last forces (- sum V f . dx), is counted in external_work and
+ * in contact_work, so the energy account stays closed. */
 
 typedef struct pdk_bc {
   pdk_bc_kind kind;
@@ -60,6 +75,10 @@ typedef struct pdk_bc {
    * such a condition takes no other displacement or velocity condition. Explicit, ADR and Newton
    * with an analytic tangent; not with scale_field. */
   double direction[3];
+  /* PDK_BC_WALL only: a point of the plane at t = 0, its normal (non-zero, out of the wall) and
+   * the wall's constant velocity; name labels its history columns (may be NULL: "wall<k>"). */
+  double point[3], normal[3], velocity[3];
+  const char *name;
 } pdk_bc;
 
 /* Re-estimating the stable step during a run. The stable step of a body is not fixed: a family
@@ -120,6 +139,11 @@ typedef struct pdk_history {
    * here and not in `broken`) and the largest damage D of any particle. */
   pdk_index failed;
   double damage_max;
+  /* Walls (PDK_BC_WALL conditions, in list order; 0 without): the normal impulse each gave the
+   * body so far (N s; > 0 pushing along its normal), and the energy they took out of it so far,
+   * also counted in external_work (<= 0 up to the position-correction term). */
+  double wall_impulse[PDK_MAX_WALLS];
+  double contact_work;
 } pdk_history;
 
 typedef struct pdk_explicit pdk_explicit;

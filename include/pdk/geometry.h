@@ -57,18 +57,21 @@ typedef enum pdk_region_kind {
   PDK_REGION_BOX = 0,       /* lo <= x <= hi on every axis */
   PDK_REGION_BALL = 1,      /* |x - center| <= radius (a disk in 2-D) */
   PDK_REGION_HALFSPACE = 2, /* (x - point) . normal <= 0 (half-plane in 2-D) */
-  PDK_REGION_POLYGON = 3    /* 2-D: inside a simple polygon (crossing-number rule; a point exactly
+  PDK_REGION_POLYGON = 3,   /* 2-D: inside a simple polygon (crossing-number rule; a point exactly
                                on an edge may fall on either side) */
+  PDK_REGION_CYLINDER = 4   /* 3-D: distance to the axis p0-p1 <= radius and the projection on
+                               the axis between p0 and p1 (closed, flat ends) */
 } pdk_region_kind;
 
 typedef struct pdk_region {
   pdk_region_kind kind;
   double lo[3], hi[3];        /* BOX */
-  double center[3], radius;   /* BALL */
+  double center[3], radius;   /* BALL; CYLINDER: radius */
   double point[3], normal[3]; /* HALFSPACE */
   const double *vertices;     /* POLYGON: [num_vertices][2], caller-owned */
   int num_vertices;
-  int invert; /* 1: the complement of the region */
+  int invert;          /* 1: the complement of the region */
+  double p0[3], p1[3]; /* CYLINDER: the axis' two ends */
 } pdk_region;
 
 /* Constructors; every array has 3 entries (in 2-D the third is ignored but still read). */
@@ -76,9 +79,12 @@ PDK_EXPORT pdk_region pdk_region_box(const double lo[3], const double hi[3]);
 PDK_EXPORT pdk_region pdk_region_ball(const double center[3], double radius);
 PDK_EXPORT pdk_region pdk_region_halfspace(const double point[3], const double normal[3]);
 PDK_EXPORT pdk_region pdk_region_polygon(const double *vertices, int num_vertices);
+/* A closed circular cylinder (3-D): the axis from p0 to p1 (its flat ends lie there), radius. */
+PDK_EXPORT pdk_region pdk_region_cylinder(const double p0[3], const double p1[3], double radius);
 
 /* Checks a region's parameters (radius > 0, lo <= hi, normal non-zero, >= 3 vertices and 2-D for
- * polygons, all finite); PDK_ERR_ARG with a message naming the bad value. */
+ * polygons, 3-D and an axis of non-zero length for cylinders, all finite); PDK_ERR_ARG with a
+ * message naming the bad value. */
 PDK_EXPORT int pdk_region_check(pdk_ctx *ctx, int dim, const pdk_region *r);
 /* 1 if the point x[0..dim-1] lies in the region. Assumes a region that passes pdk_region_check. */
 PDK_EXPORT int pdk_region_contains(const pdk_region *r, int dim, const double *x);

@@ -97,6 +97,12 @@ typedef struct pdk_output_opts {
    * boundary condition along a direction, pdk_bc.direction), after all the other columns. */
   const double (*reaction_normals)[3];
   int plot; /* 1: make the PNG when gnuplot is on the PATH */
+  /* Rigid walls (PDK_BC_WALL, in the order of pdk_history.wall_impulse): names of the history
+   * columns wall_<name>_force (the mean normal force since the previous row: the impulse between
+   * the two rows over their time apart; 0 in the first row) and wall_<name>_impulse (so far), and
+   * with any wall the column contact_work. At most PDK_MAX_WALLS; 0: no such columns. */
+  const char *const *walls;
+  int num_walls;
   /* Deflate level 0 (off) .. 9 of the field outputs; default 0: deflate 1 costs about 20 times
    * the uncompressed write (1e6 particles, x v f: 1.1 s vs 0.05 s per output) for 44% less disk. */
   int compression;
@@ -170,7 +176,7 @@ PDK_EXPORT int pdk_output_adopt(pdk_output *o, const char *part, const char *fin
  * dimension, num_particles, num_bonds, model_kind, scene (text, when given; over 60 kB: the
  * dataset /scene); /solver attributes time, step, dt, dt_created (the step the run was created with), strain,
  * external_work, and the dt_update state dt_stable, dt_step0, dt_time0, est_step, est_broken,
- * num_estimates, num_dt_changes;
+ * num_estimates, num_dt_changes, and with walls wall_impulse_<k> and contact_work;
  * /model attributes num_broken, num_flagged, datasets bond_alive uint8 [num_bonds] and
  * s0 f64 [n] when the model can break bonds (pmb and lps also the breaking energy's pending
  * state: attribute book_has_pending, datasets book_prev uint8 [num_bonds], book_pending f64 [n]);

@@ -73,6 +73,8 @@ typedef struct pdk_scene_output {
   double reaction_normal[8][3];
   const char *units; /* output.units: "SI", "mm-N-s-tonne" or NULL (none): pdk_output_opts.units */
   int compression;   /* output.compression: deflate level 0..9 of the field outputs (0: off) */
+  int num_walls;     /* the wall conditions (type: wall), in list order: their names */
+  const char *const *walls;
 } pdk_scene_output;
 
 PDK_EXPORT const pdk_scene_output *pdk_scene_output_get(const pdk_scene *s);

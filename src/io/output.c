@@ -178,6 +178,24 @@ static int define_columns(pdk_output *o, const pdk_output_opts *opts) {
     snprintf(buf, sizeof buf, "reaction_%s_n", o->reaction_name[k]);
     add_column(o, buf, o->unit_force);
   }
+  /* Walls after everything else, so scenes without walls keep their columns. */
+  PDK_CHECK(opts->num_walls >= 0 && opts->num_walls <= PDK_MAX_WALLS &&
+                (opts->num_walls == 0 || opts->walls),
+            ctx, PDK_ERR_ARG, "0 to %d walls can be recorded, got %d", PDK_MAX_WALLS,
+            opts->num_walls);
+  o->num_walls = opts->num_walls;
+  o->wall_col = o->num_cols;
+  for (int k = 0; k < o->num_walls; ++k) {
+    char bare[OUT_NAME_MAX];
+    PDK_CHECK(opts->walls[k] && opts->walls[k][0] && strlen(opts->walls[k]) + 16 < OUT_COL_MAX, ctx,
+              PDK_ERR_ARG, "wall %d has no name or a name too long for a column", k);
+    pdk_out_sanitize(opts->walls[k], bare, sizeof bare);
+    snprintf(buf, sizeof buf, "wall_%s_force", bare);
+    add_column(o, buf, o->unit_force);
+    snprintf(buf, sizeof buf, "wall_%s_impulse", bare);
+    add_column(o, buf, "N s");
+  }
+  if (o->num_walls) add_column(o, "contact_work", o->unit_energy);
   return PDK_SUCCESS;
 }
 
@@ -270,19 +288,24 @@ cleanup:
   return err;
 }
 
-long pdk_output_last_history_step(const pdk_output *o) {
-  if (!o || o->rows <= 0) return -1;
+/* Column col of the last history row (-1 when unreadable). */
+static double last_row_value(const pdk_output *o, int col) {
   double v = -1.0;
-  hid_t fspace = H5Dget_space(o->col_dset[0]), mspace = -1;
+  hid_t fspace = H5Dget_space(o->col_dset[col]), mspace = -1;
   const hsize_t start[1] = {(hsize_t)o->rows - 1}, one[1] = {1};
   if (fspace < 0 || H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, one, NULL) < 0 ||
       (mspace = H5Screate_simple(1, one, NULL)) < 0 ||
-      H5Dread(o->col_dset[0], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &v) < 0)
+      H5Dread(o->col_dset[col], H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT, &v) < 0)
     v = -1.0;
   H5Eclear2(H5E_DEFAULT);
   if (mspace >= 0) H5Sclose(mspace);
   if (fspace >= 0) H5Sclose(fspace);
-  return (long)v;
+  return v;
+}
+
+long pdk_output_last_history_step(const pdk_output *o) {
+  if (!o || o->rows <= 0) return -1;
+  return (long)last_row_value(o, 0);
 }
 
 long pdk_output_last_field_step(const pdk_output *o) {
@@ -378,6 +401,11 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   }
   PDK_CALL_GOTO(pdk_out_flush_files(o));
   if (opts.append) PDK_CALL_GOTO(pdk_out_append_earlier(o, opts.append_step, opts.append_scene));
+  if (o->rows > 0 && o->num_walls) { /* a continued history: the mean forces go on from its end */
+    o->wall_prev_time = last_row_value(o, 1);
+    for (int k = 0; k < o->num_walls; ++k)
+      o->wall_prev_impulse[k] = last_row_value(o, o->wall_col + 2 * k + 1);
+  }
   *out = o;
   return PDK_SUCCESS;
 cleanup:
@@ -449,6 +477,13 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
         rn += h->reaction[k][c] * o->reaction_n[k][c];
       row[o->reaction_n_col[k]] = rn;
     }
+  for (int k = 0; k < o->num_walls; ++k) {
+    const double dt = h->time - o->wall_prev_time;
+    row[o->wall_col + 2 * k] =
+        o->rows > 0 && dt > 0 ? (h->wall_impulse[k] - o->wall_prev_impulse[k]) / dt : 0.0;
+    row[o->wall_col + 2 * k + 1] = h->wall_impulse[k];
+  }
+  if (o->num_walls) row[o->wall_col + 2 * o->num_walls] = h->contact_work;
 
   o->failed = 1; /* until the row is complete */
   hsize_t size[1] = {(hsize_t)o->rows + 1}, start[1] = {(hsize_t)o->rows}, one[1] = {1};
@@ -471,6 +506,9 @@ int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   PDK_CHECK_GOTO(!ferror(o->csv), ctx, PDK_ERR_IO, "cannot write '%s': %s", o->part[OUT_CSV],
                  strerror(errno));
   PDK_CALL_GOTO(pdk_h5_file_check(ctx, o->file, o->part[OUT_H5]));
+  for (int k = 0; k < o->num_walls; ++k)
+    o->wall_prev_impulse[k] = h->wall_impulse[k];
+  o->wall_prev_time = h->time;
   o->rows++;
   o->failed = 0;
 cleanup:

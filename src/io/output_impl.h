@@ -33,7 +33,7 @@ enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_FCSV, OUT_FGP, OUT_FPN
 /* Field output k's group: zero-padded, so listings (h5ls) sort them in output order. */
 #define OUT_STEP_GROUP "/steps/%06ld"
 #define OUT_MAX_REACTION 8 /* = the size of pdk_history.reaction */
-#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 6 + OUT_MAX_REACTION)
+#define OUT_MAX_COLS (6 + 2 * OUT_MAX_REACTION * 3 + 6 + OUT_MAX_REACTION + 2 * PDK_MAX_WALLS + 1)
 #define OUT_NAME_MAX (PDK_FIELD_NAME_MAX + 16)
 #define OUT_COL_MAX (OUT_NAME_MAX + 32) /* reaction_<name>_x */
 
@@ -76,6 +76,10 @@ struct pdk_output {
   double reaction_n[OUT_MAX_REACTION][3]; /* unit direction of reaction_<set>_n, or zero */
   int reaction_n_col[OUT_MAX_REACTION];   /* its column, or -1 */
   int work_col; /* plastic_work; damage_work and breaking_work follow */
+  /* walls: wall_<name>_force and wall_<name>_impulse per wall from wall_col, then contact_work;
+   * the impulses and time of the previous row give the mean force since it */
+  int num_walls, wall_col;
+  double wall_prev_impulse[PDK_MAX_WALLS], wall_prev_time;
   int num_sets;
   char (*set_name)[OUT_NAME_MAX];  /* [num_sets] sanitized names of the "set:*" fields at open */
   char (*set_field)[OUT_NAME_MAX]; /* [num_sets] their field names, "set:<name>" */

@@ -279,6 +279,8 @@ static int run(run_state *r) {
   oo.reaction_sets = r->so->reaction_sets;
   oo.num_reaction_sets = r->so->num_reaction_sets;
   oo.reaction_normals = (const double(*)[3])r->so->reaction_normal;
+  oo.walls = r->so->walls;
+  oo.num_walls = r->so->num_walls;
   oo.units = r->so->units;
   oo.compression = r->so->compression;
   if (pdk_particles_dim(pdk_sim_particles(sim)) == 2)

@@ -230,6 +230,7 @@ void pdk_scene_destroy(pdk_scene **sp) {
   free(s->bcs);
   free(s->load_levels);
   strings_free(s->bc_fields, s->num_bcs);
+  strings_free(s->wall_names, s->output.num_walls);
   strings_free(s->reaction_fields, s->output.num_reaction_sets);
   strings_free(s->fields, s->output.num_fields);
   strings_free(s->reaction_names, s->output.num_reaction_sets);

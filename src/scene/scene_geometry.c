@@ -26,22 +26,22 @@ static void fmt_point(char *buf, size_t len, int dim, const double *v) {
 int pdk_scene_region_resolve(loader *ld, const sc_region *r, const char *base, int allow_halfspace,
                              pdk_scene_region *out) {
   const int dim = ld->s->dim;
-  const char *kinds[5] = {"box", "disk", "ball", "halfspace", "polygon"};
-  const void *given[5] = {r->box, r->disk, r->ball, r->halfspace, r->polygon};
+  const char *kinds[6] = {"box", "disk", "ball", "halfspace", "polygon", "cylinder"};
+  const void *given[6] = {r->box, r->disk, r->ball, r->halfspace, r->polygon, r->cylinder};
   int which = -1, count = 0;
-  for (int k = 0; k < 5; ++k)
+  for (int k = 0; k < 6; ++k)
     if (given[k]) {
       if (which >= 0 && count == 1)
         FAIL(ld, base,
              "gives both %s and %s; give exactly one region: box, disk (ball), "
-             "halfspace or polygon",
+             "halfspace, polygon (2-D) or cylinder (3-D)",
              kinds[which], kinds[k]);
       which = k;
       ++count;
     }
   REQUIRE(ld, which >= 0, base,
           "gives no region; give one of box, disk (2-D) or ball, halfspace, "
-          "polygon (2-D)");
+          "polygon (2-D), cylinder (3-D)");
   snprintf(out->key, sizeof out->key, "%s.%s", base, kinds[which]);
   char sub[KEY_MAX];
   switch (which) {
@@ -97,6 +97,27 @@ int pdk_scene_region_resolve(loader *ld, const sc_region *r, const char *base, i
     out->region = pdk_region_polygon(out->vertices, nv);
     break;
   }
+  case 5: {
+    REQUIRE(ld, dim == 3, out->key,
+            "a cylinder is a 3-D region; in 2-D use a box (a rectangle) or a polygon");
+    const sc_cylinder *c = r->cylinder;
+    for (int e = 0; e < 2; ++e) {
+      snprintf(sub, sizeof sub, "%s.axis[%d]", out->key, e);
+      PDK_CALL(check_point(ld, sub, c->axis[e]));
+    }
+    double len2 = 0;
+    for (int a = 0; a < 3; ++a)
+      len2 += (c->axis[1][a] - c->axis[0][a]) * (c->axis[1][a] - c->axis[0][a]);
+    snprintf(sub, sizeof sub, "%s.axis", out->key);
+    REQUIRE(ld, len2 > 0, sub,
+            "has zero length: both ends are [%g, %g, %g]; give the two end points of the axis, "
+            "[[x0, y0, z0], [x1, y1, z1]]",
+            c->axis[0][0], c->axis[0][1], c->axis[0][2]);
+    snprintf(sub, sizeof sub, "%s.radius", out->key);
+    REQUIRE(ld, isfinite(c->radius) && c->radius > 0, sub, "must be > 0, got %g", c->radius);
+    out->region = pdk_region_cylinder(c->axis[0], c->axis[1], c->radius);
+    break;
+  }
   }
   out->region.invert = r->invert ? 1 : 0;
   int err = pdk_region_check(ld->ctx, dim, &out->region);
@@ -141,6 +162,17 @@ static int hole_check(loader *ld, const pdk_scene_region *h) {
         rhi[a] = fmax(rhi[a], r->vertices[2 * v + a]);
       }
       break;
+    case PDK_REGION_CYLINDER: {
+      /* the two end disks' extent: r sqrt(1 - e_a^2) about each end, e the axis' direction */
+      double len2 = 0;
+      for (int b = 0; b < 3; ++b)
+        len2 += (r->p1[b] - r->p0[b]) * (r->p1[b] - r->p0[b]);
+      const double e = (r->p1[a] - r->p0[a]) / sqrt(len2);
+      const double w = r->radius * sqrt(fmax(0.0, 1.0 - e * e));
+      rlo[a] = fmin(r->p0[a], r->p1[a]) - w;
+      rhi[a] = fmax(r->p0[a], r->p1[a]) + w;
+      break;
+    }
     case PDK_REGION_HALFSPACE: break;
     }
   }

@@ -88,6 +88,7 @@ struct pdk_scene {
   double *load_levels;         /* [static_opts.num_levels] when solver.load_levels is given */
   pdk_bc *bcs;              /* [num_bcs] */
   char **bc_fields;         /* [num_bcs] "set:<name>", NULL for the whole body ("all") */
+  char **wall_names;        /* [output.num_walls] the names of the wall conditions */
   int num_bcs;
   char **reaction_fields; /* [output.num_reaction_sets] "set:<name>" */
   double end_time;

@@ -47,6 +47,10 @@ typedef struct sc_ball {
 typedef struct sc_halfspace {
   double point[3], normal[3];
 } sc_halfspace;
+typedef struct sc_cylinder {
+  double axis[2][3];
+  double radius;
+} sc_cylinder;
 typedef struct sc_polygon {
   double (*vertices)[3];
   unsigned vertices_count;
@@ -58,6 +62,7 @@ typedef struct sc_region {
   sc_ball *disk, *ball;
   sc_halfspace *halfspace;
   sc_polygon *polygon;
+  sc_cylinder *cylinder;
   bool invert; /* notches and sets */
   /* materials entries only */
   double density, youngs_modulus, poisson_ratio, bulk_modulus, shear_modulus;
@@ -113,6 +118,8 @@ typedef struct sc_bc {
   int type, function;
   double x, y, z, duration, period;
   double direction[3], value;
+  double point[3], normal[3], velocity[3]; /* type: wall */
+  char *name;
 } sc_bc;
 typedef struct sc_initial {
   double velocity[3];
@@ -180,8 +187,8 @@ typedef struct scene_schema {
   cyaml_schema_value_t num, str, point, region_entry, notch_entry, set_entry, material_entry,
       precrack_entry, bc_entry, top;
   cyaml_schema_field_t box[SC_MAX_FIELDS], ball[SC_MAX_FIELDS], halfspace[SC_MAX_FIELDS],
-      polygon[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS], set[SC_MAX_FIELDS],
-      precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
+      polygon[SC_MAX_FIELDS], cylinder[SC_MAX_FIELDS], hole[SC_MAX_FIELDS], notch[SC_MAX_FIELDS],
+      set[SC_MAX_FIELDS], precrack[SC_MAX_FIELDS], geometry[SC_MAX_FIELDS], material[SC_MAX_FIELDS],
       material_region[SC_MAX_FIELDS], jc[SC_MAX_FIELDS], model[SC_MAX_FIELDS], bc[SC_MAX_FIELDS],
       galerkin[SC_MAX_FIELDS],
       initial[SC_MAX_FIELDS], solver[SC_MAX_FIELDS], output[SC_MAX_FIELDS], limits[SC_MAX_FIELDS],

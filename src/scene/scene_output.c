@@ -69,7 +69,9 @@ int pdk_scene_resolve_output(loader *ld, const sc_scene *d) {
   } else {
     for (int k = 0; k < s->num_bcs && nr < MAX_REACTION_SETS; ++k) {
       const char *set = d->boundary_conditions[k].set;
-      if (s->bcs[k].kind == PDK_BC_BODY_FORCE || !strcmp(set, "all")) continue;
+      if (s->bcs[k].kind == PDK_BC_BODY_FORCE || s->bcs[k].kind == PDK_BC_WALL ||
+          !strcmp(set, "all"))
+        continue;
       int dup = 0;
       for (int j = 0; j < nr; ++j)
         dup |= !strcmp(names[j], set);

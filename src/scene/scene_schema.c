@@ -48,7 +48,8 @@ static const cyaml_strval_t stencil_names[] = {
     {"off", PDK_STENCIL_OFF}, {"auto", PDK_STENCIL_AUTO}, {"on", PDK_STENCIL_ON}};
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
                                                {"velocity", PDK_BC_VELOCITY},
-                                               {"body_force", PDK_BC_BODY_FORCE}};
+                                               {"body_force", PDK_BC_BODY_FORCE},
+                                               {"wall", PDK_BC_WALL}};
 const cyaml_strval_t pdk_scene_function_names[] = {{"constant", PDK_TFUN_CONSTANT},
                                                    {"linear", PDK_TFUN_LINEAR},
                                                    {"ramp", PDK_TFUN_RAMP},
@@ -96,6 +97,8 @@ static void schema_region_kinds(scene_schema *sc, cyaml_schema_field_t *f) {
                                                              halfspace, sc->halfspace));
   field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("polygon", OPT_PTR, sc_region, polygon,
                                                              sc->polygon));
+  field_add(f, (cyaml_schema_field_t)CYAML_FIELD_MAPPING_PTR("cylinder", OPT_PTR, sc_region,
+                                                             cylinder, sc->cylinder));
 }
 
 void pdk_scene_schema_build(scene_schema *sc, int dim) {
@@ -124,6 +127,8 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(halfspace, CYAML_FIELD_SEQUENCE_FIXED("normal", 0, sc_halfspace, normal, &sc->num, d));
   ADD(polygon, CYAML_FIELD_SEQUENCE("vertices", CYAML_FLAG_POINTER, sc_polygon, vertices,
                                     &sc->point, 3, 4096));
+  ADD(cylinder, CYAML_FIELD_SEQUENCE_FIXED("axis", 0, sc_cylinder, axis, &sc->point, 2));
+  ADD(cylinder, CYAML_FIELD_FLOAT("radius", 0, sc_cylinder, radius));
 
   schema_region_kinds(sc, sc->hole);
   schema_region_kinds(sc, sc->notch);
@@ -258,6 +263,10 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(bc, CYAML_FIELD_FLOAT("period", OPT, sc_bc, period));
   ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("direction", OPT, sc_bc, direction, &sc->num, d));
   ADD(bc, CYAML_FIELD_FLOAT("value", OPT, sc_bc, value));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("point", OPT, sc_bc, point, &sc->num, d));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("normal", OPT, sc_bc, normal, &sc->num, d));
+  ADD(bc, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_bc, velocity, &sc->num, d));
+  ADD(bc, CYAML_FIELD_STRING_PTR("name", OPT, sc_bc, name, 1, 255));
   sc->bc_entry = (cyaml_schema_value_t){CYAML_VALUE_MAPPING(CYAML_FLAG_DEFAULT, sc_bc, sc->bc)};
 
   ADD(initial, CYAML_FIELD_SEQUENCE_FIXED("velocity", OPT, sc_initial, velocity, &sc->num, d));

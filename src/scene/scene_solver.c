@@ -9,6 +9,62 @@
 #include "pdk/scene.h"
 #include "pdk/static.h"
 
+/* type: wall: a plane through point (moving at velocity) with the normal out of the wall; the
+ * name labels its history columns. No components, no time function. */
+static int resolve_wall(loader *ld, const sc_bc *b, const char *base, pdk_bc *bc) {
+  pdk_scene *s = ld->s;
+  const int dim = s->dim;
+  static const char *const comp_keys[] = {"x", "y", "z", "function", "duration", "period"};
+  for (int j = 0; j < 6; ++j)
+    REQUIRE(ld, !has(ld, K(ld, "%s.%s", base, comp_keys[j])), K(ld, "%s.%s", base, comp_keys[j]),
+            "a wall has no components or time function; it is given by point, normal and "
+            "(optionally) velocity; remove %s",
+            comp_keys[j]);
+  REQUIRE(ld, has(ld, K(ld, "%s.point", base)), base,
+          "a wall needs point: a point of its plane at time 0, e.g. [0, 0%s]",
+          dim == 3 ? ", 0" : "");
+  REQUIRE(ld, has(ld, K(ld, "%s.normal", base)), base,
+          "a wall needs normal: the direction out of the wall, towards the body");
+  double n2 = 0;
+  for (int a = 0; a < dim; ++a) {
+    REQUIRE(ld, isfinite(b->point[a]), K(ld, "%s.point", base),
+            "entry %d is %g; coordinates must be finite numbers", a, b->point[a]);
+    REQUIRE(ld, isfinite(b->normal[a]), K(ld, "%s.normal", base),
+            "entry %d is %g; components must be finite numbers", a, b->normal[a]);
+    REQUIRE(ld, isfinite(b->velocity[a]), K(ld, "%s.velocity", base),
+            "entry %d is %g; components must be finite numbers", a, b->velocity[a]);
+    n2 += b->normal[a] * b->normal[a];
+  }
+  REQUIRE(ld, n2 > 0, K(ld, "%s.normal", base),
+          "must not be zero; it points out of the wall, towards the body");
+  const int w = s->output.num_walls;
+  REQUIRE(ld, w < PDK_MAX_WALLS, base, "at most %d walls; list fewer", PDK_MAX_WALLS);
+  char name[SC_NAME_MAX + 8];
+  if (b->name) {
+    REQUIRE(ld, valid_name(b->name), K(ld, "%s.name", base),
+            "'%s' is not a valid wall name; use 1 to %d letters, digits, '_', '-' or '.'", b->name,
+            SC_NAME_MAX);
+    snprintf(name, sizeof name, "%s", b->name);
+  } else {
+    snprintf(name, sizeof name, "wall%d", w);
+  }
+  for (int j = 0; j < w; ++j)
+    REQUIRE(ld, strcmp(s->wall_names[j], name), b->name ? K(ld, "%s.name", base) : base,
+            "two walls are named '%s'; give each its own name", name);
+  s->wall_names[w] = strdup(name);
+  if (!s->wall_names[w])
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for walls");
+  s->output.num_walls = w + 1;
+  s->output.walls = (const char *const *)s->wall_names;
+  for (int a = 0; a < dim; ++a) {
+    bc->point[a] = b->point[a];
+    bc->normal[a] = b->normal[a];
+    bc->velocity[a] = b->velocity[a];
+  }
+  bc->name = NULL; /* the scene keeps the names (output.walls); the solver needs none */
+  return PDK_SUCCESS;
+}
+
 int pdk_scene_resolve_bcs(loader *ld, const sc_scene *d) {
   pdk_scene *s = ld->s;
   const int nb = (int)d->boundary_conditions_count;
@@ -18,6 +74,9 @@ int pdk_scene_resolve_bcs(loader *ld, const sc_scene *d) {
     return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__,
                              "out of memory for boundary conditions");
   s->num_bcs = nb;
+  s->wall_names = calloc((size_t)PDK_MAX_WALLS + 1, sizeof *s->wall_names);
+  if (!s->wall_names)
+    return pdk_ctx_error_set(ld->ctx, PDK_ERR_MEMORY, __func__, "out of memory for walls");
   for (int k = 0; k < nb; ++k) {
     const sc_bc *b = &d->boundary_conditions[k];
     pdk_bc *bc = &s->bcs[k];
@@ -39,6 +98,14 @@ int pdk_scene_resolve_bcs(loader *ld, const sc_scene *d) {
     }
     bc->set = s->bc_fields[k];
     bc->kind = (pdk_bc_kind)b->type;
+    if (bc->kind == PDK_BC_WALL) {
+      PDK_CALL(resolve_wall(ld, b, base, bc));
+      continue;
+    }
+    static const char *const wall_keys[] = {"point", "normal", "velocity", "name"};
+    for (int j = 0; j < 4; ++j)
+      REQUIRE(ld, !has(ld, K(ld, "%s.%s", base, wall_keys[j])), K(ld, "%s.%s", base, wall_keys[j]),
+              "only a wall (type: wall) has a %s; remove it", wall_keys[j]);
     const double comp[3] = {b->x, b->y, b->z};
     const pdk_tfun_kind fk =
         has(ld, K(ld, "%s.function", base)) ? (pdk_tfun_kind)b->function : PDK_TFUN_CONSTANT;
@@ -196,6 +263,11 @@ static int resolve_static_solver(loader *ld, const sc_scene *d) {
     PDK_CALL(refuse_keys(ld, newton_keys, N_OF(newton_keys), why));
   REQUIRE(ld, !has(ld, "initial_conditions"), "initial_conditions",
           "a static solve (solver.type %s) has no velocities; remove initial_conditions", tname);
+  for (int k = 0; k < s->num_bcs; ++k)
+    REQUIRE(ld, s->bcs[k].kind != PDK_BC_WALL, K(ld, "boundary_conditions[%d].type", k),
+            "a wall is a contact of the explicit solver; the static solvers (solver.type %s) do not "
+            "take it yet: use solver.type explicit, or a displacement condition on the contact set",
+            tname);
   for (int k = 0; k < s->num_bcs; ++k)
     REQUIRE(ld, s->bcs[k].kind != PDK_BC_VELOCITY, K(ld, "boundary_conditions[%d].type", k),
             "velocity conditions have no meaning in a static solve (solver.type %s); prescribe "

@@ -91,22 +91,22 @@ static void field_list(pdk_particles *p, char *buf, size_t len) {
   }
 }
 
+/* Holes, then notches. A hole that removes no particle is an error (it sits between lattice points
+ * or misses the body: a mistake); a notch that removes none is allowed, so that a shape can be
+ * carved by many notches of which some cut nothing (a polygon of half-spaces around a rod). */
 static int cut_regions(pdk_sim *sim, const pdk_scene *s, const pdk_scene_region *r, int n,
                        int is_hole) {
   for (int k = 0; k < n; ++k) {
     pdk_index removed = 0;
     int err = pdk_particles_cut(sim->p, &r[k].region, &removed);
     if (err) return pdk_scene_blame(s, sim->ctx, err, r[k].key);
-    if (removed == 0) {
+    if (removed == 0 && is_hole) {
       char what[256];
       pdk_region_describe(&r[k].region, s->dim, what, sizeof what);
-      return pdk_scene_error(
-          s, sim->ctx, PDK_ERR_ARG, r[k].key,
-          is_hole ? "%s removes no particle: it fits between lattice points; make it larger than "
-                    "the spacing %g or remove it"
-                  : "%s removes no particle: it misses the body (or what is left of it); move it "
-                    "or remove it",
-          what, s->lattice.spacing);
+      return pdk_scene_error(s, sim->ctx, PDK_ERR_ARG, r[k].key,
+                             "%s removes no particle: it fits between lattice points; make it "
+                             "larger than the spacing %g or remove it",
+                             what, s->lattice.spacing);
     }
   }
   return PDK_SUCCESS;

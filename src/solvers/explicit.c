@@ -595,8 +595,9 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
   }
   for (int k = 0; k < opts.num_bcs; ++k) {
     const pdk_bc *bc = &e->bcs[k];
-    PDK_CHECK_GOTO((unsigned)bc->kind <= PDK_BC_BODY_FORCE, ctx, PDK_ERR_ARG,
+    PDK_CHECK_GOTO((unsigned)bc->kind <= PDK_BC_WALL, ctx, PDK_ERR_ARG,
                    "boundary condition %d: unknown kind %d", k, (int)bc->kind);
+    if (bc->kind == PDK_BC_WALL) continue; /* pdk_walls_init */
     PDK_CHECK_GOTO(!bc->scale_field, ctx, PDK_ERR_UNSUPPORTED,
                    "boundary condition %d: scale_field ('%s') is supported by the static solvers "
                    "only; the explicit solver takes uniform values per set",
@@ -633,6 +634,7 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
                    "reaction set field '%s' does not exist", opts.reaction_sets[k]);
   }
   e->num_reaction = opts.num_reaction_sets;
+  PDK_CALL_GOTO(pdk_walls_init(e));
   /* Initial velocity: affine field. */
   for (int c = 0; c < e->dim; ++c) {
     double *v = field(e->p, "v", c);
@@ -728,6 +730,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     half_kick(e, t0);
     drift(e);
     apply_kinematic_bcs(e, t1, 1);
+    if (e->num_walls) pdk_walls_apply(e, t1);
     PDK_CALL(step_failed(e, pdk_model_force(e->m, &e->strain), t1));
     half_kick(e, t1);
     apply_kinematic_bcs(e, t1, 0);
@@ -764,6 +767,9 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
                                     &hist->breaking_work));
     hist->failed = pdk_model_num_failed(e->m);
     hist->damage_max = pdk_model_damage_max(e->m);
+    for (int w = 0; w < e->num_walls; ++w)
+      hist->wall_impulse[w] = e->wall_impulse[w];
+    hist->contact_work = e->contact_work;
   }
   return PDK_SUCCESS;
 }

@@ -56,7 +56,18 @@ struct pdk_explicit {
   int acct_streak;          /* consecutive checks at which the created energy grew */
   double *acct_a2;          /* [n] |a|^2 when the streak began (only while a streak runs) */
   long acct_a2_step;        /* the step of acct_a2 */
+  /* rigid walls (src/solvers/wall.c): their conditions' indices, the impulse each gave the body
+   * and the energy they took so far (counted in external_work too) */
+  int wall_bc[PDK_MAX_WALLS];
+  int num_walls;
+  double wall_impulse[PDK_MAX_WALLS];
+  double contact_work;
 };
+
+/* src/solvers/wall.c: checks the PDK_BC_WALL conditions and lists them (at creation); applies the
+ * walls' contact after the drift of the step ending at t1. */
+int pdk_walls_init(pdk_explicit *e);
+void pdk_walls_apply(pdk_explicit *e, double t1);
 
 /* The solver's scalars stored in a checkpoint. */
 typedef struct pdk_checkpoint_solver {

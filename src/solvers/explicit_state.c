@@ -31,6 +31,12 @@ int pdk_explicit_state_save(const pdk_explicit *e, pdk_state *s) {
   PDK_CALL(pdk_state_put_i64(s, "est_broken", e->est_broken));
   PDK_CALL(pdk_state_put_i64(s, "num_estimates", e->num_estimates));
   PDK_CALL(pdk_state_put_i64(s, "num_dt_changes", e->num_dt_changes));
+  char key[32];
+  for (int w = 0; w < e->num_walls; ++w) { /* walls only: runs without keep their files */
+    snprintf(key, sizeof key, "wall_impulse_%d", w);
+    PDK_CALL(pdk_state_put_f64(s, key, e->wall_impulse[w]));
+  }
+  if (e->num_walls) PDK_CALL(pdk_state_put_f64(s, "contact_work", e->contact_work));
   return PDK_SUCCESS;
 }
 
@@ -73,6 +79,13 @@ int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s) {
     PDK_CALL(pdk_state_get_i64(s, "num_dt_changes", &v));
     e->num_dt_changes = (int)v;
   }
+  char key[32];
+  for (int w = 0; w < e->num_walls; ++w) {
+    snprintf(key, sizeof key, "wall_impulse_%d", w);
+    if (pdk_state_has(s, key)) PDK_CALL(pdk_state_get_f64(s, key, &e->wall_impulse[w]));
+  }
+  if (pdk_state_has(s, "contact_work"))
+    PDK_CALL(pdk_state_get_f64(s, "contact_work", &e->contact_work));
   return PDK_SUCCESS;
 }
 

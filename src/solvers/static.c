@@ -129,7 +129,10 @@ static int setup_conditions(pdk_static *s) {
               "boundary condition %d is a %s condition; static solvers take displacement and "
               "body-force conditions only (prescribe the displacement instead: from rest, a "
               "velocity v is the displacement v t, time function linear, with a total_time)",
-              k, bc->kind == PDK_BC_VELOCITY ? "velocity" : "unknown");
+              k,
+              bc->kind == PDK_BC_VELOCITY ? "velocity"
+              : bc->kind == PDK_BC_WALL   ? "wall (contact is explicit-only)"
+                                          : "unknown");
     const uint8_t *mem = NULL;
     PDK_CALL(pdk_bc_check(ctx, s->p, bc, k, &mem));
     if (bc->scale_field) {

@@ -1,5 +1,5 @@
-/* Regions (box, ball, half-space, polygon) and what uses them: cutting holes and named particle
- * sets; see include/pdk/geometry.h.
+/* Regions (box, ball, half-space, polygon, cylinder) and what uses them: cutting holes and named
+ * particle sets; see include/pdk/geometry.h.
  *
  * Membership rules (x a point, d = dim):
  *   box:        lo[a] <= x[a] <= hi[a] for a < d                      (closed)
@@ -9,6 +9,8 @@
  *               it straddles the ray's line, y_k > y != y_k+1 > y, and meets it right of x
  *               (PNPOLY, W. R. Franklin). Points exactly on an edge fall on one side or the other
  *               by that half-open rule; self-intersecting polygons follow the even-odd rule.
+ *   cylinder:   3-D; with d = p1 - p0 and t = (x - p0).d: 0 <= t <= d.d and
+ *               |(x - p0) - (t / d.d) d|^2 <= r^2                      (closed, flat ends)
  *   invert:     the complement of the above.
  *
  * A named set "s" is the uint8 field "set:s" of the particle store, one entry per particle
@@ -62,6 +64,16 @@ pdk_region pdk_region_polygon(const double *vertices, int num_vertices) {
   return r;
 }
 
+pdk_region pdk_region_cylinder(const double p0[3], const double p1[3], double radius) {
+  pdk_region r;
+  memset(&r, 0, sizeof r);
+  r.kind = PDK_REGION_CYLINDER;
+  if (p0) memcpy(r.p0, p0, sizeof r.p0);
+  if (p1) memcpy(r.p1, p1, sizeof r.p1);
+  r.radius = radius;
+  return r;
+}
+
 /* Appends "[a, b]" or "[a, b, c]" to buf at *pos (snprintf semantics; truncates safely). */
 static void append_vec(char *buf, size_t len, size_t *pos, int dim, const double *v) {
   for (int a = 0; a < dim; ++a) {
@@ -106,6 +118,13 @@ void pdk_region_describe(const pdk_region *r, int dim, char *buf, size_t len) {
     append_str(buf, len, &pos, ") . ");
     append_vec(buf, len, &pos, dim, r->normal);
     append_str(buf, len, &pos, " <= 0");
+    return;
+  case PDK_REGION_CYLINDER:
+    append_str(buf, len, &pos, "the cylinder of axis ");
+    append_vec(buf, len, &pos, 3, r->p0);
+    append_str(buf, len, &pos, "..");
+    append_vec(buf, len, &pos, 3, r->p1);
+    if (pos < len) snprintf(buf + pos, len - pos, " and radius %g", r->radius);
     return;
   case PDK_REGION_POLYGON: {
     if (pos < len) snprintf(buf + pos, len - pos, "the polygon of %d vertices", r->num_vertices);
@@ -186,12 +205,30 @@ int pdk_region_check(pdk_ctx *ctx, int dim, const pdk_region *r) {
                 "polygon region vertex %d must be finite, got (%g, %g)", k, r->vertices[2 * k],
                 r->vertices[2 * k + 1]);
     return PDK_SUCCESS;
+  case PDK_REGION_CYLINDER: {
+    PDK_CHECK(dim == 3, ctx, PDK_ERR_ARG,
+              "cylinder regions are 3-D only; this body is %d-D (use a box or a disk)", dim);
+    double len2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      PDK_CHECK(isfinite(r->p0[a]) && isfinite(r->p1[a]), ctx, PDK_ERR_ARG,
+                "cylinder region axis ends must be finite, got %g and %g on axis %c", r->p0[a],
+                r->p1[a], axis_name[a]);
+      len2 += (r->p1[a] - r->p0[a]) * (r->p1[a] - r->p0[a]);
+    }
+    PDK_CHECK(len2 > 0, ctx, PDK_ERR_ARG,
+              "cylinder region axis has zero length (both ends at [%g, %g, %g]); give two "
+              "different end points",
+              r->p0[0], r->p0[1], r->p0[2]);
+    PDK_CHECK(isfinite(r->radius) && r->radius > 0, ctx, PDK_ERR_ARG,
+              "cylinder region radius must be a finite number > 0, got %g", r->radius);
+    return PDK_SUCCESS;
+  }
   }
   return pdk_ctx_error_set(ctx, PDK_ERR_ARG, __func__,
                            "unknown region kind %d; allowed: %d (box), %d (ball), %d (half-space), "
-                           "%d (polygon)",
+                           "%d (polygon), %d (cylinder)",
                            (int)r->kind, PDK_REGION_BOX, PDK_REGION_BALL, PDK_REGION_HALFSPACE,
-                           PDK_REGION_POLYGON);
+                           PDK_REGION_POLYGON, PDK_REGION_CYLINDER);
 }
 
 /* Crossing-number test; vertices [nv][2]. */
@@ -225,6 +262,22 @@ int pdk_region_contains(const pdk_region *r, int dim, const double *x) {
     for (int a = 0; a < dim; ++a)
       s += (x[a] - r->point[a]) * r->normal[a];
     in = s <= 0;
+    break;
+  }
+  case PDK_REGION_CYLINDER: {
+    double d[3], y[3], dd = 0, t = 0, r2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      d[a] = r->p1[a] - r->p0[a];
+      y[a] = (dim == 3 || a < 2 ? x[a] : 0.0) - r->p0[a];
+      dd += d[a] * d[a];
+      t += y[a] * d[a];
+    }
+    if (dim != 3 || !(dd > 0) || t < 0 || t > dd) break;
+    for (int a = 0; a < 3; ++a) {
+      const double q = y[a] - t / dd * d[a];
+      r2 += q * q;
+    }
+    in = r2 <= r->radius * r->radius;
     break;
   }
   case PDK_REGION_POLYGON:

@@ -60,6 +60,8 @@ BASES = {
     "bimaterial": ("tests/scenes/t065_bimaterial.yaml", []),
     "minimal": ("tests/scenes/t060_minimal.yaml", []),
     "static_block": ("tests/scenes/t094_static.yaml", []),
+    "taylor_anvil": ("scenes/taylor_anvil.yaml", [("spacing: 0.4e-3", "spacing: 1.6e-3"),
+                                                   ("end_time: 80.0e-6", "end_time: 2.0e-6")]),
 }
 
 
@@ -248,6 +250,29 @@ def build(c):
          "    - polygon: {vertices: [[0.02, 0.04], [0.03, 0.06]]}", "polygon"),
         ("range_halfspace_zero_normal", BAR, "{name: right, box: {lo: [0.037, -1], hi: [1, 1]}}",
          "{name: right, halfspace: {point: [0.037, 0], normal: [0, 0]}}", "normal"),
+        ("range_cylinder_zero_axis", BK, "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}",
+         "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}\n  notches:\n"
+         "    - {cylinder: {axis: [[0.02, 0.02, 0], [0.02, 0.02, 0]], radius: 0.01}, invert: true}",
+         r"notches\[0\]\.cylinder\.axis"),
+        ("range_cylinder_radius", BK, "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}",
+         "box: {lo: [0, 0, 0], hi: [0.04, 0.04, 0.04]}\n  notches:\n"
+         "    - {cylinder: {axis: [[0.02, 0.02, 0], [0.02, 0.02, 0.04]], radius: 0}, invert: true}",
+         r"cylinder\.radius"),
+        ("range_wall_zero_normal", "taylor_anvil", "normal: [0, 0, 1]", "normal: [0, 0, 0]",
+         r"boundary_conditions\[0\]\.normal"),
+        ("range_wall_no_normal", "taylor_anvil", "normal: [0, 0, 1], ", "",
+         "normal"),
+        ("range_wall_component", "taylor_anvil", "name: anvil}", "name: anvil, z: 0}",
+         r"boundary_conditions\[0\]\.z"),
+        ("range_wall_function", "taylor_anvil", "name: anvil}", "name: anvil, function: ramp}",
+         "function"),
+        ("range_wall_bad_name", "taylor_anvil", "name: anvil}", "name: \"an vil\"}", "name"),
+        ("range_wall_static", ST, "{set: pulled, type: displacement, x: 2.0e-4}",
+         "{set: pulled, type: wall, point: [0, 0], normal: [1, 0]}", "explicit"),
+        ("range_point_not_wall", BAR, "{set: left, type: displacement, x: 0, y: 0}",
+         "{set: left, type: displacement, x: 0, y: 0, point: [0, 0]}", "point"),
+        ("range_cylinder_in_2d", PH, "    - disk: {center: [0.025, 0.05], radius: 0.005}",
+         "    - cylinder: {axis: [[0.025, 0.04], [0.025, 0.06]], radius: 0.005}", "cylinder"),
     ]
     for cid, base, old, new, key in rng:
         c.mut(cid, "-", base, old, new, key)
@@ -287,6 +312,8 @@ def build(c):
         ("tolerance", ST, "tolerance: 1.0e-6", "tolerance: {v}", "tolerance"),
         ("load_level", ST, "load_steps: 5", "load_levels: [0.5, {v}]", "load_levels"),
         ("material_density", BM, "density: 1100", "density: {v}", "density"),
+        ("wall_normal", "taylor_anvil", "normal: [0, 0, 1]", "normal: [0, {v}, 1]", "normal"),
+        ("cylinder_radius", "taylor_anvil", "radius: 3.2e-3}", "radius: {v}}", "radius"),
     ]
     for part, base, old, new, key in nan_keys:
         c.mut(f"nan_{part}", "-", base, old, new.replace("{v}", "nan"), key)
