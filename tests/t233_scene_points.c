@@ -17,30 +17,8 @@
  * labels: unit */
 #include <sys/stat.h>
 
-#include "test_util.h"
+#include "work_util.h"
 #include "h5_same.h"
-
-static char work[512];
-
-static void write_file(const char *name, const char *text) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/%s", work, name);
-  FILE *f = fopen(path, "w");
-  T_ASSERT(f && fputs(text, f) >= 0 && fclose(f) == 0, "cannot write %s", path);
-}
-
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  T_ASSERT(f, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  long len = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *buf = malloc((size_t)len + 1);
-  T_ASSERT(buf && fread(buf, 1, (size_t)len, f) == (size_t)len, "cannot read %s", path);
-  buf[len] = '\0';
-  fclose(f);
-  return buf;
-}
 
 static void run_scene(pdk_ctx *ctx, const char *scene_path, const char *dir) {
   pdk_scene *scene = NULL;
@@ -150,8 +128,7 @@ static void bad(pdk_ctx *ctx, const char *label, const char *csv, const char *ge
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  snprintf(work, sizeof work, "%s/tests/t233_scene_points.work", getenv("PDK_BUILD_DIR"));
-  mkdir(work, 0755);
+  work_init("t233_scene_points");
   char lattice_scene[1024], cloud_path[1024], text[4096];
   snprintf(lattice_scene, sizeof lattice_scene, "%s/tests/scenes/t092_bar.yaml",
            getenv("PDK_SOURCE_DIR"));
@@ -176,7 +153,8 @@ int main(void) {
     free(tb);
     snprintf(a, sizeof a, "%s/bar.h5", dir_l);
     snprintf(b, sizeof b, "%s/bar.h5", dir_c);
-    hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT),
+          fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
     T_ASSERT(fa >= 0 && fb >= 0, "cannot open %s or %s", a, b);
     T_ASSERT(h5s_same_output_data(fa, fb, why, sizeof why),
              "the cloud's output differs from the lattice's: %s", why);
@@ -279,14 +257,14 @@ int main(void) {
     write_file("novol.yaml", text);
     snprintf(path, sizeof path, "%s/novol.yaml", work);
     pdk_scene *scene = NULL;
-    T_ASSERT(pdk_scene_load(ctx, path, NULL, 0, &scene) != 0, "an HDF5 cloud without volumes loads");
+    T_ASSERT(pdk_scene_load(ctx, path, NULL, 0, &scene) != 0,
+             "an HDF5 cloud without volumes loads");
     const char *msg = pdk_ctx_error_message(ctx);
     T_ASSERT(strstr(msg, "geometry.points") && strstr(msg, "novol.h5") &&
                  strstr(msg, "needs a dataset /volume of shape [2]"),
              "no volumes: %s", msg);
   }
-  const char *const k12[] = {"geometry.points", "cannot open the point cloud", "nowhere.csv",
-                             NULL};
+  const char *const k12[] = {"geometry.points", "cannot open the point cloud", "nowhere.csv", NULL};
   {
     snprintf(text, sizeof text, cloud_scene, "nowhere.csv", "", "");
     write_file("missing.yaml", text);

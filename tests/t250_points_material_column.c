@@ -1,17 +1,16 @@
 /* geometry.points with a material column (docs/scenes.md "Point clouds").
- * 1. A 2-D PMB bar 40 x 4 mm (spacing 1 mm, 40 x 4 particles), the left half material 0 (K = 1 GPa), the right half
- *    `soft` (K = 0.25 GPa), left grip held, right grip pulled 0.04 mm, Newton. The lattice scene
- *    places `soft` by a region; the cloud holding that lattice's particles (17 digits, id order)
- *    with a material column (names: `soft`, and 0 for `material`) places it by the column. The
- *    material field of the cloud's body is the column's, particle by particle, and both runs give
- *    the same outputs (tests/h5_same.h: every dataset's bytes) and the same history CSV byte for
- *    byte: the column builds the very body the region builds.
- *    Response: springs in series carry one force, so the strains of the halves are in the inverse
- *    ratio of the moduli, eps_soft / eps_0 = 4; each strain is the least-squares slope of the
- *    column-mean displacement over the columns at least 4 spacings from a grip and from the
- *    interface (the PMB surface and interface layers are about a horizon wide); asserted within
- *    1% (tests/t146 allows 3% for the same construction at a ratio of 10; measured here 3.99939,
- *    1.5e-4 off; PDK_VERBOSE prints it).
+ * 1. A 2-D PMB bar 40 x 4 mm (spacing 1 mm, 40 x 4 particles), the left half material 0 (K = 1
+ * GPa), the right half `soft` (K = 0.25 GPa), left grip held, right grip pulled 0.04 mm, Newton.
+ * The lattice scene places `soft` by a region; the cloud holding that lattice's particles (17
+ * digits, id order) with a material column (names: `soft`, and 0 for `material`) places it by the
+ * column. The material field of the cloud's body is the column's, particle by particle, and both
+ * runs give the same outputs (tests/h5_same.h: every dataset's bytes) and the same history CSV byte
+ * for byte: the column builds the very body the region builds. Response: springs in series carry
+ * one force, so the strains of the halves are in the inverse ratio of the moduli, eps_soft / eps_0
+ * = 4; each strain is the least-squares slope of the column-mean displacement over the columns at
+ * least 4 spacings from a grip and from the interface (the PMB surface and interface layers are
+ * about a horizon wide); asserted within 1% (tests/t146 allows 3% for the same construction at a
+ * ratio of 10; measured here 3.99939, 1.5e-4 off; PDK_VERBOSE prints it).
  * 2. The same cloud as HDF5 with an integer dataset material [n] (indices 0 and 1) gives the same
  *    material field.
  * 3. Refusals, each naming geometry.points (or the materials entry), the file and line (or row)
@@ -22,30 +21,8 @@
  * labels: scene */
 #include <sys/stat.h>
 
-#include "test_util.h"
+#include "work_util.h"
 #include "h5_same.h"
-
-static char work[512];
-
-static void write_file(const char *name, const char *text) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/%s", work, name);
-  FILE *f = fopen(path, "w");
-  T_ASSERT(f && fputs(text, f) >= 0 && fclose(f) == 0, "cannot write %s", path);
-}
-
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  T_ASSERT(f, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  long len = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *buf = malloc((size_t)len + 1);
-  T_ASSERT(buf && fread(buf, 1, (size_t)len, f) == (size_t)len, "cannot read %s", path);
-  buf[len] = '\0';
-  fclose(f);
-  return buf;
-}
 
 /* %s: the body (geometry lines), %s: the materials entry's region ("" for none) */
 static const char scene_fmt[] =
@@ -132,8 +109,8 @@ static void write_clouds(pdk_ctx *ctx) {
   int32_t *mi = malloc((size_t)n * sizeof(int32_t));
   for (pdk_index k = 0; k < n; ++k) {
     const pdk_index i = at[k];
-    fprintf(f, "%.17g,%.17g,%.17g,%d,%s,%d\n", X[i], Y[i], V[i], left[i],
-            mat[i] ? "soft" : "0", right[i]);
+    fprintf(f, "%.17g,%.17g,%.17g,%d,%s,%d\n", X[i], Y[i], V[i], left[i], mat[i] ? "soft" : "0",
+            right[i]);
     xy[2 * k] = X[i], xy[2 * k + 1] = Y[i], vol[k] = V[i], mi[k] = mat[i];
   }
   T_ASSERT(fclose(f) == 0, "cannot write %s", path);
@@ -170,8 +147,8 @@ static void check_materials(pdk_ctx *ctx, const char *scene_file) {
   T_ASSERT(mat != NULL, "%s: no material field", scene_file);
   const double *X = pdk_particles_X(p, 0);
   for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
-    T_ASSERT(mat[i] == (X[i] >= 0.02 ? 1 : 0), "%s: particle at x = %g has material %d",
-             scene_file, X[i], (int)mat[i]);
+    T_ASSERT(mat[i] == (X[i] >= 0.02 ? 1 : 0), "%s: particle at x = %g has material %d", scene_file,
+             X[i], (int)mat[i]);
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&scene);
 }
@@ -224,9 +201,7 @@ static void write_h5_material(const char *name, hid_t type, const void *data, hi
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  snprintf(work, sizeof work, "%s/tests/t250_points_material_column.work",
-           getenv("PDK_BUILD_DIR"));
-  mkdir(work, 0755);
+  work_init("t250_points_material_column");
   char text[4096];
   snprintf(text, sizeof text, scene_fmt, "  box: {lo: [0, 0], hi: [0.04, 0.004]}\n",
            ", box: {lo: [0.02, -1], hi: [1, 1]}", lattice_sets);
@@ -258,7 +233,8 @@ int main(void) {
     free(tb);
     snprintf(a, sizeof a, "%s/lattice/bar.h5", work);
     snprintf(b, sizeof b, "%s/cloud/bar.h5", work);
-    hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT), fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t fa = H5Fopen(a, H5F_ACC_RDONLY, H5P_DEFAULT),
+          fb = H5Fopen(b, H5F_ACC_RDONLY, H5P_DEFAULT);
     T_ASSERT(fa >= 0 && fb >= 0, "cannot open %s or %s", a, b);
     T_ASSERT(h5s_same_output_data(fa, fb, why, sizeof why),
              "the cloud's output differs from the lattice's: %s", why);

@@ -2,8 +2,8 @@
  * and value): a roller on an inclined face.
  * 1. A 2-D PMB bar 30 x 6 particles (spacing 1 mm) as a point cloud, and the same cloud rotated by
  *    30 degrees (x' = Q X, exactly the aligned particles turned). Aligned: the left column held in
- *    x (one particle of it, the anchor, in x and y), the right column pulled 0.03 mm in x, both free
- *    in y. Rotated: the same with the conditions along n = Q e_x (direction [cos 30, sin 30],
+ *    x (one particle of it, the anchor, in x and y), the right column pulled 0.03 mm in x, both
+ * free in y. Rotated: the same with the conditions along n = Q e_x (direction [cos 30, sin 30],
  *    value 0 and 0.03 mm), the anchor fixed in x and y. The rotated run's displacements turned
  *    back, Q^T u', equal the aligned run's, particle by particle (by id), and so do its reactions
  *    (Q^T R'): the rollers leave the tangential motion free and carry only normal forces.
@@ -28,20 +28,12 @@
  * labels: scene */
 #include <sys/stat.h>
 
-#include "test_util.h"
+#include "work_util.h"
 
 #define NX 30
 #define NY 6
-static char work[512];
 static const double H = 1e-3, DELTA = 3e-5;
 static double cs, sn; /* cos 30, sin 30 */
-
-static void write_file(const char *name, const char *text) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/%s", work, name);
-  FILE *f = fopen(path, "w");
-  T_ASSERT(f && fputs(text, f) >= 0 && fclose(f) == 0, "cannot write %s", path);
-}
 
 /* The bar as a cloud, aligned (rot 0) or turned by 30 degrees. */
 static void write_cloud(const char *name, int rot) {
@@ -96,29 +88,39 @@ static double history_last(const char *csv, const char *name) {
 }
 
 /* Runs the scene in work/<file>; u by id (the cloud's row order). */
-static void run(pdk_ctx *ctx, const char *file, const char *text, result *res) {
+/* Writes `text` to <work>/<file>, runs it with output in <work>/<file>.out, and returns the
+ * simulation after the run (the caller destroys it and *scene); u[id][a] = x - X for a < dim. */
+static pdk_sim *run_text(pdk_ctx *ctx, const char *file, const char *text, int dim, double *u,
+                         pdk_run_report *rep, pdk_scene **scene, char *dir, size_t dir_size) {
   write_file(file, text);
-  char path[1024], dir[1024];
+  char path[1024];
   snprintf(path, sizeof path, "%s/%s", work, file);
-  snprintf(dir, sizeof dir, "%s/%s.out", work, file);
-  pdk_scene *scene = NULL;
+  snprintf(dir, dir_size, "%s/%s.out", work, file);
   pdk_sim *sim = NULL;
-  T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, &scene));
-  T_OK(ctx, pdk_sim_create(ctx, scene, &sim));
+  T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, scene));
+  T_OK(ctx, pdk_sim_create(ctx, *scene, &sim));
   pdk_run_opts o = pdk_run_opts_default();
   o.dir = dir;
   o.plot = 0;
-  pdk_run_report rep;
-  T_OK(ctx, pdk_sim_run(sim, scene, &o, &rep));
+  T_OK(ctx, pdk_sim_run(sim, *scene, &o, rep));
   pdk_particles *p = pdk_sim_particles(sim);
   const int64_t *id = pdk_particles_id(p);
-  for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
-    for (int a = 0; a < 2; ++a)
-      res->u[id[i]][a] = ((const double *)pdk_particles_field_data(p, "x", a))[i] - pdk_particles_X(p, a)[i];
+  for (int a = 0; a < dim; ++a) {
+    const double *x = pdk_particles_field_data(p, "x", a), *X = pdk_particles_X(p, a);
+    for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
+      u[dim * id[i] + a] = x[i] - X[i];
+  }
+  return sim;
+}
+
+static void run(pdk_ctx *ctx, const char *file, const char *text, result *res) {
+  pdk_scene *scene = NULL;
+  pdk_run_report rep;
+  char dir[1024], csv[1200];
+  pdk_sim *sim = run_text(ctx, file, text, 2, &res->u[0][0], &rep, &scene, dir, sizeof dir);
   for (int k = 0; k < 3; ++k)
     for (int a = 0; a < 2; ++a)
       res->R[k][a] = rep.last.reaction[k][a];
-  char csv[1200];
   snprintf(csv, sizeof csv, "%s/bar_history.csv", dir);
   res->rn_right = history_last(csv, "reaction_right_n");
   pdk_sim_destroy(&sim);
@@ -231,33 +233,17 @@ static void write_cloud3(const char *name, int rot) {
 }
 
 static void run3(pdk_ctx *ctx, const char *file, const char *text, double (*u)[3], double R[3]) {
-  write_file(file, text);
-  char path[1024], dir[1024];
-  snprintf(path, sizeof path, "%s/%s", work, file);
-  snprintf(dir, sizeof dir, "%s/%s.out", work, file);
   pdk_scene *scene = NULL;
-  pdk_sim *sim = NULL;
-  T_OK(ctx, pdk_scene_load(ctx, path, NULL, 0, &scene));
-  T_OK(ctx, pdk_sim_create(ctx, scene, &sim));
-  pdk_run_opts o = pdk_run_opts_default();
-  o.dir = dir;
-  o.plot = 0;
   pdk_run_report rep;
-  T_OK(ctx, pdk_sim_run(sim, scene, &o, &rep));
-  pdk_particles *p = pdk_sim_particles(sim);
-  const int64_t *id = pdk_particles_id(p);
-  for (pdk_index i = 0; i < pdk_particles_count(p); ++i)
-    for (int a = 0; a < 3; ++a)
-      u[id[i]][a] =
-          ((const double *)pdk_particles_field_data(p, "x", a))[i] - pdk_particles_X(p, a)[i];
+  char dir[1024];
+  pdk_sim *sim = run_text(ctx, file, text, 3, &u[0][0], &rep, &scene, dir, sizeof dir);
   for (int a = 0; a < 3; ++a)
     R[a] = rep.last.reaction[1][a]; /* right */
   pdk_sim_destroy(&sim);
   pdk_scene_destroy(&scene);
 }
 
-static void case3(pdk_ctx *ctx, const char *label, const char *solver, const char *fn,
-                  double tol) {
+static void case3(pdk_ctx *ctx, const char *label, const char *solver, const char *fn, double tol) {
   static const char fmt[] = "name: bar\ndimension: 3\n"
                             "geometry: {points: %s, spacing: 1.0e-3, horizon_factor: 3.015}\n"
                             "material: {density: 8000, bulk_modulus: 1.0e9}\n"
@@ -309,8 +295,7 @@ static void case3(pdk_ctx *ctx, const char *label, const char *solver, const cha
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  snprintf(work, sizeof work, "%s/tests/t251_bc_direction.work", getenv("PDK_BUILD_DIR"));
-  mkdir(work, 0755);
+  work_init("t251_bc_direction");
   cs = cos(M_PI / 6), sn = sin(M_PI / 6);
   write_cloud("aligned.csv", 0);
   write_cloud("rotated.csv", 1);
@@ -318,7 +303,8 @@ int main(void) {
   /* 1. */
   solver_case(ctx, "newton", "{type: newton, load_steps: 1, tolerance: 1.0e-12}", "", 1e-8, 1);
   solver_case(ctx, "adr", "{type: adr, load_steps: 1, tolerance: 1.0e-10}", "", 1e-6, 1);
-  solver_case(ctx, "explicit", "{steps: 300, dt: 1.0e-7}", ", function: smooth, duration: 2.0e-5", 1e-8, 0);
+  solver_case(ctx, "explicit", "{steps: 300, dt: 1.0e-7}", ", function: smooth, duration: 2.0e-5",
+              1e-8, 0);
   { /* 3-D: Q = rotation by 40 degrees about the unit axis (1, 2, 2) / 3 (Rodrigues) */
     const double ax[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3}, th = 40 * M_PI / 180;
     const double c = cos(th), s1 = sin(th);
@@ -347,9 +333,8 @@ int main(void) {
   bad(ctx, "zero direction", "pmb",
       "  - {set: left, type: displacement, direction: [0, 0], value: 0}\n", newton,
       (const char *[]){"boundary_conditions[0].direction", "must not be zero", NULL});
-  bad(ctx, "body force", "pmb",
-      "  - {set: left, type: body_force, direction: [1, 0], value: 1}\n", newton,
-      (const char *[]){"boundary_conditions[0].direction", "body force", NULL});
+  bad(ctx, "body force", "pmb", "  - {set: left, type: body_force, direction: [1, 0], value: 1}\n",
+      newton, (const char *[]){"boundary_conditions[0].direction", "body force", NULL});
   bad(ctx, "overlap", "pmb",
       "  - {set: left, type: displacement, direction: [1, 1], value: 0}\n"
       "  - {set: all, type: displacement, y: 0}\n",

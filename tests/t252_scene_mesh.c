@@ -25,25 +25,11 @@
  * labels: scene */
 #include <sys/stat.h>
 
-#include "test_util.h"
+#include "work_util.h"
 
-static char work[512];
 static const double H = 1e-3;
 #define NX 30
 #define NY 6
-
-static FILE *open_file(const char *name) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/%s", work, name);
-  FILE *f = fopen(path, "w");
-  T_ASSERT(f != NULL, "cannot write %s", path);
-  return f;
-}
-
-static void write_file(const char *name, const char *text) {
-  FILE *f = open_file(name);
-  T_ASSERT(fputs(text, f) >= 0 && fclose(f) == 0, "cannot write %s", name);
-}
 
 static long node2(int i, int j) { return 1 + i + (long)j * (NX + 1); }
 
@@ -59,7 +45,7 @@ static void grid_xy(int i, int j, double jiggle, double *x, double *y) {
 /* The rectangle: quadrangles (tri 0) or triangles (tri 1), MSH 4.1 (v4) or 2.2. Groups: curves
  * left (1) and right (2), surfaces steel (3, i < 15) and soft (4). */
 static void write_rect(const char *name, int v4, int tri, double jiggle) {
-  FILE *f = open_file(name);
+  FILE *f = work_open(name);
   const long nn = (long)(NX + 1) * (NY + 1);
   fprintf(f, "$MeshFormat\n%s 0 8\n$EndMeshFormat\n", v4 ? "4.1" : "2.2");
   fprintf(f, "$PhysicalNames\n4\n1 1 \"left\"\n1 2 \"right\"\n2 3 \"steel\"\n2 4 \"soft\"\n"
@@ -85,14 +71,16 @@ static void write_rect(const char *name, int v4, int tri, double jiggle) {
   const long per = tri ? 2 : 1, half = (long)(NX / 2) * NY * per;
   const long total = 2 * NY + 2 * half;
   long tag = 1;
-  if (v4) fprintf(f, "4 %ld 1 %ld\n", total, total);
+  if (v4)
+    fprintf(f, "4 %ld 1 %ld\n", total, total);
   else
     fprintf(f, "%ld\n", total);
   for (int c = 0; c < 2; ++c) { /* the curves */
     if (v4) fprintf(f, "1 %d 1 %d\n", c + 1, NY);
     for (int j = 0; j < NY; ++j, ++tag) {
       const int i = c ? NX : 0;
-      if (v4) fprintf(f, "%ld %ld %ld\n", tag, node2(i, j), node2(i, j + 1));
+      if (v4)
+        fprintf(f, "%ld %ld %ld\n", tag, node2(i, j), node2(i, j + 1));
       else
         fprintf(f, "%ld 1 2 %d %d %ld %ld\n", tag, c + 1, c + 1, node2(i, j), node2(i, j + 1));
     }
@@ -105,13 +93,15 @@ static void write_rect(const char *name, int v4, int tri, double jiggle) {
                    d = node2(i, j + 1);
         const char *pre2 = srf ? "4 4" : "3 3";
         if (tri) {
-          if (v4) fprintf(f, "%ld %ld %ld %ld\n%ld %ld %ld %ld\n", tag, a, b, c, tag + 1, a, c, d);
+          if (v4)
+            fprintf(f, "%ld %ld %ld %ld\n%ld %ld %ld %ld\n", tag, a, b, c, tag + 1, a, c, d);
           else
             fprintf(f, "%ld 2 2 %s %ld %ld %ld\n%ld 2 2 %s %ld %ld %ld\n", tag, pre2, a, b, c,
                     tag + 1, pre2, a, c, d);
           tag += 2;
         } else {
-          if (v4) fprintf(f, "%ld %ld %ld %ld %ld\n", tag, a, b, c, d);
+          if (v4)
+            fprintf(f, "%ld %ld %ld %ld %ld\n", tag, a, b, c, d);
           else
             fprintf(f, "%ld 3 2 %s %ld %ld %ld %ld\n", tag, pre2, a, b, c, d);
           tag += 1;
@@ -125,7 +115,7 @@ static void write_rect(const char *name, int v4, int tri, double jiggle) {
 /* A 4 x 4 x 6 box of 1 mm cubes: hexahedra, or 6 tetrahedra per cube with interior nodes moved. */
 static void write_box(const char *name, int tets, double jiggle) {
   enum { BX = 4, BY = 4, BZ = 6 };
-  FILE *f = open_file(name);
+  FILE *f = work_open(name);
   const long nn = (long)(BX + 1) * (BY + 1) * (BZ + 1);
   fprintf(f, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 0 0 1\n"
              "1 0 0 0 0.004 0.004 0.006 0 0\n$EndEntities\n");
@@ -150,9 +140,9 @@ static void write_box(const char *name, int tets, double jiggle) {
   for (int k = 0; k < BZ; ++k)
     for (int j = 0; j < BY; ++j)
       for (int i = 0; i < BX; ++i) {
-        const long v[8] = {ND(i, j, k),         ND(i + 1, j, k),     ND(i + 1, j + 1, k),
-                           ND(i, j + 1, k),     ND(i, j, k + 1),     ND(i + 1, j, k + 1),
-                           ND(i + 1, j + 1, k + 1), ND(i, j + 1, k + 1)};
+        const long v[8] = {
+            ND(i, j, k),     ND(i + 1, j, k),     ND(i + 1, j + 1, k),     ND(i, j + 1, k),
+            ND(i, j, k + 1), ND(i + 1, j, k + 1), ND(i + 1, j + 1, k + 1), ND(i, j + 1, k + 1)};
         if (!tets) {
           fprintf(f, "%ld %ld %ld %ld %ld %ld %ld %ld %ld\n", tag++, v[0], v[1], v[2], v[3], v[4],
                   v[5], v[6], v[7]);
@@ -177,8 +167,7 @@ static const char scene2[] =
     "boundary_conditions:\n  - {set: left, type: displacement, x: 0, y: 0}\n"
     "  - {set: right, type: displacement, x: 1.0e-5, y: 0}\n"
     "solver: {type: newton, load_steps: 1}\noutput: {reactions: [right]}\n";
-static const char mats[] =
-    "materials:\n  - {name: soft, density: 8000, bulk_modulus: 0.5e9}\n";
+static const char mats[] = "materials:\n  - {name: soft, density: 8000, bulk_modulus: 0.5e9}\n";
 static const char lattice_sets[] = "sets:\n  - {name: left, box: {lo: [-1, -1], hi: [0.001, 1]}}\n"
                                    "  - {name: right, box: {lo: [0.029, -1], hi: [1, 1]}}\n";
 static const char scene3[] = "name: box\ndimension: 3\n"
@@ -262,8 +251,7 @@ static void bad(pdk_ctx *ctx, const char *label, const char *mesh, const char *g
 
 int main(void) {
   pdk_ctx *ctx = t_ctx(1);
-  snprintf(work, sizeof work, "%s/tests/t252_scene_mesh.work", getenv("PDK_BUILD_DIR"));
-  mkdir(work, 0755);
+  work_init("t252_scene_mesh");
   char text[4096];
 
   /* 1. */
@@ -279,9 +267,9 @@ int main(void) {
   pdk_particles *pl = pdk_sim_particles(lat), *pm = pdk_sim_particles(msh);
   same_particles("quads vs lattice", pl, pm, 1e-17, 1e-13,
                  (const char *const[]){"set:left", "set:right", NULL});
-  same_particles("MSH 2.2 vs 4.1", pm, pdk_sim_particles(m22), 0, 0,
-                 (const char *const[]){"set:left", "set:right", "set:steel", "set:soft",
-                                       "material", NULL});
+  same_particles(
+      "MSH 2.2 vs 4.1", pm, pdk_sim_particles(m22), 0, 0,
+      (const char *const[]){"set:left", "set:right", "set:steel", "set:soft", "material", NULL});
   {
     const int32_t *mat = pdk_particles_field_data(pm, "material", 0);
     const uint8_t *steel = pdk_particles_field_data(pm, "set:steel", 0);
@@ -345,8 +333,9 @@ int main(void) {
 
   /* 3. */
   const char *head = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  const char *nodes = "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1e-3 0 0\n1e-3 1e-3 0\n0 1e-3 0\n"
-                      "$EndNodes\n";
+  const char *nodes =
+      "$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1e-3 0 0\n1e-3 1e-3 0\n0 1e-3 0\n"
+      "$EndNodes\n";
   char m[2048];
   bad(ctx, "binary", "$MeshFormat\n4.1 1 8\n", "mesh: bad.msh", "",
       (const char *[]){"geometry.mesh", "bad.msh:2", "binary", "Mesh.Binary = 0", NULL});
@@ -371,11 +360,12 @@ int main(void) {
   snprintf(m, sizeof m, "%s$PhysicalNames\n1\n2 1 \"my body\"\n$EndPhysicalNames\n", head);
   bad(ctx, "name", m, "mesh: bad.msh", "",
       (const char *[]){"bad.msh:6", "\"my body\"", "rename", NULL});
-  snprintf(m, sizeof m,
-           "%s$PhysicalNames\n2\n2 1 \"soft\"\n2 2 \"hard\"\n$EndPhysicalNames\n$Entities\n0 0 1 0\n"
-           "1 0 0 0 1 1 0 2 1 2 0\n$EndEntities\n%s$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 4\n"
-           "$EndElements\n",
-           head, nodes);
+  snprintf(
+      m, sizeof m,
+      "%s$PhysicalNames\n2\n2 1 \"soft\"\n2 2 \"hard\"\n$EndPhysicalNames\n$Entities\n0 0 1 0\n"
+      "1 0 0 0 1 1 0 2 1 2 0\n$EndEntities\n%s$Elements\n1 1 1 1\n2 1 3 1\n1 1 2 3 4\n"
+      "$EndElements\n",
+      head, nodes);
   bad(ctx, "two materials", m, "mesh: bad.msh",
       "materials:\n  - {name: soft, density: 1, bulk_modulus: 1.0e9}\n"
       "  - {name: hard, density: 1, bulk_modulus: 2.0e9}\n",

@@ -1,5 +1,6 @@
 /* Data shared by the PMB and LPS drivers: packed particle rows for the SIMD kernels and float
- * bond lengths for precision float (src/models/model_bond.h, pdk_bond_arrays in kernels/kernels.h). */
+ * bond lengths for precision float (src/models/model_bond.h, pdk_bond_arrays in kernels/kernels.h).
+ */
 #include <math.h>
 #include <string.h>
 
@@ -23,7 +24,8 @@ int pdk_bond_data_setup(pdk_model *m, pdk_bond_data *bd, const char *who) {
               (int)n, 64 * n_pad);
     for (int c = 0; c < dim; ++c) {
       const double *X = pdk_particles_X(p, c);
-      for (pdk_index i = 0; i < n; ++i) bd->ref4[4 * (size_t)i + (size_t)c] = X[i];
+      for (pdk_index i = 0; i < n; ++i)
+        bd->ref4[4 * (size_t)i + (size_t)c] = X[i];
     }
   }
   if (m->opts.precision == PDK_PRECISION_FLOAT) {
@@ -38,7 +40,7 @@ int pdk_bond_data_setup(pdk_model *m, pdk_bond_data *bd, const char *who) {
     const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1);
     const double *Z = dim == 3 ? pdk_particles_X(p, 2) : NULL;
     float *r0 = bd->bond_r0;
-#pragma omp parallel for default(none) shared(n, bs, bj, X, Y, Z, r0, dim) schedule(static)       \
+#pragma omp parallel for default(none) shared(n, bs, bj, X, Y, Z, r0, dim) schedule(static)        \
     num_threads(ctx->num_threads)
     for (pdk_index i = 0; i < n; ++i)
       for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
@@ -59,7 +61,7 @@ void pdk_bond_data_free(pdk_bond_data *bd) {
 
 int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *a) {
   pdk_particles *p = m->p;
-  const int dim = bd->dim;
+  const int dim = pdk_particles_dim(p); /* also when bd was not set up (layout stencil) */
   memset(a, 0, sizeof *a);
   a->dim = dim;
   a->bond_start = pdk_families_bond_start(m->fam);

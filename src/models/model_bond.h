@@ -14,14 +14,15 @@
 #include "model_impl.h"
 #include "pdk/ctx.h"
 
-/* Data the PMB and LPS drivers share (src/models/model_bond.c): the packed particle rows of the SIMD
- * kernels and the float bond lengths of precision float (pdk_bond_arrays in kernels/kernels.h). */
+/* Data the PMB and LPS drivers share (src/models/model_bond.c): the packed particle rows of the
+ * SIMD kernels and the float bond lengths of precision float (pdk_bond_arrays in
+ * kernels/kernels.h). */
 typedef struct pdk_bond_data {
   int dim;
   pdk_index n;
-  double *ref4;    /* [4 n_pad] X, Y, Z, extra; NULL when the kernel table reads SoA only */
-  double *cur4;    /* [4 n_pad] x, y, z, V, refilled before every pass */
-  float *bond_r0;  /* [num_bonds] |xi| rounded to float (precision float), else NULL */
+  double *ref4;   /* [4 n_pad] X, Y, Z, extra; NULL when the kernel table reads SoA only */
+  double *cur4;   /* [4 n_pad] x, y, z, V, refilled before every pass */
+  float *bond_r0; /* [num_bonds] |xi| rounded to float (precision float), else NULL */
 } pdk_bond_data;
 
 /* Allocates what the context's kernel table and m->opts.precision need and fills ref4 (extra
@@ -64,7 +65,8 @@ static inline pdk_bond_index pdk_bond_reverse(const pdk_bond_index *bond_start,
 static inline double pdk_bond_block_energy(const double *volume, const double *w, pdk_index i0,
                                            pdk_index i1) {
   double e = 0.0;
-  for (pdk_index i = i0; i < i1; ++i) e += volume[i] * w[i];
+  for (pdk_index i = i0; i < i1; ++i)
+    e += volume[i] * w[i];
   return e;
 }
 
@@ -83,21 +85,27 @@ static inline void pdk_bond_pass_finish(pdk_model *m, double **s0_next, int swap
   }
   if (energy) {
     double e = 0.0;
-    for (int64_t blk = 0; blk < num_blocks; ++blk) e += block_energy[blk];
+    for (int64_t blk = 0; blk < num_blocks; ++blk)
+      e += block_energy[blk];
     *energy = e;
   }
 }
 
 /* The energy bond breaking releases (src/models/model_bond_book.c, which says what is booked and
- * why): W(m, i, alive) is particle i's strain energy density at the current "x" with bond state
- * `alive` ([num_bonds], the families' bonds), from i's own row; it may be called by several
- * threads at once. setup (when bonds can break: declares "w_broken", copies the bond state) at the
- * kind's setup; start at the beginning of a committing pass (books what the last breaking pass
- * left pending); end after it, with the count it broke. */
-typedef double (*pdk_bond_row_energy_fn)(const pdk_model *m, pdk_index i, const uint8_t *alive);
+ * why): W(m, a, i, alive) is particle i's strain energy density at the current "x" with bond state
+ * `alive` ([num_bonds], the families' bonds), from i's own row, reading the families, positions,
+ * volumes and bond_r0 of `a` (pdk_bond_arrays_get, fetched once per pass); it may be called by
+ * several threads at once. setup (when bonds can break: declares "w_broken", copies the bond state)
+ * at the kind's setup; start at the beginning of a committing pass (books what the last breaking
+ * pass left pending); end after it, with the count it broke. */
+typedef double (*pdk_bond_row_energy_fn)(const pdk_model *m, const pdk_bond_arrays *a, pdk_index i,
+                                         const uint8_t *alive);
 int pdk_bond_book_setup(pdk_model *m);
-int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W);
-int pdk_bond_book_end(pdk_model *m, pdk_bond_index broken, pdk_bond_row_energy_fn W);
+/* The arrays W reads (pdk_bond_arrays_get; an error naming the model when a field is missing). */
+int pdk_bond_book_arrays(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *a);
+int pdk_bond_book_start(pdk_model *m, const pdk_bond_arrays *a, pdk_bond_row_energy_fn W);
+int pdk_bond_book_end(pdk_model *m, const pdk_bond_arrays *a, pdk_bond_index broken,
+                      pdk_bond_row_energy_fn W);
 /* book_lost from bond_alive (setup, checkpoint restore): 1 for every particle with a broken bond;
  * book_end keeps it current. */
 void pdk_bond_book_mark_lost(pdk_model *m);

@@ -66,7 +66,7 @@ void pdk_bond_book_mark_lost(pdk_model *m) {
   const pdk_index n = pdk_particles_count(m->p);
   const uint8_t *alive = m->bond_alive;
   uint8_t *lost = m->book_lost;
-#pragma omp parallel for default(none) shared(bs, n, alive, lost) schedule(static)                \
+#pragma omp parallel for default(none) shared(bs, n, alive, lost) schedule(static)                 \
     num_threads(m->ctx->num_threads)
   for (pdk_index i = 0; i < n; ++i)
     lost[i] = bs[i + 1] > bs[i] && memchr(alive + bs[i], 0, (size_t)(bs[i + 1] - bs[i])) != NULL;
@@ -77,7 +77,13 @@ static inline int row_changed(const uint8_t *prev, const uint8_t *alive, pdk_bon
   return b1 > b0 && memcmp(prev + b0, alive + b0, (size_t)(b1 - b0)) != 0;
 }
 
-int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W) {
+int pdk_bond_book_arrays(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *a) {
+  PDK_CHECK(pdk_bond_arrays_get(m, bd, a), m->ctx, PDK_ERR_NOT_FOUND,
+            "%s model: fields \"x\" and \"f\" are missing from the particle store", m->info->name);
+  return PDK_SUCCESS;
+}
+
+int pdk_bond_book_start(pdk_model *m, const pdk_bond_arrays *a, pdk_bond_row_energy_fn W) {
   if (!m->book_prev || !m->book_has_pending) return PDK_SUCCESS;
   double *w_broken = pdk_particles_field_data(m->p, "w_broken", 0);
   PDK_CHECK(w_broken, m->ctx, PDK_ERR_NOT_FOUND,
@@ -88,11 +94,11 @@ int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W) {
   const uint8_t *alive = m->bond_alive;
   double *pending = m->book_pending;
   const pdk_model *mc = m;
-#pragma omp parallel for default(none) shared(bs, n, prev, alive, pending, w_broken, W, mc)       \
+#pragma omp parallel for default(none) shared(bs, n, prev, alive, pending, w_broken, W, mc, a)     \
     schedule(static) num_threads(m->ctx->num_threads)
   for (pdk_index i = 0; i < n; ++i) {
     if (!row_changed(prev, alive, bs[i], bs[i + 1])) continue;
-    const double half = 0.5 * (W(mc, i, prev) - W(mc, i, alive));
+    const double half = 0.5 * (W(mc, a, i, prev) - W(mc, a, i, alive));
     w_broken[i] += pending[i] + half;
     pending[i] = 0.0;
     memcpy(prev + bs[i], alive + bs[i], (size_t)(bs[i + 1] - bs[i]));
@@ -101,7 +107,8 @@ int pdk_bond_book_start(pdk_model *m, pdk_bond_row_energy_fn W) {
   return PDK_SUCCESS;
 }
 
-int pdk_bond_book_end(pdk_model *m, pdk_bond_index broken, pdk_bond_row_energy_fn W) {
+int pdk_bond_book_end(pdk_model *m, const pdk_bond_arrays *a, pdk_bond_index broken,
+                      pdk_bond_row_energy_fn W) {
   if (!m->book_prev || broken == 0) return PDK_SUCCESS;
   const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
   const pdk_index n = pdk_particles_count(m->p);
@@ -109,11 +116,11 @@ int pdk_bond_book_end(pdk_model *m, pdk_bond_index broken, pdk_bond_row_energy_f
   double *pending = m->book_pending;
   uint8_t *lost = m->book_lost;
   const pdk_model *mc = m;
-#pragma omp parallel for default(none) shared(bs, n, prev, alive, pending, lost, W, mc)           \
+#pragma omp parallel for default(none) shared(bs, n, prev, alive, pending, lost, W, mc, a)         \
     schedule(static) num_threads(m->ctx->num_threads)
   for (pdk_index i = 0; i < n; ++i)
     if (row_changed(prev, alive, bs[i], bs[i + 1])) {
-      pending[i] = 0.5 * (W(mc, i, prev) - W(mc, i, alive));
+      pending[i] = 0.5 * (W(mc, a, i, prev) - W(mc, a, i, alive));
       lost[i] = 1;
     }
   m->book_has_pending = 1;

@@ -1,6 +1,7 @@
 /* Ordinary state-based LPS model, as LAMMPS peri/lps: driver over the context's kernel table
  * (reference kernels/ref/lps.c; SIMD variants kernels/opt/bond_*.c over packed rows, see
- * src/models/model_pmb.c). precision float: bond lengths stored per bond as floats, m_i computed from them.
+ * src/models/model_pmb.c). precision float: bond lengths stored per bond as floats, m_i computed
+ * from them.
  *
  * Fields declared: "m" (f64 x1, weighted volume m_i = sum_b omega r0^2 beta V_j with LAMMPS's
  * omega = 1/r0, computed once here, over all bonds, and never updated, as LAMMPS's wvolume) and
@@ -21,11 +22,11 @@
  * PDK_LPS_BLOCK particles (static schedule, barrier between); the energy is summed per block and
  * the blocks in order, so results are bitwise the same for any thread count.
  *
- * Layout sell (opts.layout): both passes walk a sliced copy of the families (src/space/sell.h) through
- * the table's lps_dilation_sell and lps_force_sell, over blocks of PDK_LPS_BLOCK / C slices, as
- * src/models/model_pmb.c does for PMB (energy over the csr particle blocks after a barrier; the copy's
- * bond state refreshed when m->bond_state_version moved). The weighted volume is computed once at
- * set-up over the CSR families.
+ * Layout sell (opts.layout): both passes walk a sliced copy of the families (src/space/sell.h)
+ * through the table's lps_dilation_sell and lps_force_sell, over blocks of PDK_LPS_BLOCK / C
+ * slices, as src/models/model_pmb.c does for PMB (energy over the csr particle blocks after a
+ * barrier; the copy's bond state refreshed when m->bond_state_version moved). The weighted volume
+ * is computed once at set-up over the CSR families.
  */
 #include <float.h>
 #include <math.h>
@@ -58,7 +59,7 @@ typedef struct lps_impl {
    * s_i = sum_b alive_b beta V_j eta_b / |eta_b| at the x of the last tangent_prepare */
   double *tan_q;    /* [n] */
   double *tan_s[3]; /* [n] per component */
-  int use_sell; /* layout sell: the passes walk `sell` (src/space/sell.h) */
+  int use_sell;     /* layout sell: the passes walk `sell` (src/space/sell.h) */
   pdk_sell sell;
   unsigned long sell_version; /* m->bond_state_version sell.alive was last synced with */
 } lps_impl;
@@ -142,15 +143,16 @@ static int lps_setup(pdk_model *m) {
       if (ref4) ref4[4 * (size_t)i + 3] = inv_m[i]; /* the rows' extra column */
     }
   }
-  /* model.stencil: the lattice layout (src/models/model_stencil.c) with this model's 1/m per site */
+  /* model.stencil: the lattice layout (src/models/model_stencil.c) with this model's 1/m per site
+   */
   PDK_CALL(pdk_stencil_model_setup(m, im->bd.bond_r0, 0));
   if (m->stencil) {
     PDK_CALL(pdk_stencil_lps_setup(m, m->stencil, im->inv_m));
     pdk_bond_data_free(&im->bd); /* neither rows nor per-bond lengths are read any more */
   }
   if (m->opts.layout == PDK_LAYOUT_SELL && !m->stencil) { /* the stencil path, when taken, wins */
-    PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, m->opts.sell_sigma,
-                            m->bond_alive, im->bd.bond_r0, &im->sell));
+    PDK_CALL(pdk_sell_build(ctx, m->fam, ctx->kernels.sell_width, m->opts.sell_sigma, m->bond_alive,
+                            im->bd.bond_r0, &im->sell));
     im->use_sell = 1;
     im->sell_version = m->bond_state_version;
   }
@@ -230,8 +232,8 @@ static int lps_pass(pdk_model *m, int commit, double *energy) {
       } /* implicit barrier: the energy blocks below hold rows of any slice */
       if (w) pdk_bond_block_energies(volume, w, n, PDK_LPS_BLOCK, block_energy);
     }
-    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy,
-                         num_blocks, energy);
+    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy, num_blocks,
+                         energy);
     return PDK_SUCCESS;
   }
 
@@ -275,14 +277,14 @@ static int lps_pass(pdk_model *m, int commit, double *energy) {
  * here. */
 
 /* m'_i over i's bonds intact in `alive`, as the kernels compute r0 and beta. */
-static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *alive, double *all) {
+static double lps_row_volume(const pdk_model *m, const pdk_bond_arrays *a, pdk_index i,
+                             const uint8_t *alive, double *all) {
   const lps_impl *im = m->impl;
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const double *V = pdk_particles_volume(m->p);
+  const pdk_bond_index *bs = a->bond_start;
+  const pdk_index *bj = a->bond_j;
+  const double *V = a->volume;
   const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
-  const double *X[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < im->dim; ++c) X[c] = pdk_particles_X(m->p, c);
+  const double *const *X = a->X;
   double sum = 0.0, sum_all = 0.0;
   for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
     const pdk_index j = bj[b];
@@ -304,8 +306,7 @@ static double lps_row_volume(const pdk_model *m, pdk_index i, const uint8_t *ali
  * every particle whose family lost bonds (lost[i], one byte per particle: the pass costs a scan
  * of n bytes and the rows of those particles) gets the difference above, and *energy its sum
  * (V_i-weighted, in index order: the same bits for any thread count). */
-static int lps_fix_energy(pdk_model *m, const uint8_t *alive, const uint8_t *lost,
-                          double *energy) {
+static int lps_fix_energy(pdk_model *m, const uint8_t *alive, const uint8_t *lost, double *energy) {
   lps_impl *im = m->impl;
   const double *theta = pdk_particles_field_data(m->p, "theta", 0);
   const double *V = pdk_particles_volume(m->p);
@@ -314,36 +315,37 @@ static int lps_fix_energy(pdk_model *m, const uint8_t *alive, const uint8_t *los
   double *w = im->w, *fix = im->fix;
   const double *inv_m = im->inv_m;
   const pdk_model *mc = m;
-#pragma omp parallel for default(none) shared(theta, n, d2, e_dev, w, fix, inv_m, alive, lost, mc) \
-    schedule(static) num_threads(m->ctx->num_threads)
+  pdk_bond_arrays arrays;
+  PDK_CALL(pdk_bond_book_arrays(m, &im->bd, &arrays));
+  const pdk_bond_arrays *a = &arrays;
+#pragma omp parallel for default(none) schedule(static) num_threads(m->ctx->num_threads)           \
+    shared(theta, n, d2, e_dev, w, fix, inv_m, alive, lost, mc, a)
   for (pdk_index i = 0; i < n; ++i) {
     fix[i] = 0.0;
     if (!lost[i]) continue;
     double m_all;
-    const double m_alive = lps_row_volume(mc, i, alive, &m_all);
+    const double m_alive = lps_row_volume(mc, a, i, alive, &m_all);
     fix[i] = e_dev * theta[i] * theta[i] * inv_m[i] * (m_all - m_alive) / d2;
     w[i] += fix[i];
   }
   double sum = 0.0;
-  for (pdk_index i = 0; i < n; ++i) sum += V[i] * fix[i];
+  for (pdk_index i = 0; i < n; ++i)
+    sum += V[i] * fix[i];
   *energy += sum;
   return PDK_SUCCESS;
 }
 
 /* W_i at the current x with bond state `alive` (the potential above, its dilatation from the same
  * state; families' bonds; src/models/model_bond_book.c). */
-static double lps_row_energy(const pdk_model *m, pdk_index i, const uint8_t *alive) {
+static double lps_row_energy(const pdk_model *m, const pdk_bond_arrays *a, pdk_index i,
+                             const uint8_t *alive) {
   const lps_impl *im = m->impl;
   const pdk_lps_consts *k = &im->k;
   const int dim = im->dim;
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < dim; ++c) {
-    X[c] = pdk_particles_X(m->p, c);
-    x[c] = pdk_particles_field_data(m->p, "x", c);
-  }
-  const double *V = pdk_particles_volume(m->p);
+  const pdk_bond_index *bs = a->bond_start;
+  const pdk_index *bj = a->bond_j;
+  const double *const *X = a->X, *const *x = a->x;
+  const double *V = a->volume;
   const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
   const double inv_m_i = im->inv_m[i], d = k->theta_factor;
   double sum_e = 0.0, sum_e2 = 0.0;
@@ -369,12 +371,15 @@ static double lps_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
 /* A pass, with the energy the breaks release booked (src/models/model_bond_book.c) and, once
  * bonds broke, the strain energy made the force's potential (above). */
 static int lps_force(pdk_model *m, int commit, double *energy) {
-  if (commit) PDK_CALL(pdk_bond_book_start(m, lps_row_energy));
+  lps_impl *im = m->impl;
+  const int book = commit && m->book_prev; /* bonds can break: book their energy */
+  pdk_bond_arrays a; /* the geometry the booking reads, fetched once per pass */
+  if (book) PDK_CALL(pdk_bond_book_arrays(m, &im->bd, &a));
+  if (book) PDK_CALL(pdk_bond_book_start(m, &a, lps_row_energy));
   const pdk_bond_index before = m->num_broken;
   PDK_CALL(lps_pass(m, commit, energy));
   /* the state the pass read: book_prev after book_start in a committing pass, else bond_alive */
   if (energy && before > 0) {
-    lps_impl *im = m->impl;
     if (!im->fix) {
       im->fix = pdk_alloc_aligned((size_t)pdk_particles_count_padded(m->p), sizeof(double));
       PDK_CHECK(im->fix, m->ctx, PDK_ERR_MEMORY, "lps model: out of memory for %d particles",
@@ -383,7 +388,7 @@ static int lps_force(pdk_model *m, int commit, double *energy) {
     /* book_lost marks the families of that state with a broken bond until book_end */
     PDK_CALL(lps_fix_energy(m, commit ? m->book_prev : m->bond_alive, m->book_lost, energy));
   }
-  if (commit) PDK_CALL(pdk_bond_book_end(m, m->num_broken - before, lps_row_energy));
+  if (book) PDK_CALL(pdk_bond_book_end(m, &a, m->num_broken - before, lps_row_energy));
   return PDK_SUCCESS;
 }
 
@@ -396,7 +401,8 @@ static void lps_destroy(pdk_model *m) {
   pdk_free_aligned(im->fix);
   free(im->block_energy);
   free(im->tan_q);
-  for (int c = 0; c < 3; ++c) free(im->tan_s[c]);
+  for (int c = 0; c < 3; ++c)
+    free(im->tan_s[c]);
   pdk_bond_data_free(&im->bd);
   pdk_sell_free(&im->sell);
   free(im);
@@ -410,18 +416,17 @@ static void lps_destroy(pdk_model *m) {
  *   f_a = sum_b nu_b T_b n / r0,   T_b = c_dil (q_a + q_j) r0 + c_dev P e,
  *   theta_a = d / m_a sum_b nu_b e.
  * Differentiating, with dn = (I - n n^T) deta / r:
- *   df_a = sum_b nu_b H_b deta_b + c_dil (s_a / m_a) dtheta_a + c_dil sum_b nu_b n_b dtheta_j / m_j,
- *   H_b = (c_dev P n n^T + T_b / r (I - n n^T)) / r0,   s_a = sum_b nu_b n_b,
- *   dtheta_a = d / m_a sum_b nu_b n_b . deta_b.
- * The column of particle i (K = -d(V f)/dx, deta_b = dx_j - dx_a):
- *   local, per bond b of i to j:  K[i,i] += V_i nu_b H_b,  K[j,i] -= V_j nu'_b H_b (nu'_b: the bond
- *     j -> i from j's end, beta V_i and its own state; H is the same from both ends);
- *   dilatation, per particle p whose theta depends on x_i (p = i, and every j whose bond j -> i is
- *     intact) with g_p = dtheta_p / dx_i (g_i = -d s_i / m_i, g_j = d nu'_b n_ji / m_j):
- *     K[p, i] -= V_p c_dil s_p g_p^T / m_p,  and for every bond p -> a, with nu_ap the bond a -> p
- *     from a's end (beta V_p, its state): K[a, i] += V_a c_dil nu_ap n_pa g_p^T / m_p
- *   (a bond a -> p pulls a along n_ap = -n_pa). Rows reach 2 hops: the coupling of the pattern.
- * Bonds with r = 0 carry no force and no dilatation derivative (n undefined), as in the pass. */
+ *   df_a = sum_b nu_b H_b deta_b + c_dil (s_a / m_a) dtheta_a + c_dil sum_b nu_b n_b dtheta_j /
+ * m_j, H_b = (c_dev P n n^T + T_b / r (I - n n^T)) / r0,   s_a = sum_b nu_b n_b, dtheta_a = d / m_a
+ * sum_b nu_b n_b . deta_b. The column of particle i (K = -d(V f)/dx, deta_b = dx_j - dx_a): local,
+ * per bond b of i to j:  K[i,i] += V_i nu_b H_b,  K[j,i] -= V_j nu'_b H_b (nu'_b: the bond j -> i
+ * from j's end, beta V_i and its own state; H is the same from both ends); dilatation, per particle
+ * p whose theta depends on x_i (p = i, and every j whose bond j -> i is intact) with g_p = dtheta_p
+ * / dx_i (g_i = -d s_i / m_i, g_j = d nu'_b n_ji / m_j): K[p, i] -= V_p c_dil s_p g_p^T / m_p,  and
+ * for every bond p -> a, with nu_ap the bond a -> p from a's end (beta V_p, its state): K[a, i] +=
+ * V_a c_dil nu_ap n_pa g_p^T / m_p (a bond a -> p pulls a along n_ap = -n_pa). Rows reach 2 hops:
+ * the coupling of the pattern. Bonds with r = 0 carry no force and no dilatation derivative (n
+ * undefined), as in the pass. */
 static int lps_tangent_prepare(pdk_model *m) {
   pdk_ctx *ctx = m->ctx;
   lps_impl *im = m->impl;
@@ -434,15 +439,13 @@ static int lps_tangent_prepare(pdk_model *m) {
     PDK_CHECK(im->tan_q && im->tan_s[0] && im->tan_s[1] && (dim < 3 || im->tan_s[2]), ctx,
               PDK_ERR_MEMORY, "lps model: out of memory for the tangent of %d particles", (int)n);
   }
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < dim; ++c) {
-    X[c] = pdk_particles_X(m->p, c);
-    x[c] = pdk_particles_field_data(m->p, "x", c);
-  }
-  const double *V = pdk_particles_volume(m->p);
-  const float *bond_r0 = im->bd.bond_r0;
+  pdk_bond_arrays arrays;
+  PDK_CALL(pdk_bond_book_arrays(m, &im->bd, &arrays));
+  const pdk_bond_index *bs = arrays.bond_start;
+  const pdk_index *bj = arrays.bond_j;
+  const double *const *X = arrays.X, *const *x = arrays.x;
+  const double *V = arrays.volume;
+  const float *bond_r0 = arrays.bond_r0;
   const uint8_t *alive = m->bond_alive;
   const pdk_lps_consts *k = &im->k;
   const double *inv_m = im->inv_m;
@@ -462,7 +465,8 @@ static int lps_tangent_prepare(pdk_model *m) {
       }
       const double r0 = bond_r0 ? (double)bond_r0[b] : sqrt(xi2);
       const double r = sqrt(r2);
-      const double nu = (alive ? (double)alive[b] : 1.0) * V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
+      const double nu =
+          (alive ? (double)alive[b] : 1.0) * V[j] * fmin(1.0, (k->vs_a - r0) * k->vs_b);
       sum += nu * (r - r0);
       if (r > 0.0)
         for (int c = 0; c < dim; ++c)
@@ -531,8 +535,8 @@ static void lps_dilatation_rows(const lps_impl *im, const pdk_model *m, const do
     lps_bond(im, m, X, x, p, b, a, &gb);
     if (!(gb.r > 0.0)) continue;
     /* nu of the bond a -> p from a's end: beta (same r0) V_p and the state of that bond */
-    const double nu_ap = lps_reverse_on(m, bs, bj, p, a) * V[p] *
-                         fmin(1.0, (im->k.vs_a - gb.r0) * im->k.vs_b);
+    const double nu_ap =
+        lps_reverse_on(m, bs, bj, p, a) * V[p] * fmin(1.0, (im->k.vs_a - gb.r0) * im->k.vs_b);
     const double wa = V[a] * c_dil * nu_ap * inv_m_p;
     double *Ka = block + (size_t)loc[a] * dim * dim;
     for (int e = 0; e < dim; ++e)

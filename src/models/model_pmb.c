@@ -18,16 +18,16 @@
  * s0, this driver keeps the second s0 buffer (written by a committing pass, then swapped in).
  *
  * Threads: one parallel region per pass, over fixed blocks of PDK_PMB_BLOCK particles with a
- * static schedule (first the packed rows, when the table reads them, then a barrier). Each block calls the kernel on its particles and, when the energy is wanted,
- * sums V_i W_i over the block into its own slot; the slots are summed in block order afterwards.
- * Every particle's force depends only on its own row, so results are bitwise the same for any
- * thread count.
+ * static schedule (first the packed rows, when the table reads them, then a barrier). Each block
+ * calls the kernel on its particles and, when the energy is wanted, sums V_i W_i over the block
+ * into its own slot; the slots are summed in block order afterwards. Every particle's force depends
+ * only on its own row, so results are bitwise the same for any thread count.
  *
- * Layout sell (opts.layout): the pass walks a sliced copy of the families (src/space/sell.h) through
- * the table's pmb_force_sell, over blocks of PDK_PMB_BLOCK / C slices; the energy partials are
- * then summed over the same particle blocks as csr's, after a barrier (a slice's rows are spread
- * over its sorting window). The copy's bond state is kept equal to bond_alive by the kernels and
- * refreshed from it when m->bond_state_version moved (checkpoint restore).
+ * Layout sell (opts.layout): the pass walks a sliced copy of the families (src/space/sell.h)
+ * through the table's pmb_force_sell, over blocks of PDK_PMB_BLOCK / C slices; the energy partials
+ * are then summed over the same particle blocks as csr's, after a barrier (a slice's rows are
+ * spread over its sorting window). The copy's bond state is kept equal to bond_alive by the kernels
+ * and refreshed from it when m->bond_state_version moved (checkpoint restore).
  */
 #include <float.h>
 #include <math.h>
@@ -159,7 +159,8 @@ static int pmb_pass(pdk_model *m, int commit, double *energy) {
   const pdk_bond_data *bd = &im->bd;
   /* A multi-material body takes the reference kernel: only it reads the per-particle micromoduli
    * (the SIMD kernels use the one constant c). */
-  const pdk_pmb_force_fn kernel = im->c_particle ? pdk_kernel_pmb_force_ref : ctx->kernels.pmb_force;
+  const pdk_pmb_force_fn kernel =
+      im->c_particle ? pdk_kernel_pmb_force_ref : ctx->kernels.pmb_force;
   const int pack = bd->cur4 != NULL && !im->c_particle;
   const double *volume = a->volume, *w = a->w;
   double *block_energy = im->block_energy;
@@ -187,8 +188,8 @@ static int pmb_pass(pdk_model *m, int commit, double *energy) {
       } /* implicit barrier: the energy blocks below hold rows of any slice */
       if (w) pdk_bond_block_energies(volume, w, n, PDK_PMB_BLOCK, block_energy);
     }
-    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy,
-                         num_blocks, energy);
+    pdk_bond_pass_finish(m, &im->s0_next, arrays.s0_next != NULL, broken, block_energy, num_blocks,
+                         energy);
     return PDK_SUCCESS;
   }
 
@@ -212,18 +213,15 @@ static int pmb_pass(pdk_model *m, int commit, double *energy) {
 
 /* W_i at the current x with bond state `alive` (the force pass's energy of row i, with the
  * families' bonds; src/models/model_bond_book.c). */
-static double pmb_row_energy(const pdk_model *m, pdk_index i, const uint8_t *alive) {
+static double pmb_row_energy(const pdk_model *m, const pdk_bond_arrays *a, pdk_index i,
+                             const uint8_t *alive) {
   const pmb_impl *im = m->impl;
   const pdk_pmb_consts *k = &im->k;
   const int dim = im->dim;
-  const pdk_bond_index *bs = pdk_families_bond_start(m->fam);
-  const pdk_index *bj = pdk_families_bond_j(m->fam);
-  const double *X[3] = {NULL, NULL, NULL}, *x[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < dim; ++c) {
-    X[c] = pdk_particles_X(m->p, c);
-    x[c] = pdk_particles_field_data(m->p, "x", c);
-  }
-  const double *V = pdk_particles_volume(m->p);
+  const pdk_bond_index *bs = a->bond_start;
+  const pdk_index *bj = a->bond_j;
+  const double *const *X = a->X, *const *x = a->x;
+  const double *V = a->volume;
   const int float_r0 = m->opts.precision == PDK_PRECISION_FLOAT;
   const double *cp = k->c_particle;
   double wi = 0.0;
@@ -249,10 +247,14 @@ static double pmb_row_energy(const pdk_model *m, pdk_index i, const uint8_t *ali
 
 /* A pass, with the energy of the bonds it breaks booked (src/models/model_bond_book.c). */
 static int pmb_force(pdk_model *m, int commit, double *energy) {
-  if (commit) PDK_CALL(pdk_bond_book_start(m, pmb_row_energy));
+  const pmb_impl *im = m->impl;
+  const int book = commit && m->book_prev; /* bonds can break: book their energy */
+  pdk_bond_arrays a; /* the geometry the booking reads, fetched once per pass */
+  if (book) PDK_CALL(pdk_bond_book_arrays(m, &im->bd, &a));
+  if (book) PDK_CALL(pdk_bond_book_start(m, &a, pmb_row_energy));
   const pdk_bond_index before = m->num_broken;
   PDK_CALL(pmb_pass(m, commit, energy));
-  if (commit) PDK_CALL(pdk_bond_book_end(m, m->num_broken - before, pmb_row_energy));
+  if (book) PDK_CALL(pdk_bond_book_end(m, &a, m->num_broken - before, pmb_row_energy));
   return PDK_SUCCESS;
 }
 
@@ -270,15 +272,14 @@ static void pmb_destroy(pdk_model *m) {
 }
 
 /* Analytic tangent (the Newton solver's, see pdk_model_ops). For a bond b of i to j with
- * eta = x_j - x_i, r = |eta|, e = r - r0, the force term is g eta with g = on c_b beta V_j e / (r0 r)
- * (kernels/ref/pmb.c), whose derivative with respect to eta is
- *   M_b = on c_b beta V_j H,   H = e / (r0 r) I + eta eta^T / r^3
- * (the second term from dg/deta = on c_b beta V_j eta^T / r^3). f_i depends on x_i through every
- * bond of i and on x_j through bond b only, so the column of particle i holds
- *   K[i, i] = V_i sum_b M_b,   K[j, i] = -V_j M'_b   (M'_b: bond j -> i, seen from j: V_i, its
- *                                                   own bond state, the same r0, c_b and H).
- * A bond with r = 0 contributes nothing (the force pass sets its force to 0). Float storage reads
- * r0 from bond_r0 as the force pass does; a multi-material body uses c_b = 2 c_i c_j / (c_i + c_j). */
+ * eta = x_j - x_i, r = |eta|, e = r - r0, the force term is g eta with g = on c_b beta V_j e / (r0
+ * r) (kernels/ref/pmb.c), whose derivative with respect to eta is M_b = on c_b beta V_j H,   H = e
+ * / (r0 r) I + eta eta^T / r^3 (the second term from dg/deta = on c_b beta V_j eta^T / r^3). f_i
+ * depends on x_i through every bond of i and on x_j through bond b only, so the column of particle
+ * i holds K[i, i] = V_i sum_b M_b,   K[j, i] = -V_j M'_b   (M'_b: bond j -> i, seen from j: V_i,
+ * its own bond state, the same r0, c_b and H). A bond with r = 0 contributes nothing (the force
+ * pass sets its force to 0). Float storage reads r0 from bond_r0 as the force pass does; a
+ * multi-material body uses c_b = 2 c_i c_j / (c_i + c_j). */
 static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index *loc,
                                double *block) {
   const pmb_impl *im = m->impl;
@@ -303,8 +304,8 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
       xi[c] = X[c][j] - X[c][i];
       eta[c] = x[c][j] - x[c][i];
     }
-    const double r0 = bond_r0 ? (double)bond_r0[b]
-                              : sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+    const double r0 =
+        bond_r0 ? (double)bond_r0[b] : sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
     const double r = sqrt(eta[0] * eta[0] + eta[1] * eta[1] + eta[2] * eta[2]);
     if (!(r > 0.0)) continue;
     const double beta = fmin(1.0, (k->vs_a - r0) * k->vs_b);
@@ -316,7 +317,7 @@ static void pmb_tangent_column(const pdk_model *m, pdk_index i, const pdk_index 
       on_j = rb >= 0 ? (double)alive[rb] : 0.0;
     }
     const double a1 = (r - r0) / (r0 * r), a2 = 1.0 / (r * r * r);
-    const double wi = V[i] * on_i * c_b * beta * V[j]; /* K[i,i] += wi H */
+    const double wi = V[i] * on_i * c_b * beta * V[j];  /* K[i,i] += wi H */
     const double wj = -V[j] * on_j * c_b * beta * V[i]; /* K[j,i] += wj H */
     double *Kji = block + (size_t)loc[j] * dim * dim;
     for (int e = 0; e < dim; ++e)
@@ -353,15 +354,15 @@ static const pdk_model_ops *pmb_ops_for(const pdk_model_opts *o) {
   return &pdk_model_ops_pmb;
 }
 
-const pdk_model_kind_info pdk_model_kind_pmb = {
-    .kind = PDK_MODEL_PMB,
-    .name = "pmb",
-    .caps = PDK_KIND_SCENE | PDK_KIND_STENCIL | PDK_KIND_MATERIALS | PDK_KIND_FLOAT |
-            PDK_KIND_TANGENT,
-    .hops = 1,
-    .scene_stabilization = PDK_STAB_NONE,
-    .mem_point = 640,
-    .mem_bond = 8,
-    .mem_bond_float = 12,
-    .mem_newton_bond = 100,
-    .ops_for = pmb_ops_for};
+const pdk_model_kind_info pdk_model_kind_pmb = {.kind = PDK_MODEL_PMB,
+                                                .name = "pmb",
+                                                .caps = PDK_KIND_SCENE | PDK_KIND_STENCIL |
+                                                        PDK_KIND_MATERIALS | PDK_KIND_FLOAT |
+                                                        PDK_KIND_TANGENT,
+                                                .hops = 1,
+                                                .scene_stabilization = PDK_STAB_NONE,
+                                                .mem_point = 640,
+                                                .mem_bond = 8,
+                                                .mem_bond_float = 12,
+                                                .mem_newton_bond = 100,
+                                                .ops_for = pmb_ops_for};
