@@ -275,7 +275,7 @@ static spectrum spectrum_of(double *K) {
 static void print_spectrum(const char *name, const spectrum *s, const double *paper) {
   T_INFO("%-34s zeros %3d:", name, s->zeros);
   for (int i = 0; i < 11; ++i)
-    T_INFO(" %.4f", s->first[i]);
+    T_INFO(" %.7g", s->first[i]);
   T_INFO("\n");
   if (paper) {
     T_INFO("%-34s  rel. to paper:", "");
