@@ -680,6 +680,7 @@ void pdk_kernel_corr_ul_pass2_ref(const pdk_corr_consts *k, const pdk_corr_ul_ar
 typedef struct pdk_galerkin_consts {
   int dim;       /* 2 (plane strain) or 3 */
   int basis;     /* pdk_galerkin_basis: 0 taylor (MTE1), 1 wls (WLS1) */
+  int bond;      /* 1: the bond-mapping correction (thesis eq. 5.55) in the shape kernel */
   int law;       /* PDK_KERNEL_LAW_* (elastic laws) */
   double lambda; /* Lame constants of the law */
   double mu;

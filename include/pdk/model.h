@@ -116,6 +116,12 @@ typedef struct pdk_galerkin_opts {
    * force under a constant stress with P n = 0). A zero normal (corners, edges) means "s" at that
    * particle. NULL: "s" everywhere. */
   const char *normals;
+  /* 1: the bond-mapping correction (Bode 2021 eq. 5.55; Bode et al. 2022 eq. 74): at every
+   * evaluation point j != k of family k the derivatives are projected off the bond direction and
+   * the bond added back, so F^{kj} maps the bond X_j - X_k exactly. With taylor it makes the
+   * thesis' "Unl" shape functions; with vc1 the correction functions then carry the thesis' bond
+   * projector (V5, eq. 5.64). 0: none (default). */
+  int bond;
 } pdk_galerkin_opts;
 
 /* Oterkus law: how the dilatation coefficient a is set (src/models/model_dil2.c). */

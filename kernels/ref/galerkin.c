@@ -15,6 +15,10 @@
  *   wls (WLS1 = WTE1, static weights w^{ki}, eq. 5.41): the same with j replaced by k, for every
  *     evaluation point j (one gradient per family: classical correspondence, eqs. 4.3-4.6).
  * Both satisfy sum_i dN^{kji} = 0 (5.8) and sum_i dX^{ki} (x) dN^{kji} = I (5.9).
+ * bond (the bond-mapping correction, eq. 5.55; k->bond): for every evaluation point j != k,
+ *   dN^{kji} <- (1 - n (x) n) dN^{kji} + delta_ji dX^{kj} / |dX^{kj}|^2,  n = dX^{kj} / |dX^{kj}|,
+ *   so F^{kj} dX^{kj} = dx^{kj} (the bond is mapped exactly); (5.9) still holds, (5.8) does not,
+ *   which the difference form of F (below) does not need.
  *
  * Trial (eq. 4.11, difference form): F^{kj} = I + sum_{i in H_k} (u_i - u_k) (x) dN^{kji}.
  * PBG internal virtual work (eq. 4.25): dW_k = sum_j w_kj P^{kj} : dF^{kj}, w_kj = V_k V_j / V_H,
@@ -109,6 +113,25 @@ pdk_index pdk_kernel_galerkin_shape_ref(const pdk_galerkin_consts *k, const pdk_
       }
       for (int c = 0; c < d; ++c)
         dj[c0 * d + c] = -sum[c];
+      if (k->bond && j > 0 && ok) {
+        /* bond-mapping correction (thesis eq. 5.55): dN <- (1 - n (x) n) dN + delta_ji dX/|dX|^2,
+         * n = dX^{kj}/|dX^{kj}|, so F^{kj} dX^{kj} = dx^{kj} exactly */
+        const pdk_index pj = member_j(a, kk, j);
+        double r[3] = {0, 0, 0}, r2 = 0.0;
+        for (int c = 0; c < d; ++c) {
+          r[c] = a->X[c][pj] - a->X[c][kk];
+          r2 += r[c] * r[c];
+        }
+        for (int i = 0; i < nm; ++i) {
+          double dn = 0.0;
+          for (int c = 0; c < d; ++c)
+            dn += r[c] * dj[i * d + c];
+          for (int c = 0; c < d; ++c)
+            dj[i * d + c] -= r[c] * dn / r2;
+        }
+        for (int c = 0; c < d; ++c)
+          dj[j * d + c] += r[c] / r2;
+      }
     }
   }
   return bad;

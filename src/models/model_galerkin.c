@@ -26,6 +26,12 @@
  * the tangents and the normal equation dropped, which gives the same solution). Per particle a
  * basis B_m (identity, tangents or nothing), unknowns beta_m, equations B_m^T A_m = 0: one square
  * system, assembled in compressed columns, factorized and solved once by UMFPACK.
+ * With the bond correction (opts.galerkin.bond) the correction functions are the thesis' V5 (eq.
+ * 5.64) as printed: the bond projector applied to sum_d e_d, i.e. component c of the correction at
+ * evaluation point j is psi^{ki} alpha_kc o^{kj}_c with o^{kj} = (1 - n (x) n)(1, .., 1) (j != k;
+ * o = 1 at j = k); the area vectors then take sum_j w_kj o^{kj} in place of V_k. This componentwise
+ * form is what reproduces Bode et al.'s Table 1 (docs/validation/galerkin.md); it keeps the
+ * consistency conditions but maps bonds exactly only where alpha_k has equal components.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -171,6 +177,24 @@ static int particle_basis(int dim, int surface, const double nrm[3], double B[3]
   return 2;
 }
 
+/* The componentwise factor o^{kj} of the correction functions at member pj of family k: with
+ * the bond correction the thesis' V5 projector applied to sum_d e_d, o = (1 - n (x) n) (1, .., 1)
+ * with n = (X_pj - X_k)/|X_pj - X_k| (j != k); 1 in every component otherwise. */
+static void vc1_factor(const double *const X[3], int dim, int bond, pdk_index k, pdk_index pj,
+                       double o[3]) {
+  for (int c = 0; c < 3; ++c)
+    o[c] = 1.0;
+  if (!bond || pj == k) return;
+  double r[3] = {0, 0, 0}, r2 = 0.0, rs = 0.0;
+  for (int c = 0; c < dim; ++c) {
+    r[c] = X[c][pj] - X[c][k];
+    r2 += r[c] * r[c];
+    rs += r[c];
+  }
+  for (int c = 0; c < dim; ++c)
+    o[c] = 1.0 - r[c] * rs / r2;
+}
+
 /* VC1: psi, the system, alpha, the corrected table (see the top of the file). */
 static int galerkin_vc1(pdk_model *m) {
   pdk_ctx *ctx = m->ctx;
@@ -270,9 +294,22 @@ static int galerkin_vc1(pdk_model *m) {
   PDK_CHECK_GOTO(Ap && Ai && Ax && rhs && sol && im->alpha && col, ctx, PDK_ERR_MEMORY,
                  "galerkin model: out of memory for the vc1 system (%lld entries)", (long long)nnz);
   nnz = 0;
+  const double *X[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c)
+    X[c] = pdk_particles_X(m->p, c);
+  const int bond = im->k.bond;
   for (pdk_index k = 0; k < n; ++k) {
     const double(*Bk)[3] = (const double(*)[3])(basis + 9 * (size_t)k);
     const double *pk = psi + bs[k] + k;
+    /* q_k = sum_j w_kj o^{kj} (V_k in every component without the bond correction) */
+    double q[3] = {0, 0, 0};
+    for (pdk_index jj = 0; jj <= (pdk_index)(bs[k + 1] - bs[k]); ++jj) {
+      const pdk_index pj = jj == 0 ? k : bj[bs[k] + jj - 1];
+      double o[3];
+      vc1_factor(X, dim, bond, k, pj, o);
+      for (int c = 0; c < dim; ++c)
+        q[c] += vol[k] * vol[pj] / im->vfam[k] * o[c];
+    }
     for (int e = 0; e < off[k + 1] - off[k]; ++e) {
       Ap[off[k] + e] = (int)nnz;
       int len = 0;
@@ -282,8 +319,8 @@ static int galerkin_vc1(pdk_model *m) {
         for (int r = 0; r < off[mi + 1] - off[mi]; ++r) {
           double dot = 0.0;
           for (int c = 0; c < dim; ++c)
-            dot += Bm[r][c] * Bk[e][c];
-          col[len++] = (row_val){off[mi] + r, vol[k] * pk[mm] * dot};
+            dot += Bm[r][c] * (bond ? q[c] : 1.0) * Bk[e][c];
+          col[len++] = (row_val){off[mi] + r, (bond ? 1.0 : vol[k]) * pk[mm] * dot};
         }
       }
       qsort(col, (size_t)len, sizeof *col, row_val_cmp);
@@ -329,16 +366,19 @@ static int galerkin_vc1(pdk_model *m) {
     const double *alpha = im->alpha;
     double *d = im->d;
     const int64_t *dstart = im->dstart;
-#pragma omp parallel for default(none) shared(n, bs, psi, alpha, d, dstart, dim) schedule(static)  \
-    num_threads(ctx->num_threads)
+#pragma omp parallel for default(none) shared(n, bs, bj, psi, alpha, d, dstart, dim, X, bond)      \
+    schedule(static) num_threads(ctx->num_threads)
     for (pdk_index k = 0; k < n; ++k) {
       const int nm = (int)(bs[k + 1] - bs[k]) + 1;
       const double *pk = psi + bs[k] + k;
       double *dk = d + dstart[k];
-      for (int j = 0; j < nm; ++j)
+      for (int j = 0; j < nm; ++j) {
+        double o[3];
+        vc1_factor(X, dim, bond, k, j == 0 ? k : bj[bs[k] + j - 1], o);
         for (int i = 0; i < nm; ++i)
           for (int c = 0; c < dim; ++c)
-            dk[((size_t)j * nm + i) * dim + c] += pk[i] * alpha[(size_t)c * n + k];
+            dk[((size_t)j * nm + i) * dim + c] += pk[i] * alpha[(size_t)c * n + k] * o[c];
+      }
     }
   }
 cleanup:
@@ -382,6 +422,9 @@ static int galerkin_setup(pdk_model *m) {
   PDK_CHECK((unsigned)o->galerkin.correction <= PDK_GALERKIN_VC1, ctx, PDK_ERR_ARG,
             "galerkin model: correction %d unknown; use none (0) or vc1 (1)",
             (int)o->galerkin.correction);
+  PDK_CHECK(o->galerkin.bond == 0 || o->galerkin.bond == 1, ctx, PDK_ERR_ARG,
+            "galerkin model: bond %d unknown; use 0 (none) or 1 (the bond-mapping correction)",
+            o->galerkin.bond);
   if (o->stencil == PDK_STENCIL_AUTO)
     snprintf(m->stencil_why, sizeof m->stencil_why, "the galerkin model has no stencil path");
   galerkin_impl *im = calloc(1, sizeof *im);
@@ -391,6 +434,7 @@ static int galerkin_setup(pdk_model *m) {
   im->num_blocks = ((int64_t)n + PDK_GALERKIN_BLOCK - 1) / PDK_GALERKIN_BLOCK;
   im->k.dim = dim;
   im->k.basis = (int)o->galerkin.basis;
+  im->k.bond = o->galerkin.bond;
   im->k.law = (int)o->law;
   im->k.lambda = o->bulk_modulus - 2.0 * o->shear_modulus / 3.0;
   im->k.mu = o->shear_modulus;

@@ -73,6 +73,7 @@ struct pdk_scene {
   double *crack_vertices;
   int num_precracks;
 
+#define PDK_SCENE_NORMAL_FIELD "surface_normal"
   pdk_model_opts model; /* model.materials points to materials below */
   pdk_scene_region *mat_regions; /* [num_mat_regions] the materials list: material k + 1 */
   int num_mat_regions;
@@ -80,6 +81,8 @@ struct pdk_scene {
   int mat_from_points;     /* the cloud's material column places the materials (points->material
                               then holds each particle's material index; the regions are unused) */
   char *galerkin_surface;  /* model.galerkin.surface (model.galerkin.surface points here) */
+  int galerkin_normals_box; /* model.galerkin.normals: box: pdk_sim_create fills the field
+                               PDK_SCENE_NORMAL_FIELD of the surface particles (sim.c) */
 
   pdk_solver_type solver_type;
   pdk_explicit_opts solver; /* bcs, reaction_sets point into the arrays below */

@@ -103,6 +103,8 @@ typedef struct sc_material {
 typedef struct sc_galerkin {
   int basis, form, correction;
   char *surface;
+  bool bond;
+  int normals;
 } sc_galerkin;
 typedef struct sc_model {
   sc_galerkin *galerkin;

@@ -278,12 +278,19 @@ static int resolve_galerkin(loader *ld, const sc_model *mo) {
   if (has(ld, "model.galerkin.basis")) g->basis = (pdk_galerkin_basis)sg->basis;
   if (has(ld, "model.galerkin.form")) g->form = (pdk_galerkin_form)sg->form;
   if (has(ld, "model.galerkin.correction")) g->correction = (pdk_galerkin_correction)sg->correction;
+  if (has(ld, "model.galerkin.bond")) g->bond = sg->bond ? 1 : 0;
   if (has(ld, "model.galerkin.surface")) {
     REQUIRE(ld, g->correction == PDK_GALERKIN_VC1, "model.galerkin.surface",
             "only the vc1 correction uses it; set model.galerkin.correction: vc1 or remove it");
     s->galerkin_surface = strdup(sg->surface);
     REQUIRE(ld, s->galerkin_surface, "model.galerkin.surface", "out of memory");
     g->surface = s->galerkin_surface;
+  }
+  if (has(ld, "model.galerkin.normals")) {
+    REQUIRE(ld, g->correction == PDK_GALERKIN_VC1, "model.galerkin.normals",
+            "only the vc1 correction uses it; set model.galerkin.correction: vc1 or remove it");
+    s->galerkin_normals_box = 1;
+    g->normals = PDK_SCENE_NORMAL_FIELD;
   }
   REQUIRE(ld, g->correction != PDK_GALERKIN_VC1 || g->surface, "model.galerkin.correction",
           "vc1 needs model.galerkin.surface: the name of the set of the particles on the body's "

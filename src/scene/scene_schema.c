@@ -41,6 +41,7 @@ static const cyaml_strval_t galerkin_basis_names[] = {{"taylor", PDK_GALERKIN_TA
 static const cyaml_strval_t galerkin_form_names[] = {{"bubnov", PDK_GALERKIN_BUBNOV}};
 static const cyaml_strval_t galerkin_correction_names[] = {{"none", PDK_GALERKIN_NONE},
                                                            {"vc1", PDK_GALERKIN_VC1}};
+static const cyaml_strval_t galerkin_normals_names[] = {{"box", 1}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
@@ -250,6 +251,9 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
   ADD(galerkin, CYAML_FIELD_ENUM("correction", ENUM_FLAGS, sc_galerkin, correction,
                                  galerkin_correction_names, N_OF(galerkin_correction_names)));
   ADD(galerkin, CYAML_FIELD_STRING_PTR("surface", OPT, sc_galerkin, surface, 1, 255));
+  ADD(galerkin, CYAML_FIELD_BOOL("bond", OPT, sc_galerkin, bond));
+  ADD(galerkin, CYAML_FIELD_ENUM("normals", ENUM_FLAGS, sc_galerkin, normals, galerkin_normals_names,
+                                 N_OF(galerkin_normals_names)));
 
   ADD(bc, CYAML_FIELD_STRING_PTR("set", 0, sc_bc, set, 1, 255));
   ADD(bc,

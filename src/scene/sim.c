@@ -74,6 +74,46 @@ struct pdk_sim {
   int num_reactions;
 };
 
+/* model.galerkin.normals: box: the outward unit normal of the particles' bounding box at every
+ * particle of the correction's surface set that lies on a face of it (within 1 % of the spacing);
+ * on two or three faces (box edges and corners) the normalized sum of the faces' normals; 0 on
+ * none (the correction's condition "s" there). */
+static int box_normals(pdk_sim *sim, const pdk_scene *s) {
+  pdk_particles *p = sim->p;
+  const int dim = pdk_particles_dim(p);
+  const pdk_index n = pdk_particles_count(p);
+  char set[PDK_FIELD_NAME_MAX];
+  snprintf(set, sizeof set, "set:%s", s->model.galerkin.surface);
+  const uint8_t *surf = pdk_particles_field_data(p, set, 0);
+  if (!surf) return PDK_SUCCESS; /* the model names the missing set */
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int c = 0; c < dim; ++c) {
+    const double *X = pdk_particles_X(p, c);
+    lo[c] = hi[c] = n > 0 ? X[0] : 0.0;
+    for (pdk_index k = 1; k < n; ++k) {
+      lo[c] = fmin(lo[c], X[k]);
+      hi[c] = fmax(hi[c], X[k]);
+    }
+  }
+  const double tol = 0.01 * s->lattice.spacing;
+  int err = pdk_particles_field_add(p, PDK_SCENE_NORMAL_FIELD, PDK_F64, dim);
+  if (err) return err;
+  double *nrm[3] = {NULL, NULL, NULL};
+  for (int c = 0; c < dim; ++c)
+    nrm[c] = pdk_particles_field_data(p, PDK_SCENE_NORMAL_FIELD, c);
+  for (pdk_index k = 0; k < n; ++k) {
+    double v[3] = {0, 0, 0}, len = 0.0;
+    for (int c = 0; c < dim && surf[k]; ++c) {
+      const double x = pdk_particles_X(p, c)[k];
+      v[c] = (x - lo[c] <= tol ? -1.0 : 0.0) + (hi[c] - x <= tol ? 1.0 : 0.0);
+      len += v[c] * v[c];
+    }
+    for (int c = 0; c < dim; ++c)
+      nrm[c][k] = len > 0 ? v[c] / sqrt(len) : 0.0;
+  }
+  return PDK_SUCCESS;
+}
+
 static char *dup_or_null(const char *s, int *fail) {
   if (!s) return NULL;
   char *d = strdup(s);
@@ -351,6 +391,10 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   }
 
   /* Model. */
+  if (s->galerkin_normals_box && (err = box_normals(sim, s)) != PDK_SUCCESS) {
+    err = pdk_scene_blame(s, ctx, err, "model.galerkin.normals");
+    goto cleanup;
+  }
   err = pdk_model_create(sim->p, sim->fam, &s->model, &sim->m);
   if (err) {
     const char *key = err == PDK_ERR_UNSUPPORTED && s->model.precision == PDK_PRECISION_FLOAT

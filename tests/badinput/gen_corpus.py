@@ -222,6 +222,13 @@ def build(c):
         ("range_critical_stretch_negative", BAR, "critical_stretch: 0.002",
          "critical_stretch: -0.002", "critical_stretch"),
         ("range_load_steps_zero", ST, "load_steps: 5", "load_steps: 0", "load_steps"),
+        ("range_galerkin_normals_word", ST,
+         "model: {kind: correspondence, law: linear_elastic, influence: constant, stabilization: silling}",
+         "model: {kind: galerkin, galerkin: {correction: vc1, surface: held, normals: sphere}}",
+         "normals"),
+        ("range_galerkin_normals_no_vc1", ST,
+         "model: {kind: correspondence, law: linear_elastic, influence: constant, stabilization: silling}",
+         "model: {kind: galerkin, galerkin: {normals: box}}", "normals"),
         ("range_load_steps_huge", ST, "load_steps: 5", "load_steps: 2000000", "load_steps"),
         ("range_tolerance_one", ST, "tolerance: 1.0e-6", "tolerance: 1", "tolerance"),
         ("range_load_levels_decreasing", ST, "load_steps: 5", "load_levels: [0.5, 0.25, 1.0]",
@@ -520,6 +527,9 @@ def build(c):
          "connectivity: tl\n  failed_keeps_bonds: fasle", "failed_keeps_bonds"),
         ("reuse_tangent_truee", ST, "type: adr\n  load_steps: 5\n  tolerance: 1.0e-6",
          "type: newton\n  load_steps: 5\n  reuse_tangent: truee", "reuse_tangent"),
+        ("galerkin_bond_maybe", ST,
+         "model: {kind: correspondence, law: linear_elastic, influence: constant, stabilization: silling}",
+         "model: {kind: galerkin, law: linear_elastic, galerkin: {bond: maybe}}", "bond"),
     ]
     for part, base, old, new, key in booleans:
         c.mut(f"bool_{part}", "2", base, old, new, key)
