@@ -10,7 +10,7 @@
  *                [--repeat R] [--order auto|morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
- *                [--layout csr|sell|stencil]... [--sell-sigma S]
+ *                [--layout csr|csrc|sell|stencil]... [--sell-sigma S]
  *
  * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
  *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
@@ -23,7 +23,10 @@
  *   stencil path (model stencil on: bond offsets outside, runs of lattice sites inside,
  *   src/models/model_stencil.c; for corr the correspondence stencil passes, kernels/opt/corr_stencil.h);
  *   repeatable, so they run side by side on the same lattice (each configuration with each layout
- *   in turn). Other models skip sell and stencil (corr skips sell).
+ *   in turn). Other models skip sell and stencil (corr skips sell). csr runs PMB and LPS with the
+ *   library's default bond_lengths stored (the reference length of each bond kept, 8 B per bond,
+ *   counted in B/bond once per bond loop); csrc is csr with bond_lengths computed (recomputed every
+ *   pass, the csr of earlier versions); only PMB and LPS run csrc.
  *   --sell-sigma S: the sell sorting window in particles (0, the default: 32 C). The `pad%` column
  *   gives the padding share of the sell entries (0 otherwise).
  *
@@ -79,7 +82,7 @@ static void usage(void) {
       "                    [--threads T]... [--repeat R] [--order auto|morton|lattice] [--s00 S]\n"
       "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
       "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-      "                    [--stab none|silling|hourglass] [--layout csr|sell|stencil]...\n"
+      "                    [--stab none|silling|hourglass] [--layout csr|csrc|sell|stencil]...\n"
       "                    [--sell-sigma S]\n");
   exit(2);
 }
@@ -252,6 +255,16 @@ static void pmb_r0_pass(const pmb_r0_case *e, int nt) {
   }
 }
 
+/* 1 when the model stores the double bond lengths (pdk_bond_lengths): PMB and LPS, precision
+ * double, layout csr, bond_lengths stored, SIMD kernels. */
+static int r0_stored(pdk_model_kind kind, pdk_precision prec, int layout, int computed,
+                     pdk_ctx *ctx) {
+  return (kind == PDK_MODEL_PMB || kind == PDK_MODEL_LPS) && prec == PDK_PRECISION_DOUBLE &&
+         layout == 0 && !computed && strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0;
+}
+/* Bond loops per force pass: LPS makes two (dilation, force). */
+static double passes(pdk_model_kind kind) { return kind == PDK_MODEL_LPS ? 2.0 : 1.0; }
+
 int main(int argc, char **argv) {
   long sides[MAX_LIST] = {46, 100};
   int num_sides = 2, threads[MAX_LIST] = {1, 2}, num_threads = 2, user_sides = 0, user_threads = 0;
@@ -265,7 +278,8 @@ int main(int argc, char **argv) {
   pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
   pdk_law law = PDK_LAW_LINEAR_ELASTIC;
   pdk_stabilization stab = PDK_STAB_NONE;
-  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0; /* 0 csr, 1 sell, 2 stencil */
+  /* 0 csr, 1 sell, 2 stencil, 3 csrc (csr with bond_lengths computed) */
+  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0;
   int sell_sigma = 0;
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
@@ -321,9 +335,13 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[k], "--layout") && k + 1 < argc) {
       if (!user_layouts) num_layouts = 0, user_layouts = 1;
       const char *v = argv[++k];
-      if (strcmp(v, "csr") && strcmp(v, "sell") && strcmp(v, "stencil")) usage();
+      if (strcmp(v, "csr") && strcmp(v, "sell") && strcmp(v, "stencil") && strcmp(v, "csrc"))
+        usage();
       if (num_layouts < MAX_LIST)
-        layouts[num_layouts++] = !strcmp(v, "sell") ? 1 : !strcmp(v, "stencil") ? 2 : 0;
+        layouts[num_layouts++] = !strcmp(v, "sell")      ? 1
+                                 : !strcmp(v, "stencil") ? 2
+                                 : !strcmp(v, "csrc")    ? 3
+                                                         : 0;
     } else if (!strcmp(argv[k], "--sell-sigma") && k + 1 < argc) {
       sell_sigma = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
@@ -397,10 +415,15 @@ int main(int argc, char **argv) {
     const double bpp = (double)nb / n;
 
     for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
-      const int im = iml / num_layouts, layout = layouts[iml % num_layouts];
+      const int im = iml / num_layouts, layout_arg = layouts[iml % num_layouts];
+      const int computed = layout_arg == 3, layout = computed ? 0 : layout_arg;
+      static const char *const layout_name[] = {"csr", "sell", "stencil", "csrc"};
       const int stencil = layout == 2;
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
+      if (computed && (experiment || (models[im / num_prec] != PDK_MODEL_PMB &&
+                                      models[im / num_prec] != PDK_MODEL_LPS)))
+        continue;
       if (layout &&
           (experiment ||
            (models[im / num_prec] != PDK_MODEL_PMB && models[im / num_prec] != PDK_MODEL_LPS &&
@@ -433,13 +456,14 @@ int main(int argc, char **argv) {
       mo.stencil = stencil ? PDK_STENCIL_ON : PDK_STENCIL_OFF;
       mo.layout = layout == 1 ? PDK_LAYOUT_SELL : PDK_LAYOUT_CSR;
       mo.sell_sigma = sell_sigma;
+      mo.bond_lengths = computed ? PDK_BOND_LENGTHS_COMPUTED : PDK_BOND_LENGTHS_STORED;
       if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
         printf("  %-6s %-6s %-6s %-7s (unsupported: %s)\n", short_name(models[im / num_prec]),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", pdk_ctx_error_message(ctx));
+               layout_name[layout_arg], pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
       }
@@ -521,13 +545,15 @@ int main(int argc, char **argv) {
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
             : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
-                      : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+                      : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0) +
+                            (r0_stored(mo.kind, prec, layout, computed, ctx) ? 8.0 * passes(mo.kind)
+                                                                             : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
         printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
                "%7.2f %7.1f %8.3f %6.3f\n",
                short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", dim,
+               layout_name[layout_arg], dim,
                (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
                triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9,
