@@ -10,7 +10,7 @@
  *                [--repeat R] [--order auto|morton|lattice] [--s00 S] [--steps N] [--triad-mib M]
  *                [--kernels ref|simd|avx2|avx512]... [--precision double|float]...
  *                [--law linear|svk|neo_hooke] [--stab none|silling|hourglass]
- *                [--layout csr|sell|stencil]... [--sell-sigma S]
+ *                [--layout csr|csrc|sell|stencil]... [--sell-sigma S]
  *
  * --plate L: also a 2-D plane-strain square plate of L x L particles (square lattice, the same
  *   spacing and horizon ratio, thickness one spacing). --kernels: run everything with each kernel
@@ -23,7 +23,10 @@
  *   stencil path (model stencil on: bond offsets outside, runs of lattice sites inside,
  *   src/models/model_stencil.c; for corr the correspondence stencil passes, kernels/opt/corr_stencil.h);
  *   repeatable, so they run side by side on the same lattice (each configuration with each layout
- *   in turn). Other models skip sell and stencil (corr skips sell).
+ *   in turn). Other models skip sell and stencil (corr skips sell). csr runs PMB and LPS with the
+ *   library's default bond_lengths stored (the reference length of each bond kept, 8 B per bond,
+ *   counted in B/bond once per bond loop); csrc is csr with bond_lengths computed (recomputed every
+ *   pass, the csr of earlier versions); only PMB and LPS run csrc.
  *   --sell-sigma S: the sell sorting window in particles (0, the default: 32 C). The `pad%` column
  *   gives the padding share of the sell entries (0 otherwise).
  *
@@ -79,7 +82,7 @@ static void usage(void) {
       "                    [--threads T]... [--repeat R] [--order auto|morton|lattice] [--s00 S]\n"
       "                    [--steps N] [--triad-mib M] [--kernels ref|simd|avx2|avx512]...\n"
       "                    [--precision double|float]... [--law linear|svk|neo_hooke]\n"
-      "                    [--stab none|silling|hourglass] [--layout csr|sell|stencil]...\n"
+      "                    [--stab none|silling|hourglass] [--layout csr|csrc|sell|stencil]...\n"
       "                    [--sell-sigma S]\n");
   exit(2);
 }
@@ -252,6 +255,149 @@ static void pmb_r0_pass(const pmb_r0_case *e, int nt) {
   }
 }
 
+/* ---- in-core bound ---------------------------------------------------------------------------
+ * What the core needs per bond if memory were free: the loops' operations per directed bond
+ * (counted from the SIMD kernels' source, 3-D, no bond state, no energy; lane operations, an FMA
+ * counted once) times the time this CPU takes per operation, measured here at the kernels' vector
+ * width (the bench/bench_ops harness: 4 independent accumulators over an L1-resident array for the
+ * square root and the division, 8 independent FMA chains for the other FP operations; process
+ * CPU time per instruction, median of 5, so other jobs' turns do not count):
+ *   bound = max(n_sqrt t_sqrt + n_div t_div, n_fp t_fp)   [ns per bond]
+ * the first term the divide/square-root unit (one per core, not pipelined, shared by both), the
+ * second the FP pipes. Loads, gathers, row transposes and shuffles are not counted (the bound
+ * errs low where they dominate: correspondence). Counts (sqrt, div, fp):
+ *   PMB csr (lengths stored), stencil 1, 1, 24; csr lengths computed (csrc), sell 2, 1, 32
+ *   LPS csr (stored), stencil 2, 1, 44 (dilation 1, 0, 15 + force 1, 1, 29); csrc, sell 4, 1, 60
+ *   correspondence (Silling) csr 0, 0, 70 (pass 1 19, pass 2 51); stencil 0, 0, 64
+ * core% = 100 bound / cpu_ns/b: the share of the in-core bound the loop reaches. */
+typedef struct op_ns {
+  int width;                  /* doubles per vector; 0: not measured (printed as -) */
+  double sqrt_, div_, fp;     /* ns per double */
+} op_ns;
+
+static double thread_cpu(void) {
+  struct timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl,avx2,fma")
+static double op_in[1024] __attribute__((aligned(64)));
+static volatile double op_sink;
+#define OP_BODY(name, T, W, load, add, zero, set1, store, expr)                                    \
+  static double name(long reps) {                                                                  \
+    T s0 = zero(), s1 = s0, s2 = s0, s3 = s0;                                                      \
+    const T one = set1(1.0);                                                                       \
+    (void)one;                                                                                     \
+    const double t0 = thread_cpu();                                                                \
+    for (long r = 0; r < reps; ++r)                                                                \
+      for (int k = 0; k < 1024; k += 4 * W) {                                                      \
+        T a = load(op_in + k);                                                                     \
+        s0 = add(s0, (expr));                                                                      \
+        a = load(op_in + k + W);                                                                   \
+        s1 = add(s1, (expr));                                                                      \
+        a = load(op_in + k + 2 * W);                                                               \
+        s2 = add(s2, (expr));                                                                      \
+        a = load(op_in + k + 3 * W);                                                               \
+        s3 = add(s3, (expr));                                                                      \
+      }                                                                                            \
+    const double t = thread_cpu() - t0;                                                            \
+    double o[8];                                                                                   \
+    store(o, add(add(s0, s1), add(s2, s3)));                                                       \
+    op_sink = o[0];                                                                                \
+    return 1e9 * t / ((double)reps * 1024);                                                        \
+  }
+#define OP_FMA(name, T, W, fma, set1, store)                                                       \
+  static double name(long reps) {                                                                  \
+    T c[8];                                                                                        \
+    for (int l = 0; l < 8; ++l) c[l] = set1(1.0 + l);                                              \
+    const T m = set1(0.999999), p = set1(1e-7);                                                    \
+    const double t0 = thread_cpu();                                                                \
+    for (long r = 0; r < reps * 64; ++r)                                                           \
+      for (int l = 0; l < 8; ++l) c[l] = fma(c[l], m, p);                                          \
+    const double t = thread_cpu() - t0;                                                            \
+    double o[8];                                                                                   \
+    store(o, c[0] + c[7]);                                                                         \
+    op_sink = o[0];                                                                                \
+    return 1e9 * t / ((double)reps * 64 * 8 * W);                                                  \
+  }
+OP_BODY(op_sqrt8, __m512d, 8, _mm512_load_pd, _mm512_add_pd, _mm512_setzero_pd, _mm512_set1_pd,
+        _mm512_storeu_pd, _mm512_sqrt_pd(a))
+OP_BODY(op_div8, __m512d, 8, _mm512_load_pd, _mm512_add_pd, _mm512_setzero_pd, _mm512_set1_pd,
+        _mm512_storeu_pd, _mm512_div_pd(one, a))
+OP_FMA(op_fma8, __m512d, 8, _mm512_fmadd_pd, _mm512_set1_pd, _mm512_storeu_pd)
+OP_BODY(op_sqrt4, __m256d, 4, _mm256_load_pd, _mm256_add_pd, _mm256_setzero_pd, _mm256_set1_pd,
+        _mm256_storeu_pd, _mm256_sqrt_pd(a))
+OP_BODY(op_div4, __m256d, 4, _mm256_load_pd, _mm256_add_pd, _mm256_setzero_pd, _mm256_set1_pd,
+        _mm256_storeu_pd, _mm256_div_pd(one, a))
+OP_FMA(op_fma4, __m256d, 4, _mm256_fmadd_pd, _mm256_set1_pd, _mm256_storeu_pd)
+#pragma GCC pop_options
+
+static double op_median5(double (*f)(long), long reps) {
+  double t[5];
+  for (int k = 0; k < 5; ++k) t[k] = f(reps);
+  return median(t, 5);
+}
+
+/* The operation times at the width of the context's bond kernels (AVX-512: 8, AVX2: 4). */
+static op_ns measure_ops(const pdk_ctx *ctx) {
+  op_ns o = {0, 0, 0, 0};
+  const char *kn = pdk_ctx_kernels_name(ctx);
+  const unsigned isa = pdk_ctx_isa(ctx);
+  const int w = !strcmp(kn, "avx2") ? 4
+                : !strcmp(kn, "avx512") || !strcmp(kn, "simd") ? (isa & PDK_ISA_AVX512 ? 8
+                                                                  : isa & PDK_ISA_AVX2 ? 4 : 0)
+                                                               : 0;
+  if (!w) return o;
+  for (int k = 0; k < 1024; ++k) op_in[k] = 1.0 + (double)k / 1024.0;
+  o.width = w;
+  o.sqrt_ = op_median5(w == 8 ? op_sqrt8 : op_sqrt4, 2000);
+  o.div_ = op_median5(w == 8 ? op_div8 : op_div4, 2000);
+  o.fp = op_median5(w == 8 ? op_fma8 : op_fma4, 2000);
+  return o;
+}
+#else
+static op_ns measure_ops(const pdk_ctx *ctx) {
+  (void)ctx;
+  op_ns o = {0, 0, 0, 0};
+  return o;
+}
+#endif
+
+/* The in-core bound in ns per directed bond (see above), 0 when not modelled (2-D, ref kernels,
+ * other stabilizations). layout 0 csr, 1 sell, 2 stencil. */
+static double incore_bound(const op_ns *o, pdk_model_kind kind, int layout, int computed,
+                           int stab, int dim) {
+  if (!o->width || dim != 3) return 0.0;
+  double ns = 0, nd = 0, nf = 0;
+  if (kind == PDK_MODEL_PMB) {
+    const int full = layout == 1 || (layout == 0 && computed);
+    ns = full ? 2 : 1, nd = 1, nf = full ? 32 : 24;
+  } else if (kind == PDK_MODEL_LPS) {
+    const int full = layout == 1 || (layout == 0 && computed);
+    ns = full ? 4 : 2, nd = 1, nf = full ? 60 : 44;
+  } else if (kind == PDK_MODEL_CORRESPONDENCE && stab == PDK_STAB_SILLING) {
+    nf = layout == 2 ? 64 : 70;
+  } else {
+    return 0.0;
+  }
+  const double unit = ns * o->sqrt_ + nd * o->div_, pipes = nf * o->fp;
+  return unit > pipes ? unit : pipes;
+}
+
+/* 1 when the model stores the double bond lengths (pdk_bond_lengths): PMB and LPS, precision
+ * double, layout csr, bond_lengths stored, SIMD kernels. */
+static int r0_stored(pdk_model_kind kind, pdk_precision prec, int layout, int computed,
+                     pdk_ctx *ctx) {
+  return (kind == PDK_MODEL_PMB || kind == PDK_MODEL_LPS) && prec == PDK_PRECISION_DOUBLE &&
+         layout == 0 && !computed && strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0;
+}
+/* Bond loops per force pass: LPS makes two (dilation, force). */
+static double passes(pdk_model_kind kind) { return kind == PDK_MODEL_LPS ? 2.0 : 1.0; }
+
 int main(int argc, char **argv) {
   long sides[MAX_LIST] = {46, 100};
   int num_sides = 2, threads[MAX_LIST] = {1, 2}, num_threads = 2, user_sides = 0, user_threads = 0;
@@ -265,7 +411,8 @@ int main(int argc, char **argv) {
   pdk_precision precs[MAX_LIST] = {PDK_PRECISION_DOUBLE};
   pdk_law law = PDK_LAW_LINEAR_ELASTIC;
   pdk_stabilization stab = PDK_STAB_NONE;
-  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0; /* 0 csr, 1 sell, 2 stencil */
+  /* 0 csr, 1 sell, 2 stencil, 3 csrc (csr with bond_lengths computed) */
+  int layouts[MAX_LIST] = {0}, num_layouts = 1, user_layouts = 0;
   int sell_sigma = 0;
   for (int k = 1; k < argc; ++k) {
     if (!strcmp(argv[k], "--side") && k + 1 < argc) {
@@ -321,9 +468,13 @@ int main(int argc, char **argv) {
     } else if (!strcmp(argv[k], "--layout") && k + 1 < argc) {
       if (!user_layouts) num_layouts = 0, user_layouts = 1;
       const char *v = argv[++k];
-      if (strcmp(v, "csr") && strcmp(v, "sell") && strcmp(v, "stencil")) usage();
+      if (strcmp(v, "csr") && strcmp(v, "sell") && strcmp(v, "stencil") && strcmp(v, "csrc"))
+        usage();
       if (num_layouts < MAX_LIST)
-        layouts[num_layouts++] = !strcmp(v, "sell") ? 1 : !strcmp(v, "stencil") ? 2 : 0;
+        layouts[num_layouts++] = !strcmp(v, "sell")      ? 1
+                                 : !strcmp(v, "stencil") ? 2
+                                 : !strcmp(v, "csrc")    ? 3
+                                                         : 0;
     } else if (!strcmp(argv[k], "--sell-sigma") && k + 1 < argc) {
       sell_sigma = atoi(argv[++k]);
     } else if (!strcmp(argv[k], "--triad-mib") && k + 1 < argc) {
@@ -356,10 +507,11 @@ int main(int argc, char **argv) {
          "volumes on, order %s, s00 %g, %s of %d; corr: law %s, stabilization %s\n",
          order, s00, steps ? "steps" : "median pass", steps ? steps : repeat, law_name[law],
          stab_name[stab]);
-  printf("# %-6s %-6s %-6s %-7s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s %6s\n",
+  printf("# %-6s %-6s %-6s %-7s %2s %8s %10s %7s %3s %10s %8s %10s %7s %7s %7s %7s %8s %6s %7s "
+         "%6s\n",
          "model", "kern", "prec", "layout", "d", "n", "bonds", "b/p", "thr",
          steps ? "s/step" : "s/pass", "ns/b/c", "Gbond/s", "B/bond", "GB/s", "triad", "roof%",
-         "cpu_ns/b", "pad%");
+         "cpu_ns/b", "pad%", "core_ns", "core%");
   pdk_ctx *kctx = NULL;
   for (int ik = 0; ik < num_kernels; ++ik)
   for (int is = 0; is < num_sides + num_plates; ++is) {
@@ -375,6 +527,14 @@ int main(int argc, char **argv) {
       }
     }
     pdk_ctx *ctx = kctx;
+    static op_ns ops;
+    if (is == 0) {
+      ops = measure_ops(ctx);
+      if (ops.width)
+        printf("# in-core: %s kernels, %d doubles per vector: sqrt %.3f, div %.3f, fp op %.4f ns per "
+               "double (CPU time)\n",
+               pdk_ctx_kernels_name(ctx), ops.width, ops.sqrt_, ops.div_, ops.fp);
+    }
     pdk_lattice_opts lo = pdk_lattice_opts_default();
     lo.type = dim == 3 ? PDK_LATTICE_CUBIC : PDK_LATTICE_SQUARE;
     for (int a = 0; a < 3; ++a)
@@ -397,10 +557,15 @@ int main(int argc, char **argv) {
     const double bpp = (double)nb / n;
 
     for (int iml = 0; iml < num_models * num_prec * num_layouts; ++iml) {
-      const int im = iml / num_layouts, layout = layouts[iml % num_layouts];
+      const int im = iml / num_layouts, layout_arg = layouts[iml % num_layouts];
+      const int computed = layout_arg == 3, layout = computed ? 0 : layout_arg;
+      static const char *const layout_name[] = {"csr", "sell", "stencil", "csrc"};
       const int stencil = layout == 2;
       const pdk_precision prec = precs[im % num_prec];
       const int experiment = models[im / num_prec] == PMB_R0;
+      if (computed && (experiment || (models[im / num_prec] != PDK_MODEL_PMB &&
+                                      models[im / num_prec] != PDK_MODEL_LPS)))
+        continue;
       if (layout &&
           (experiment ||
            (models[im / num_prec] != PDK_MODEL_PMB && models[im / num_prec] != PDK_MODEL_LPS &&
@@ -433,13 +598,14 @@ int main(int argc, char **argv) {
       mo.stencil = stencil ? PDK_STENCIL_ON : PDK_STENCIL_OFF;
       mo.layout = layout == 1 ? PDK_LAYOUT_SELL : PDK_LAYOUT_CSR;
       mo.sell_sigma = sell_sigma;
+      mo.bond_lengths = computed ? PDK_BOND_LENGTHS_COMPUTED : PDK_BOND_LENGTHS_STORED;
       if (dim == 2) mo.thickness = lo.thickness;
       pdk_model *m = NULL;
       int err = pdk_model_create(p, fam, &mo, &m);
       if (err == PDK_ERR_UNSUPPORTED) {
         printf("  %-6s %-6s %-6s %-7s (unsupported: %s)\n", short_name(models[im / num_prec]),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", pdk_ctx_error_message(ctx));
+               layout_name[layout_arg], pdk_ctx_error_message(ctx));
         pdk_ctx_error_clear(ctx);
         continue;
       }
@@ -521,17 +687,26 @@ int main(int argc, char **argv) {
                 ? corr_bytes_per_bond(dim, bpp, (int)stab, prec == PDK_PRECISION_FLOAT,
                                       strcmp(pdk_ctx_kernels_name(ctx), "ref") != 0)
             : stencil ? stencil_bytes_per_bond(mo.kind, dim, bpp, s00 > 0)
-                      : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0);
+                      : bytes_per_bond(mo.kind, dim, bpp, s00 > 0) + (experiment ? 8.0 : 0.0) +
+                            (r0_stored(mo.kind, prec, layout, computed, ctx) ? 8.0 * passes(mo.kind)
+                                                                             : 0.0);
         const double gbs = bb * (double)nb / t_med * 1e-9;
+        const double core =
+            experiment ? 0.0 : incore_bound(&ops, mo.kind, layout, computed, (int)stab, dim);
+        const double cpu_nsb = cpu_med * threads[it] / (double)nb * 1e9;
+        char core_s[16] = "-", corep_s[16] = "-";
+        if (core > 0)
+          snprintf(core_s, sizeof core_s, "%.3f", core),
+              snprintf(corep_s, sizeof corep_s, "%.1f", 100.0 * core / cpu_nsb);
         printf("  %-6s %-6s %-6s %-7s %2d %8d %10lld %7.2f %3d %10.5f %8.3f %10.4f %7.2f %7.2f "
-               "%7.2f %7.1f %8.3f %6.3f\n",
+               "%7.2f %7.1f %8.3f %6.3f %7s %6s\n",
                short_name(mo.kind == PDK_MODEL_PMB && experiment ? PMB_R0 : mo.kind),
                pdk_ctx_kernels_name(ctx), prec == PDK_PRECISION_FLOAT ? "float" : "double",
-               layout == 2 ? "stencil" : layout == 1 ? "sell" : "csr", dim,
+               layout_name[layout_arg], dim,
                (int)n, (long long)nb, bpp, threads[it], t_med,
                t_med * threads[it] / (double)nb * 1e9, (double)nb / t_med * 1e-9, bb, gbs,
-               triad[it], 100.0 * gbs / triad[it], cpu_med * threads[it] / (double)nb * 1e9,
-               100.0 * pdk_model_padding_fraction(m));
+               triad[it], 100.0 * gbs / triad[it], cpu_nsb, 100.0 * pdk_model_padding_fraction(m),
+               core_s, corep_s);
         fflush(stdout);
       }
       pdk_model_destroy(&m);

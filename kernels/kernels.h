@@ -144,6 +144,12 @@ typedef struct pdk_bond_arrays {
    * float, replaces r0 recomputed from X (3 loads and a sqrt fewer per bond, 4 bytes per bond more;
    * the stretch then carries an error up to 2^-24 r0 / r0 = 6e-8). NULL: double, from X. */
   const float *bond_r0;
+  /* Stored bond lengths (precision double, bond_lengths stored, the default): |X_j - X_i| per
+   * bond in double, computed once by pdk_kernel_bond_lengths_ref with the operations the kernels
+   * use, so r0 has the bits the kernels would compute (8 bytes per bond; the SIMD variants then
+   * skip a square root per bond, and PMB the reference row). The reference kernels ignore it and
+   * compute the same values. NULL: computed every pass. Never set together with bond_r0. */
+  const double *bond_r0d;
   uint8_t *bond_alive;              /* [num_bonds] or NULL (bonds never break) */
   const double *s0;                 /* [n_pad] */
   double *s0_next;                  /* [n_pad]; non-NULL: committing pass */
@@ -173,6 +179,12 @@ pdk_bond_index pdk_kernel_lps_force_ref(const pdk_lps_consts *k, const pdk_bond_
  * with omega = 1/r0) from a's arrays, with bond_r0 when it is set. */
 void pdk_kernel_lps_weighted_volume_ref(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                         pdk_index i0, pdk_index i1, double *restrict m);
+/* Set-up only: r0[b] = |X_j - X_i| for the bonds of particles [i0, i1), in double, with the
+ * operations and their order of every PMB and LPS kernel ((dX dX + dY dY) + dZ dZ, no FMA,
+ * correctly rounded sqrt), so a kernel reading r0 (pdk_bond_arrays.bond_r0d) gets the bits it
+ * would have computed. Reads a's bond_start, bond_j, X. */
+void pdk_kernel_bond_lengths_ref(const pdk_bond_arrays *a, pdk_index i0, pdk_index i1,
+                                 double *restrict r0);
 /* AVX2 + FMA CPUs (PDK_ISA_AVX2): 4 bonds per step. */
 pdk_bond_index pdk_kernel_pmb_force_avx2(const pdk_pmb_consts *k, const pdk_bond_arrays *a,
                                          pdk_index i0, pdk_index i1);

@@ -1,5 +1,6 @@
 /* PMB force and LPS dilation / force kernels: every SIMD variant this CPU can run (AVX2, AVX-512)
- * against the reference, 2-D and 3-D, double and float storage (bond_r0), without bond state, with
+ * against the reference, 2-D and 3-D, double and float storage (bond_r0), with the stored double
+ * bond lengths (bond_r0d) and without, without bond state, with
  * state read (trial) and with state written (commit), with and without the energy.
  *
  * Families are hand-made CSR rows of awkward sizes: 0 (empty), 1, 3, 4, 5, 7, 8, 9, 15, 16, 17, 33
@@ -9,6 +10,9 @@
  * call covers a sub-range [5, NP - 3) and must leave the outputs outside it untouched.
  *
  * What must hold, and why:
+ *   - with the stored double lengths (bond_r0d from pdk_kernel_bond_lengths_ref), every output of
+ *     a SIMD variant has the bits of the same variant computing r0 itself: the stored r0 is the
+ *     value the kernel computes (same operations, same order, no FMA), and nothing else changes;
  *   - bond_alive after a committing pass, the number broken and s0_next: bit for bit the
  *     reference's (each bond's stretch is computed with the same operations in the same order, and
  *     a maximum does not depend on order);
@@ -53,6 +57,7 @@ typedef struct problem {
   pdk_bond_index nb;
   double *X[3], *x[3], *V, *ref4, *cur4, *s0, *theta, *inv_m;
   float *r0f;
+  double *r0d;
   uint8_t *alive0;
 } problem;
 
@@ -75,6 +80,7 @@ static problem make_problem(int dim) {
   P.ref4 = zalloc(4 * NP * sizeof(double));
   P.cur4 = zalloc(4 * NP * sizeof(double));
   P.r0f = zalloc((size_t)P.nb * sizeof(float));
+  P.r0d = zalloc((size_t)P.nb * sizeof(double));
   P.alive0 = zalloc((size_t)P.nb);
   for (int i = 0; i < NP; ++i) {
     for (int c = 0; c < dim; ++c) {
@@ -113,6 +119,13 @@ static problem make_problem(int dim) {
       P.r0f[b] = (float)sqrt(r2);
     }
   }
+  pdk_bond_arrays a;
+  memset(&a, 0, sizeof a);
+  a.dim = dim;
+  a.bond_start = P.bs;
+  a.bond_j = P.bj;
+  for (int c = 0; c < dim; ++c) a.X[c] = P.X[c];
+  pdk_kernel_bond_lengths_ref(&a, 0, NP, P.r0d);
   return P;
 }
 
@@ -120,7 +133,7 @@ static void free_problem(problem *P) {
   free(P->bj);
   for (int c = 0; c < 3; ++c) free(P->X[c]), free(P->x[c]);
   free(P->V), free(P->s0), free(P->theta), free(P->inv_m), free(P->ref4), free(P->cur4);
-  free(P->r0f), free(P->alive0);
+  free(P->r0f), free(P->r0d), free(P->alive0);
 }
 
 typedef struct outputs {
@@ -154,7 +167,8 @@ static void reset_outputs(const problem *P, outputs *o) {
   o->broken = 0;
 }
 
-/* state: 0 none, 1 trial (read), 2 commit (read and write) */
+/* stored: 0 r0 computed, 1 float lengths, 2 double lengths (bond_r0d);
+ * state: 0 none, 1 trial (read), 2 commit (read and write) */
 static pdk_bond_arrays arrays_for(const problem *P, outputs *o, int rows, int stored, int state,
                                   int energy) {
   pdk_bond_arrays a;
@@ -170,7 +184,8 @@ static pdk_bond_arrays arrays_for(const problem *P, outputs *o, int rows, int st
   a.volume = P->V;
   a.ref4 = rows ? P->ref4 : NULL;
   a.cur4 = rows ? P->cur4 : NULL;
-  a.bond_r0 = stored ? P->r0f : NULL;
+  a.bond_r0 = stored == 1 ? P->r0f : NULL;
+  a.bond_r0d = stored == 2 ? P->r0d : NULL;
   a.bond_alive = state ? o->alive : NULL;
   a.s0 = P->s0;
   a.s0_next = state == 2 ? o->s0n : NULL;
@@ -199,7 +214,7 @@ static void magnitudes(const problem *P, int model_lps, int stored, int state,
         R2 += dX * dX;
         eta1 += fabs(dx);
       }
-      const double r = sqrt(r2), r0 = stored ? (double)P->r0f[b] : sqrt(R2);
+      const double r = sqrt(r2), r0 = stored == 1 ? (double)P->r0f[b] : sqrt(R2);
       const double on = state ? P->alive0[b] : 1.0;
       const double vs_a = model_lps ? kl->vs_a : kp->vs_a, vs_b = model_lps ? kl->vs_b : kp->vs_b;
       const double pv = fabs(P->V[j] * fmin(1.0, (vs_a - r0) * vs_b));
@@ -266,6 +281,17 @@ static void compare(const char *what, const problem *P, const outputs *ref, cons
   }
 }
 
+/* Every output bit for bit (bond_r0d against r0 computed by the same variant). */
+static void same_bits(const char *what, const problem *P, const outputs *a, const outputs *b) {
+  for (int c = 0; c < 3; ++c)
+    T_ASSERT(memcmp(a->f[c], b->f[c], NP * sizeof(double)) == 0, "%s: f[%d] bits differ", what, c);
+  T_ASSERT(memcmp(a->w, b->w, NP * sizeof(double)) == 0, "%s: w bits differ", what);
+  T_ASSERT(memcmp(a->theta, b->theta, NP * sizeof(double)) == 0, "%s: theta bits differ", what);
+  T_ASSERT(memcmp(a->s0n, b->s0n, NP * sizeof(double)) == 0, "%s: s0_next bits differ", what);
+  T_ASSERT(memcmp(a->alive, b->alive, (size_t)P->nb) == 0, "%s: bond state differs", what);
+  T_ASSERT(a->broken == b->broken, "%s: broken counts differ", what);
+}
+
 typedef struct variant {
   const char *name;
   unsigned need;
@@ -285,14 +311,14 @@ static int kernel_tests(unsigned isa) {
   int ran = 0, broke_some = 0;
   for (int dim = 2; dim <= 3; ++dim) {
     problem P = make_problem(dim);
-    outputs ref = make_outputs(&P), opt = make_outputs(&P);
+    outputs ref = make_outputs(&P), opt = make_outputs(&P), own = make_outputs(&P);
     pdk_pmb_consts kp = {.c = 3.0, .vs_a = 5.5, .vs_b = 0.5, .s00 = 0.005, .alpha = 0.25};
     pdk_lps_consts kl = {.vs_a = 5.5, .vs_b = 0.5, .theta_factor = dim, .c_dil = -1.3,
                          .c_dev = 4.0, .e_bulk = 1.1, .e_dev = 2.0, .s00 = 0.005, .alpha = 0.25};
     for (size_t v = 0; v < sizeof vs / sizeof vs[0]; ++v) {
       if (!(isa & vs[v].need)) continue;
       ++ran;
-      for (int stored = 0; stored <= 1; ++stored)
+      for (int stored = 0; stored <= 2; ++stored)
         for (int state = 0; state <= 2; ++state)
           for (int energy = 0; energy <= 1; ++energy) {
             char what[160];
@@ -309,6 +335,12 @@ static int kernel_tests(unsigned isa) {
             magnitudes(&P, 0, stored, state, &kp, NULL, &M);
             compare(what, &P, &ref, &opt, &M, state, energy, 1, 0, NULL);
             broke_some += ref.broken > 0;
+            if (stored == 2) {
+              reset_outputs(&P, &own);
+              pdk_bond_arrays a0 = arrays_for(&P, &own, 1, 0, state, energy);
+              own.broken = vs[v].pmb(&kp, &a0, I0, I1);
+              same_bits(what, &P, &opt, &own);
+            }
             /* LPS dilation */
             snprintf(what, sizeof what, "%s lps dilation %d-D stored %d state %d", vs[v].name, dim,
                      stored, state);
@@ -320,6 +352,12 @@ static int kernel_tests(unsigned isa) {
             vs[v].dil(&kl, &ao, I0, I1);
             magnitudes(&P, 1, stored, state, NULL, &kl, &M);
             compare(what, &P, &ref, &opt, &M, 0, 0, 0, 1, &kl);
+            if (stored == 2) {
+              reset_outputs(&P, &own);
+              pdk_bond_arrays a0 = arrays_for(&P, &own, 1, 0, state, energy);
+              vs[v].dil(&kl, &a0, I0, I1);
+              same_bits(what, &P, &opt, &own);
+            }
             /* LPS force */
             snprintf(what, sizeof what, "%s lps force %d-D stored %d state %d energy %d",
                      vs[v].name, dim, stored, state, energy);
@@ -330,9 +368,15 @@ static int kernel_tests(unsigned isa) {
             ref.broken = pdk_kernel_lps_force_ref(&kl, &ar, I0, I1);
             opt.broken = vs[v].lps(&kl, &ao, I0, I1);
             compare(what, &P, &ref, &opt, &M, state, energy, 1, 0, &kl);
+            if (stored == 2) {
+              reset_outputs(&P, &own);
+              pdk_bond_arrays a0 = arrays_for(&P, &own, 1, 0, state, energy);
+              own.broken = vs[v].lps(&kl, &a0, I0, I1);
+              same_bits(what, &P, &opt, &own);
+            }
           }
     }
-    free_outputs(&ref), free_outputs(&opt), free_problem(&P);
+    free_outputs(&ref), free_outputs(&opt), free_outputs(&own), free_problem(&P);
   }
   T_ASSERT(!(isa & PDK_ISA_AVX2) || ran > 0, "no variant ran on an AVX2 CPU");
   T_ASSERT(!ran || broke_some > 0, "the commit passes broke no bond: the failure path is untested");

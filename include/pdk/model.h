@@ -197,6 +197,20 @@ typedef enum pdk_precision {
                              kinds that do not implement it refuse it (PDK_ERR_UNSUPPORTED) */
 } pdk_precision;
 
+/* PMB and LPS with precision double on the general (csr) path: whether each bond's reference
+ * length |X_j - X_i| is stored (8 bytes per bond, computed once when the model is created, with
+ * the operations the force passes use, so the same bits) or recomputed from the reference
+ * positions in every pass (a square root and, for PMB, the neighbour's reference row per bond).
+ * Results are identical either way; stored is faster (bench/README.md, "Force loops") and costs
+ * the memory: 8 bytes per bond, 0.94 GB on a 10^6-particle cube with 118 bonds per particle,
+ * where the families themselves hold 4 bytes per bond. Nothing is stored with the SIMD kernels
+ * off (PDK_KERNELS=ref), with precision float (which stores float lengths), layout sell or the
+ * stencil path, and for the other kinds. */
+typedef enum pdk_bond_lengths {
+  PDK_BOND_LENGTHS_STORED = 0,  /* (default) stored per bond */
+  PDK_BOND_LENGTHS_COMPUTED = 1 /* recomputed in every pass: 8 bytes per bond less */
+} pdk_bond_lengths;
+
 /* How the force passes store the families (PMB and LPS; src/space/sell.h, kernels/kernels.h). */
 typedef enum pdk_layout {
   PDK_LAYOUT_CSR = 0, /* the families' CSR rows: the SIMD lanes run along one particle's bonds */
@@ -344,6 +358,9 @@ typedef struct pdk_model_opts {
    * (PDK_ERR_UNSUPPORTED). When the stencil path is taken (stencil on, or auto on a lattice) it
    * replaces both layouts and sell builds nothing. */
   pdk_layout layout;
+  /* PMB and LPS, precision double, csr: reference bond lengths stored (default) or recomputed
+   * every pass (see pdk_bond_lengths). */
+  pdk_bond_lengths bond_lengths;
   /* sell: the sorting window in particles, rounded up to a multiple of C; 0 (default): 32 C (256
    * with AVX-512). C or less: no sorting. */
   int sell_sigma;

@@ -18,6 +18,10 @@
  * sums, added lane by lane at the end of the row). Bond failure decisions, the number broken and
  * s0_next (a maximum) are therefore exactly the reference's.
  *
+ * r0 comes from bond_r0 (float storage, `stored` 1), from bond_r0d (the stored double lengths,
+ * `stored` 2: the values bs_lengths would compute, pdk_kernel_bond_lengths_ref) or from the
+ * reference rows (`stored` 0); with a stored r0 the PMB and dilation passes read no reference row.
+ *
  * A row is walked in steps of BS_W bonds; the last, partial step repeats the row's last neighbour
  * in the missing lanes and gives them weight on = 0, so they add exact zeros and no array is read
  * past its end. The neighbour data come from the packed rows (pdk_bond_arrays): cur4 = (x, y, z,
@@ -59,7 +63,7 @@ typedef struct bs_step {
   bs_vd on;                 /* 1 intact, 0 broken or missing lane */
   bs_vd cx, cy, cz, cv;     /* current row */
   bs_vd rx, ry, rz, rm;     /* reference row (rm: LPS 1/m_j) */
-  bs_vd r0;                 /* from bond_r0 when stored */
+  bs_vd r0;                 /* from bond_r0 (stored 1) or bond_r0d (stored 2) when stored */
 } bs_step;
 
 BS_INLINE void bs_load(bs_step *st, const int dim, const int has_state, const int stored,
@@ -87,13 +91,21 @@ BS_INLINE void bs_load(bs_step *st, const int dim, const int has_state, const in
     BS_LOAD4(a->ref4, st->j, c);
     st->rx = c[0], st->ry = c[1], st->rz = c[2], st->rm = c[3];
   }
-  if (stored) {
+  if (stored == 1) {
     if (full) {
       st->r0 = BS_CVT_F(a->bond_r0 + b);
     } else {
       float t[BS_W];
       for (int l = 0; l < BS_W; ++l) t[l] = a->bond_r0[b + (l < nv ? l : nv - 1)];
       st->r0 = BS_CVT_F(t);
+    }
+  } else if (stored == 2) {
+    if (full) {
+      memcpy(&st->r0, a->bond_r0d + b, sizeof st->r0); /* unaligned vector load */
+    } else {
+      double t[BS_W];
+      for (int l = 0; l < BS_W; ++l) t[l] = a->bond_r0d[b + (l < nv ? l : nv - 1)];
+      memcpy(&st->r0, t, sizeof t);
     }
   }
   (void)dim;
@@ -294,7 +306,9 @@ BS_INLINE pdk_bond_index lps_force_rows(const int dim, const int has_state, cons
 /* ---- dispatch: one specialised loop per (dim, state, commit, energy, storage) -------------- */
 
 #define BS_DISPATCH_S(call, dim, st, cm, en)                                                       \
-  (a->bond_r0 ? call(dim, st, cm, en, 1, k, a, i0, i1) : call(dim, st, cm, en, 0, k, a, i0, i1))
+  (a->bond_r0 ? call(dim, st, cm, en, 1, k, a, i0, i1)                                             \
+   : a->bond_r0d ? call(dim, st, cm, en, 2, k, a, i0, i1)                                          \
+                 : call(dim, st, cm, en, 0, k, a, i0, i1))
 #define BS_DISPATCH_E(call, dim, st, cm)                                                           \
   (a->w ? BS_DISPATCH_S(call, dim, st, cm, 1) : BS_DISPATCH_S(call, dim, st, cm, 0))
 #define BS_DISPATCH(call)                                                                          \
@@ -313,17 +327,22 @@ pdk_bond_index BS_NAME(pdk_kernel_pmb_force)(const pdk_pmb_consts *k, const pdk_
 void BS_NAME(pdk_kernel_lps_dilation)(const pdk_lps_consts *k, const pdk_bond_arrays *a,
                                       pdk_index i0, pdk_index i1) {
   /* energy and commit do not matter to the dilation: fold them */
+#define BS_THETA_S(dim, st)                                                                        \
+  (a->bond_r0 ? lps_theta_rows(dim, st, 1, k, a, i0, i1)                                           \
+   : a->bond_r0d ? lps_theta_rows(dim, st, 2, k, a, i0, i1)                                        \
+                 : lps_theta_rows(dim, st, 0, k, a, i0, i1))
   if (a->dim == 3) {
     if (a->bond_alive)
-      a->bond_r0 ? lps_theta_rows(3, 1, 1, k, a, i0, i1) : lps_theta_rows(3, 1, 0, k, a, i0, i1);
+      BS_THETA_S(3, 1);
     else
-      a->bond_r0 ? lps_theta_rows(3, 0, 1, k, a, i0, i1) : lps_theta_rows(3, 0, 0, k, a, i0, i1);
+      BS_THETA_S(3, 0);
   } else {
     if (a->bond_alive)
-      a->bond_r0 ? lps_theta_rows(2, 1, 1, k, a, i0, i1) : lps_theta_rows(2, 1, 0, k, a, i0, i1);
+      BS_THETA_S(2, 1);
     else
-      a->bond_r0 ? lps_theta_rows(2, 0, 1, k, a, i0, i1) : lps_theta_rows(2, 0, 0, k, a, i0, i1);
+      BS_THETA_S(2, 0);
   }
+#undef BS_THETA_S
 }
 
 pdk_bond_index BS_NAME(pdk_kernel_lps_force)(const pdk_lps_consts *k, const pdk_bond_arrays *a,

@@ -151,3 +151,19 @@ pdk_bond_index pdk_kernel_pmb_force_ref(const pdk_pmb_consts *k, const pdk_bond_
                    a->x[1], a->x[2], a->volume, a->bond_r0, k, a->bond_alive, a->s0, a->s0_next,
                    a->f[0], a->f[1], a->f[2], a->w);
 }
+
+void pdk_kernel_bond_lengths_ref(const pdk_bond_arrays *a, pdk_index i0, pdk_index i1,
+                                 double *restrict r0) {
+  const double *restrict X = a->X[0], *restrict Y = a->X[1], *restrict Z = a->X[2];
+  const pdk_bond_index *restrict bs = a->bond_start;
+  const pdk_index *restrict bj = a->bond_j;
+  const int dim = a->dim;
+  for (pdk_index i = i0; i < i1; ++i) {
+    const double Xi = X[i], Yi = Y[i], Zi = dim == 3 ? Z[i] : 0.0;
+    for (pdk_bond_index b = bs[i]; b < bs[i + 1]; ++b) {
+      const pdk_index j = bj[b];
+      const double dX = X[j] - Xi, dY = Y[j] - Yi, dZ = dim == 3 ? Z[j] - Zi : 0.0;
+      r0[b] = sqrt(dX * dX + dY * dY + dZ * dZ); /* as pmb_row; 2-D adds +0.0, an identity */
+    }
+  }
+}

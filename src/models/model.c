@@ -133,6 +133,8 @@ static int check_opts(pdk_ctx *ctx, const pdk_model_opts *o) {
             o->thickness);
   PDK_CHECK((unsigned)o->layout <= PDK_LAYOUT_SELL, ctx, PDK_ERR_ARG,
             "layout %d unknown; use csr or sell", (int)o->layout);
+  PDK_CHECK((unsigned)o->bond_lengths <= PDK_BOND_LENGTHS_COMPUTED, ctx, PDK_ERR_ARG,
+            "bond_lengths %d unknown; use stored (0) or computed (1)", (int)o->bond_lengths);
   PDK_CHECK(o->sell_sigma >= 0, ctx, PDK_ERR_ARG,
             "sell_sigma must be >= 0 (0: the default window), got %d", o->sell_sigma);
   const pdk_model_kind_info *kind = pdk_model_kind_info_of(o->kind);

@@ -52,7 +52,38 @@ int pdk_bond_data_setup(pdk_model *m, pdk_bond_data *bd, const char *who) {
   return PDK_SUCCESS;
 }
 
+int pdk_bond_data_store_lengths(pdk_model *m, pdk_bond_data *bd, const char *who) {
+  pdk_ctx *ctx = m->ctx;
+  if (m->opts.bond_lengths != PDK_BOND_LENGTHS_STORED ||
+      m->opts.precision != PDK_PRECISION_DOUBLE || !bd->ref4 || bd->bond_r0d)
+    return PDK_SUCCESS;
+  const pdk_bond_index nb = pdk_families_num_bonds(m->fam);
+  bd->bond_r0d = pdk_alloc_aligned((size_t)(nb > 0 ? nb : 1), sizeof(double));
+  PDK_CHECK(bd->bond_r0d, ctx, PDK_ERR_MEMORY,
+            "%s model: out of memory for the bond lengths of %lld bonds (%lld bytes); use "
+            "bond_lengths computed",
+            who, (long long)nb, (long long)(8 * nb));
+  pdk_bond_arrays a;
+  memset(&a, 0, sizeof a);
+  a.dim = bd->dim;
+  a.bond_start = pdk_families_bond_start(m->fam);
+  a.bond_j = pdk_families_bond_j(m->fam);
+  for (int c = 0; c < bd->dim; ++c) a.X[c] = pdk_particles_X(m->p, c);
+  const pdk_index n = bd->n;
+  const int64_t block = 1024, num_blocks = ((int64_t)n + block - 1) / block;
+  double *r0 = bd->bond_r0d;
+  const pdk_bond_arrays *ap = &a;
+#pragma omp parallel for default(none) shared(ap, r0, n, num_blocks) schedule(static)             \
+    num_threads(ctx->num_threads)
+  for (int64_t blk = 0; blk < num_blocks; ++blk) {
+    const pdk_index i0 = (pdk_index)(blk * block);
+    pdk_kernel_bond_lengths_ref(ap, i0, (pdk_index)(i0 + block < (int64_t)n ? i0 + block : n), r0);
+  }
+  return PDK_SUCCESS;
+}
+
 void pdk_bond_data_free(pdk_bond_data *bd) {
+  pdk_free_aligned(bd->bond_r0d);
   pdk_free_aligned(bd->ref4);
   pdk_free_aligned(bd->cur4);
   pdk_free_aligned(bd->bond_r0);
@@ -76,6 +107,7 @@ int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *
   a->ref4 = bd->ref4;
   a->cur4 = bd->cur4;
   a->bond_r0 = bd->bond_r0;
+  a->bond_r0d = bd->bond_r0d;
   a->bond_alive = m->bond_alive;
   a->s0 = m->s0;
   return 1;

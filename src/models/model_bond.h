@@ -20,15 +20,20 @@
 typedef struct pdk_bond_data {
   int dim;
   pdk_index n;
-  double *ref4;   /* [4 n_pad] X, Y, Z, extra; NULL when the kernel table reads SoA only */
-  double *cur4;   /* [4 n_pad] x, y, z, V, refilled before every pass */
-  float *bond_r0; /* [num_bonds] |xi| rounded to float (precision float), else NULL */
+  double *ref4;    /* [4 n_pad] X, Y, Z, extra; NULL when the kernel table reads SoA only */
+  double *cur4;    /* [4 n_pad] x, y, z, V, refilled before every pass */
+  float *bond_r0;  /* [num_bonds] |xi| rounded to float (precision float), else NULL */
+  double *bond_r0d; /* [num_bonds] |xi| in double (bond_lengths stored, csr path), else NULL */
 } pdk_bond_data;
 
 /* Allocates what the context's kernel table and m->opts.precision need and fills ref4 (extra
  * column 0) and bond_r0. `who` names the model in messages. */
 int pdk_bond_data_setup(pdk_model *m, pdk_bond_data *bd, const char *who);
 void pdk_bond_data_free(pdk_bond_data *bd);
+/* After the layout is chosen, when the general (csr) pass will run: stores the double bond lengths
+ * bond_r0d when m->opts.bond_lengths is stored, precision double and the SIMD kernels (the rows)
+ * are in use, the only kernels that read them (pdk_kernel_bond_lengths_ref). */
+int pdk_bond_data_store_lengths(pdk_model *m, pdk_bond_data *bd, const char *who);
 /* The pass's arrays: families, positions, volume, rows, bond_r0, bond state; the caller sets the
  * model-specific ones (s0_next, theta, inv_m, theta_out, w). Returns 0 when a field is missing. */
 int pdk_bond_arrays_get(pdk_model *m, const pdk_bond_data *bd, pdk_bond_arrays *a);

@@ -156,6 +156,7 @@ static int lps_setup(pdk_model *m) {
     im->use_sell = 1;
     im->sell_version = m->bond_state_version;
   }
+  if (!m->stencil && !im->use_sell) PDK_CALL(pdk_bond_data_store_lengths(m, &im->bd, "lps"));
   return PDK_SUCCESS;
 }
 
@@ -632,6 +633,7 @@ const pdk_model_kind_info pdk_model_kind_lps = {
     .mem_point = 640,
     .mem_bond = 8,
     .mem_bond_float = 12,
+    .mem_bond_lengths = 8,
     .mem_newton_bond = 100,
     .ops_for = lps_ops_for,
     .no_stencil = lps_no_stencil};

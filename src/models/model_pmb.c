@@ -121,6 +121,7 @@ static int pmb_setup(pdk_model *m) {
     im->use_sell = 1;
     im->sell_version = m->bond_state_version;
   }
+  if (!m->stencil && !im->use_sell) PDK_CALL(pdk_bond_data_store_lengths(m, &im->bd, "pmb"));
   return PDK_SUCCESS;
 }
 
@@ -354,15 +355,16 @@ static const pdk_model_ops *pmb_ops_for(const pdk_model_opts *o) {
   return &pdk_model_ops_pmb;
 }
 
-const pdk_model_kind_info pdk_model_kind_pmb = {.kind = PDK_MODEL_PMB,
-                                                .name = "pmb",
-                                                .caps = PDK_KIND_SCENE | PDK_KIND_STENCIL |
-                                                        PDK_KIND_MATERIALS | PDK_KIND_FLOAT |
-                                                        PDK_KIND_TANGENT,
-                                                .hops = 1,
-                                                .scene_stabilization = PDK_STAB_NONE,
-                                                .mem_point = 640,
-                                                .mem_bond = 8,
-                                                .mem_bond_float = 12,
-                                                .mem_newton_bond = 100,
-                                                .ops_for = pmb_ops_for};
+const pdk_model_kind_info pdk_model_kind_pmb = {
+    .kind = PDK_MODEL_PMB,
+    .name = "pmb",
+    .caps = PDK_KIND_SCENE | PDK_KIND_STENCIL | PDK_KIND_MATERIALS | PDK_KIND_FLOAT |
+            PDK_KIND_TANGENT,
+    .hops = 1,
+    .scene_stabilization = PDK_STAB_NONE,
+    .mem_point = 640,
+    .mem_bond = 8,
+    .mem_bond_float = 12,
+    .mem_bond_lengths = 8,
+    .mem_newton_bond = 100,
+    .ops_for = pmb_ops_for};

@@ -50,6 +50,8 @@ typedef struct pdk_model_kind_info {
   /* Memory estimate of a scene before it is built (bytes per point, per bond in double and float
    * storage, and the Newton solver's per bond per dim^2), measured on the shipped scenes. */
   double mem_point, mem_bond, mem_bond_float, mem_newton_bond;
+  /* bytes per bond more with bond_lengths stored and precision double (0: the kind stores none) */
+  double mem_bond_lengths;
   /* The operations that implement these options. */
   const struct pdk_model_ops *(*ops_for)(const pdk_model_opts *o);
   /* 1 when the force passes walk the particles' arrays in lattice-row order (stencil path), so

@@ -108,7 +108,7 @@ typedef struct sc_galerkin {
 } sc_galerkin;
 typedef struct sc_model {
   sc_galerkin *galerkin;
-  int kind, influence, stabilization, law, precision, connectivity, layout, stencil;
+  int kind, influence, stabilization, law, precision, connectivity, layout, stencil, bond_lengths;
   int stabilization_softening, damage_triaxiality, break_stress;
   int oterkus_a;
   double gaussian_width, stabilization_coefficient, critical_stretch, alpha, compact_fraction,

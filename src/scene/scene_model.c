@@ -384,6 +384,7 @@ int pdk_scene_resolve_material_model(loader *ld, const sc_material *mat, const s
   if (has(ld, "model.law")) m->law = (pdk_law)mo->law;
   if (has(ld, "model.precision")) m->precision = (pdk_precision)mo->precision;
   if (has(ld, "model.layout")) m->layout = (pdk_layout)mo->layout;
+  if (has(ld, "model.bond_lengths")) m->bond_lengths = (pdk_bond_lengths)mo->bond_lengths;
   /* Scenes take the lattice path where it applies (auto) unless they name a layout or a stencil
    * mode; the C API's default stays off (pdk_model_opts_default), so code chooses its path. */
   if (!has(ld, "model.layout")) m->stencil = PDK_STENCIL_AUTO;

@@ -151,6 +151,11 @@ static double memory_estimate(const pdk_scene *s, double *per_point, double *per
   const int single = s->model.precision == PDK_PRECISION_FLOAT;
   *per_point = k->mem_point;
   *per_bond = single ? k->mem_bond_float : k->mem_bond;
+  /* stored bond lengths (counted even where the stencil path will make them unnecessary: the
+   * estimate errs high) */
+  if (!single && s->model.bond_lengths == PDK_BOND_LENGTHS_STORED &&
+      s->model.layout == PDK_LAYOUT_CSR)
+    *per_bond += k->mem_bond_lengths;
   if (s->solver_type == PDK_SOLVER_NEWTON) *per_bond += k->mem_newton_bond * s->dim * s->dim;
   *bonds = n * nb;
   return 32.0 * 1024 * 1024 + n * *per_point + *bonds * *per_bond;

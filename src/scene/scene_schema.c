@@ -45,6 +45,8 @@ static const cyaml_strval_t galerkin_normals_names[] = {{"box", 1}};
 static const cyaml_strval_t precision_names[] = {{"double", PDK_PRECISION_DOUBLE},
                                                  {"float", PDK_PRECISION_FLOAT}};
 static const cyaml_strval_t layout_names[] = {{"csr", PDK_LAYOUT_CSR}, {"sell", PDK_LAYOUT_SELL}};
+static const cyaml_strval_t bond_lengths_names[] = {{"stored", PDK_BOND_LENGTHS_STORED},
+                                                    {"computed", PDK_BOND_LENGTHS_COMPUTED}};
 static const cyaml_strval_t stencil_names[] = {
     {"off", PDK_STENCIL_OFF}, {"auto", PDK_STENCIL_AUTO}, {"on", PDK_STENCIL_ON}};
 static const cyaml_strval_t bc_type_names[] = {{"displacement", PDK_BC_DISPLACEMENT},
@@ -233,6 +235,8 @@ void pdk_scene_schema_build(scene_schema *sc, int dim) {
                               N_OF(layout_names)));
   ADD(model, CYAML_FIELD_ENUM("stencil", ENUM_FLAGS, sc_model, stencil, stencil_names,
                               N_OF(stencil_names)));
+  ADD(model, CYAML_FIELD_ENUM("bond_lengths", ENUM_FLAGS, sc_model, bond_lengths,
+                              bond_lengths_names, N_OF(bond_lengths_names)));
   ADD(model, CYAML_FIELD_FLOAT("critical_stretch", OPT, sc_model, critical_stretch));
   ADD(model, CYAML_FIELD_FLOAT("alpha", OPT, sc_model, alpha));
   ADD(model, CYAML_FIELD_BOOL("partial_volume", OPT, sc_model, partial_volume));

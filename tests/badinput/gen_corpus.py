@@ -154,6 +154,8 @@ def build(c):
     c.mut("type_spacing_null", "-", PT, "spacing: 2.0e-3", "spacing:", "spacing")
     c.mut("type_density_string", "-", PT, "density: 7830", 'density: "heavy"', "density")
     c.mut("type_kind_number", "-", PT, "kind: correspondence", "kind: 3", "model.kind")
+    c.mut("type_bond_lengths_word", "-", BAR, "critical_stretch: 0.002}",
+          "critical_stretch: 0.002, bond_lengths: cached}", "bond_lengths")
     c.mut("type_law_map", "-", PT, "law: jc", "law: {jc: 1}", "law")
     c.mut("type_holes_scalar", "-", PT, "  holes:\n", "  holes: 2\n  unused_holes:\n", "holes")
     c.mut("type_geometry_scalar", "-", BAR, "geometry:\n", "geometry: square\ngeometry_:\n",
