@@ -6,6 +6,8 @@
  *                                the dt_update state: the latest stable estimate, where dt last
  *                                changed, the last estimate's step and broken-bond count, the
  *                                counters
+ *   auto_ratio                   dt_update auto: the bond length ratio at its last estimate
+ *                                (only once one ran)
  */
 #include <string.h>
 
@@ -31,6 +33,9 @@ int pdk_explicit_state_save(const pdk_explicit *e, pdk_state *s) {
   PDK_CALL(pdk_state_put_i64(s, "est_broken", e->est_broken));
   PDK_CALL(pdk_state_put_i64(s, "num_estimates", e->num_estimates));
   PDK_CALL(pdk_state_put_i64(s, "num_dt_changes", e->num_dt_changes));
+  /* auto: only once a re-estimate moved it (files of runs without one stay as they were) */
+  if (e->opts.dt_update == PDK_DT_UPDATE_AUTO && e->num_estimates > 1)
+    PDK_CALL(pdk_state_put_f64(s, "auto_ratio", e->auto_ratio));
   char key[32];
   for (int w = 0; w < e->num_walls; ++w) { /* walls only: runs without keep their files */
     snprintf(key, sizeof key, "wall_impulse_%d", w);
@@ -79,6 +84,8 @@ int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s) {
     PDK_CALL(pdk_state_get_i64(s, "num_dt_changes", &v));
     e->num_dt_changes = (int)v;
   }
+  /* without it the ratio of creation stands: no auto re-estimate ran before the checkpoint */
+  if (pdk_state_has(s, "auto_ratio")) PDK_CALL(pdk_state_get_f64(s, "auto_ratio", &e->auto_ratio));
   char key[32];
   for (int w = 0; w < e->num_walls; ++w) {
     snprintf(key, sizeof key, "wall_impulse_%d", w);
