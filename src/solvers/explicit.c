@@ -587,7 +587,7 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
   }
   PDK_CALL_GOTO(pdk_explicit_estimate_dt(e, 0));
   e->num_estimates = 1;
-  e->auto_ratio = pdk_explicit_min_bond_ratio(e);
+  e->auto_ratio = pdk_explicit_min_bond_ratio(e, &e->auto_ximin);
   e->est_broken = pdk_model_num_broken(m);
   if (opts.dt == 0) e->dt = opts.safety * e->dt_stable;
   else {
@@ -624,6 +624,7 @@ void pdk_explicit_destroy(pdk_explicit **ep) {
   free(e->dir_bc);
   free(e->dir_frame);
   free(e->acct_a2);
+  free(e->auto_x);
   free(e->bcs);
   free(e);
   *ep = NULL;

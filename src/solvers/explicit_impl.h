@@ -36,6 +36,10 @@ struct pdk_explicit {
   /* dt_update auto (explicit_dt.c): the smallest bond length ratio at the last estimate
    * (checkpointed once an auto re-estimate set it) */
   double auto_ratio;
+  /* and the last full bond read (not checkpointed: a restored run reads in full first): its
+   * positions [dim][n] (NULL before it), its ratio, and the smallest initial bond length */
+  double *auto_x;
+  double auto_rlast, auto_ximin;
   double rho;
   int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
   /* conditions along a direction (pdk_bc.direction): the particles they hold, their condition
@@ -78,7 +82,7 @@ void pdk_walls_apply(pdk_explicit *e, double t1);
  * trigger, called after every step. */
 int pdk_explicit_estimate_dt(pdk_explicit *e, int mid_run);
 int pdk_explicit_update_dt(pdk_explicit *e, double safety);
-double pdk_explicit_min_bond_ratio(pdk_explicit *e);
+double pdk_explicit_min_bond_ratio(pdk_explicit *e, double *xi_min);
 int pdk_explicit_auto_dt(pdk_explicit *e);
 
 /* The solver's scalars stored in a checkpoint. */

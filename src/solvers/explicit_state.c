@@ -9,6 +9,7 @@
  *   auto_ratio                   dt_update auto: the bond length ratio at its last estimate
  *                                (only once one ran)
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "explicit_impl.h"
@@ -69,6 +70,8 @@ int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s) {
   PDK_CALL(pdk_state_get_f64(s, "strain", &e->strain));
   PDK_CALL(pdk_state_get_f64(s, "external_work", &e->external_work));
   e->acct_set = 0; /* the energy account's baseline is taken again at the next step */
+  free(e->auto_x); /* dt_update auto reads the bonds in full at the next step */
+  e->auto_x = NULL;
   e->acct_streak = 0;
   if (pdk_state_has(s, "dt_step0")) { /* the dt_update state (files before it: none) */
     PDK_CALL(pdk_state_get_f64(s, "dt_stable", &e->dt_stable));
