@@ -439,6 +439,11 @@ PDK_EXPORT double pdk_model_damage_max(const pdk_model *m);
 PDK_EXPORT long pdk_model_num_compactions(const pdk_model *m);
 /* UL: how many times the families were rebuilt in the current configuration (0 in TL, semi-TL). */
 PDK_EXPORT long pdk_model_num_rebuilds(const pdk_model *m);
+/* UL: the strain energy the rebuilds of the committing passes removed so far (the energy of the
+ * pass before each rebuild less that of a trial pass over the new families at the same positions;
+ * mostly the stabilization's, whose non-affine part restarts at 0), booked so that
+ * external_work = kinetic + strain + dissipated + rebuild_work closes; 0 in TL and semi-TL. */
+PDK_EXPORT double pdk_model_rebuild_work(const pdk_model *m);
 /* UL: rebuilds the families at the current "x" now (a trial pass at x first gives the F to store
  * as the new reference deformation), whatever the displacement since the last rebuild. Refused
  * (PDK_ERR_ARG) for other connectivity modes. */

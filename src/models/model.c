@@ -459,6 +459,7 @@ pdk_index pdk_model_num_isolated(const pdk_model *m) {
 }
 long pdk_model_num_compactions(const pdk_model *m) { return m ? m->num_compactions : 0; }
 long pdk_model_num_rebuilds(const pdk_model *m) { return m ? m->num_rebuilds : 0; }
+double pdk_model_rebuild_work(const pdk_model *m) { return m ? m->rebuild_work : 0.0; }
 
 int pdk_model_rebuild(pdk_model *m) {
   PDK_CHECK_ARG(m, NULL);

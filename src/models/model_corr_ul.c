@@ -474,7 +474,38 @@ static const char *ul_family_why(const pdk_corr_ul_arrays *ua, const pdk_corr_co
   return buf;
 }
 
+static int ul_passes(pdk_model *m, int commit, double *energy);
+
+/* The rebuild's energy: the strain energy of a trial pass over the new families at the same
+ * positions (the committing pass's "f" kept: the next half kick reads it), subtracted from the
+ * committing pass's, booked in m->rebuild_work. */
+static int ul_rebuild_booked(pdk_model *m, double e_before) {
+  pdk_particles *p = m->p;
+  const int dim = pdk_particles_dim(p);
+  const size_t bytes = (size_t)pdk_particles_count(p) * sizeof(double);
+  double *f_save = malloc(dim * bytes + 1);
+  PDK_CHECK(f_save, m->ctx, PDK_ERR_MEMORY, "out of memory booking a ul rebuild's energy");
+  for (int c = 0; c < dim; ++c)
+    memcpy(f_save + (size_t)c * (bytes / sizeof(double)), pdk_particles_field_data(p, "f", c), bytes);
+  int err = ul_rebuild_now(m);
+  double e_after = e_before;
+  if (!err) err = ul_passes(m, 0, &e_after);
+  for (int c = 0; c < dim; ++c)
+    memcpy(pdk_particles_field_data(p, "f", c), f_save + (size_t)c * (bytes / sizeof(double)), bytes);
+  free(f_save);
+  if (!err) m->rebuild_work += e_before - e_after;
+  return err;
+}
+
 static int ul_force(pdk_model *m, int commit, double *energy) {
+  double e = 0.0;
+  PDK_CALL(ul_passes(m, commit, &e));
+  if (energy) *energy = e;
+  if (commit && m->opts.ul_skin > 0.0 && ul_over_skin(m)) PDK_CALL(ul_rebuild_booked(m, e));
+  return PDK_SUCCESS;
+}
+
+static int ul_passes(pdk_model *m, int commit, double *energy) {
   ul_impl *c = m->impl;
   pdk_corr_consts kc = c->k;
   const pdk_corr_consts *k = &kc;
@@ -546,7 +577,6 @@ static int ul_force(pdk_model *m, int commit, double *energy) {
       e += block_energy[blk];
     *energy = e;
   }
-  if (commit && m->opts.ul_skin > 0.0 && ul_over_skin(m)) PDK_CALL(ul_rebuild_now(m));
   return PDK_SUCCESS;
 }
 
@@ -593,6 +623,7 @@ static int ul_state_save(const pdk_model *m, pdk_state *s) {
   const int rebuilt = cur != m->fam;
   PDK_CALL(pdk_state_put_i64(s, "ul_rebuilt", rebuilt));
   PDK_CALL(pdk_state_put_i64(s, "ul_num_rebuilds", m->num_rebuilds));
+  PDK_CALL(pdk_state_put_f64(s, "ul_rebuild_work", m->rebuild_work));
   if (rebuilt) {
     const pdk_index n = pdk_particles_count(m->p);
     PDK_CALL(pdk_state_put_array(s, "ul_bond_start", PDK_I64, (size_t)n + 1,
@@ -625,6 +656,9 @@ static int ul_state_load(pdk_model *m, pdk_state *s) {
   const pdk_index n = pdk_particles_count(m->p);
   PDK_CALL(pdk_state_get_i64(s, "ul_rebuilt", &rebuilt));
   PDK_CALL(pdk_state_get_i64(s, "ul_num_rebuilds", &num_rebuilds));
+  m->rebuild_work = 0.0; /* files from before the booking: none booked */
+  if (pdk_state_has(s, "ul_rebuild_work"))
+    PDK_CALL(pdk_state_get_f64(s, "ul_rebuild_work", &m->rebuild_work));
   if (rebuilt) {
     bs = malloc(((size_t)n + 1) * sizeof *bs);
     PDK_CHECK_GOTO(bs, ctx, PDK_ERR_MEMORY, "out of memory reading ul families");

@@ -79,6 +79,7 @@ struct pdk_model {
   pdk_index num_failed;  /* Johnson-Cook: failed particles after the last pass */
   long num_compactions;  /* semi-TL bond-list compactions */
   long num_rebuilds;     /* UL family rebuilds */
+  double rebuild_work;   /* UL: strain energy the rebuilds removed (before - after), summed */
   double dt;             /* time step for history updates; 0 until pdk_model_set_dt */
   /* Multi-material (opts.num_materials > 0): per-particle constants [n_pad], else NULL. */
   double *mat_bulk, *mat_shear, *mat_density;

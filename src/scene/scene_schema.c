@@ -62,7 +62,8 @@ static const cyaml_strval_t solver_names[] = {
     {"explicit", PDK_SOLVER_EXPLICIT}, {"adr", PDK_SOLVER_ADR}, {"newton", PDK_SOLVER_NEWTON}};
 static const cyaml_strval_t dt_update_names[] = {{"none", PDK_DT_UPDATE_NONE},
                                                  {"breaks", PDK_DT_UPDATE_BREAKS},
-                                                 {"periodic", PDK_DT_UPDATE_PERIODIC}};
+                                                 {"periodic", PDK_DT_UPDATE_PERIODIC},
+                                                 {"auto", PDK_DT_UPDATE_AUTO}};
 static const cyaml_strval_t adr_mass_names[] = {{"auto", PDK_ADR_MASS_AUTO},
                                                 {"row_sum", PDK_ADR_MASS_ROW_SUM},
                                                 {"lanczos", PDK_ADR_MASS_LANCZOS}};

@@ -13,7 +13,6 @@
 
 #include "bc.h"
 #include "explicit_impl.h"
-#include "lanczos.h"
 #include "pdk/ctx.h"
 #include "pdk/explicit.h"
 #include "pdk/families.h"
@@ -60,6 +59,7 @@ pdk_explicit_opts pdk_explicit_opts_default(void) {
   pdk_explicit_opts o;
   memset(&o, 0, sizeof o);
   o.safety = 0.8;
+  o.dt_update = PDK_DT_UPDATE_AUTO;
   return o;
 }
 
@@ -309,7 +309,7 @@ static int check_blowup(pdk_explicit *e) {
 static int acct_energy(pdk_explicit *e, double *total) {
   double pl = 0.0, dm = 0.0, br = 0.0;
   PDK_CALL(pdk_model_plastic_work(e->m, &pl, &dm, &br));
-  *total = kinetic_energy(e) + e->strain + pl + dm + br;
+  *total = kinetic_energy(e) + e->strain + pl + dm + br + pdk_model_rebuild_work(e->m);
   return PDK_SUCCESS;
 }
 
@@ -491,66 +491,6 @@ static double external_power(pdk_explicit *e, double t) {
   return power;
 }
 
-/* Largest eigenvalue of M^-1 K by Lanczos in the M-inner product (lanczos.h): trial forces, no
- * history changes; the estimate is a lower bound of lambda_max. "x" comes back bit for bit, "f"
- * and the fields derived from "x" are the last probe's. */
-static int estimate_stable_dt(pdk_explicit *e, int mid_run) {
-  pdk_lanczos_opts lo = {0};
-  lo.steps = 40;
-  lo.mass = 1;
-  lo.horizon = pdk_families_horizon(e->m->fam);
-  lo.salt = 1;
-  lo.scale_by_inverse = 1;
-  lo.restore_f = 0;
-  double lmax = 0.0;
-  PDK_CALL(pdk_lanczos_max_eig(e->m, &lo, &lmax, NULL));
-  /* during a run a body may have lost every bond (fragments that fly apart): nothing limits
-   * the step any more, and the last estimate stands */
-  if (mid_run && !(isfinite(lmax) && lmax > 0)) return PDK_SUCCESS;
-  PDK_CHECK(isfinite(lmax) && lmax > 0, e->ctx, PDK_ERR_NUMERIC,
-            "the stable time step could not be estimated (largest stiffness eigenvalue %g); "
-            "the body may have no stiffness (no bonds?)",
-            lmax);
-  e->dt_stable = 2.0 / sqrt(lmax);
-  return PDK_SUCCESS;
-}
-
-/* dt_update: a new estimate at the current state (trial forces only), and dt lowered to safety x
- * it when above. The estimate moves "x" and overwrites "f" and the fields a force pass derives
- * from "x" ("F", "A", "theta", ...): positions come back bit for bit from the estimate itself, the
- * fields from one more trial pass at them, and "f" (what the next half kick reads) from a copy,
- * since a trial pass from the committed history need not give the committing pass's bits. */
-static int update_dt(pdk_explicit *e) {
-  int err = PDK_SUCCESS;
-  const size_t bytes = (size_t)e->n * sizeof(double);
-  double *f_save[3] = {NULL, NULL, NULL};
-  for (int c = 0; c < e->dim; ++c) {
-    f_save[c] = malloc(bytes ? bytes : 1);
-    PDK_CHECK_GOTO(f_save[c], e->ctx, PDK_ERR_MEMORY,
-                   "out of memory re-estimating the stable time step");
-    memcpy(f_save[c], field(e->p, "f", c), bytes);
-  }
-  PDK_CALL_GOTO(estimate_stable_dt(e, 1));
-  PDK_CALL_GOTO(pdk_model_force_trial(e->m, NULL));
-  for (int c = 0; c < e->dim; ++c) memcpy(field(e->p, "f", c), f_save[c], bytes);
-  e->num_estimates++;
-  e->est_step = e->step;
-  e->est_broken = pdk_model_num_broken(e->m);
-  /* lowered when more than 0.1% above safety x the estimate: an estimate that moves by round-off
-   * or a fraction of a percent (40 Lanczos steps resolve the top of the spectrum to about that)
-   * does not change dt at every estimate */
-  if (e->opts.safety * e->dt_stable * (1.0 + 1e-3) < e->dt) {
-    e->dt = e->opts.safety * e->dt_stable;
-    e->dt_step0 = e->step;
-    e->dt_time0 = e->time;
-    e->num_dt_changes++;
-    PDK_CALL_GOTO(pdk_model_set_dt(e->m, e->dt));
-  }
-cleanup:
-  for (int c = 0; c < 3; ++c) free(f_save[c]);
-  return err;
-}
-
 int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_explicit **out) {
   PDK_CHECK_ARG(m, NULL);
   pdk_ctx *ctx = m->ctx;
@@ -563,8 +503,9 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
             "time step must be >= 0 (0 picks the estimate), got %g", opts.dt);
   PDK_CHECK(isfinite(opts.safety) && opts.safety > 0 && opts.safety <= 1, ctx, PDK_ERR_ARG,
             "time-step safety factor must be in (0, 1], got %g", opts.safety);
-  PDK_CHECK((unsigned)opts.dt_update <= PDK_DT_UPDATE_PERIODIC, ctx, PDK_ERR_ARG,
-            "dt_update %d is not none (0), breaks (1) or periodic (2)", (int)opts.dt_update);
+  PDK_CHECK((unsigned)opts.dt_update <= PDK_DT_UPDATE_AUTO, ctx, PDK_ERR_ARG,
+            "dt_update %d is not none (0), breaks (1), periodic (2) or auto (3)",
+            (int)opts.dt_update);
   PDK_CHECK(opts.dt_update_interval >= 0, ctx, PDK_ERR_ARG,
             "dt_update_interval must be >= 0 steps (0: 100), got %ld", opts.dt_update_interval);
   if (opts.dt_update_interval == 0) opts.dt_update_interval = 100;
@@ -644,8 +585,9 @@ int pdk_explicit_create(pdk_model *m, const pdk_explicit_opts *opts_in, pdk_expl
       v[i] = s;
     }
   }
-  PDK_CALL_GOTO(estimate_stable_dt(e, 0));
+  PDK_CALL_GOTO(pdk_explicit_estimate_dt(e, 0));
   e->num_estimates = 1;
+  e->auto_ratio = pdk_explicit_min_bond_ratio(e, &e->auto_ximin);
   e->est_broken = pdk_model_num_broken(m);
   if (opts.dt == 0) e->dt = opts.safety * e->dt_stable;
   else {
@@ -682,6 +624,7 @@ void pdk_explicit_destroy(pdk_explicit **ep) {
   free(e->dir_bc);
   free(e->dir_frame);
   free(e->acct_a2);
+  free(e->auto_x);
   free(e->bcs);
   free(e);
   *ep = NULL;
@@ -743,15 +686,18 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     e->external_work += 0.5 * e->dt * (p0 + p1) + k1 - k0;
     p0 = p1;
     k0 = k1;
+    if (e->opts.dt_update == PDK_DT_UPDATE_AUTO) /* before the checks: it may lower dt */
+      PDK_CALL(pdk_explicit_auto_dt(e)); /* the next step uses the new dt, as below */
     if (e->step % 8 == 0) {
       PDK_CALL(check_runaway(e)); /* first: it trips earlier and names more */
       PDK_CALL(check_blowup(e));
     }
-    if (e->opts.dt_update != PDK_DT_UPDATE_NONE &&
+    const pdk_dt_update du = e->opts.dt_update;
+    if ((du == PDK_DT_UPDATE_BREAKS || du == PDK_DT_UPDATE_PERIODIC) &&
         e->step - e->est_step >= e->opts.dt_update_interval &&
-        (e->opts.dt_update == PDK_DT_UPDATE_PERIODIC ||
-         pdk_model_num_broken(e->m) != e->est_broken))
-      PDK_CALL(update_dt(e)); /* the next step uses the new dt; p0 and k0 stand (x, v, f do) */
+        (du == PDK_DT_UPDATE_PERIODIC || pdk_model_num_broken(e->m) != e->est_broken))
+      PDK_CALL(pdk_explicit_update_dt(e, e->opts.safety)); /* the next step uses the new dt;
+                                                              p0 and k0 stand (x, v, f do) */
   }
   if (hist) {
     memset(hist, 0, sizeof *hist);
@@ -770,6 +716,7 @@ int pdk_explicit_run(pdk_explicit *e, long num_steps, pdk_history *hist) {
     for (int w = 0; w < e->num_walls; ++w)
       hist->wall_impulse[w] = e->wall_impulse[w];
     hist->contact_work = e->contact_work;
+    hist->rebuild_work = pdk_model_rebuild_work(e->m);
   }
   return PDK_SUCCESS;
 }

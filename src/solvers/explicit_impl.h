@@ -33,6 +33,13 @@ struct pdk_explicit {
   long dt_step0;
   double dt_time0;
   int num_estimates, num_dt_changes;
+  /* dt_update auto (explicit_dt.c): the smallest bond length ratio at the last estimate
+   * (checkpointed once an auto re-estimate set it) */
+  double auto_ratio;
+  /* and the last full bond read (not checkpointed: a restored run reads in full first): its
+   * positions [dim][n] (NULL before it), its ratio, and the smallest initial bond length */
+  double *auto_x;
+  double auto_rlast, auto_ximin;
   double rho;
   int32_t *bc_of[3];        /* [n] per component: index of the displacement/velocity bc, -1 free */
   /* conditions along a direction (pdk_bc.direction): the particles they hold, their condition
@@ -68,6 +75,15 @@ struct pdk_explicit {
  * walls' contact after the drift of the step ending at t1. */
 int pdk_walls_init(pdk_explicit *e);
 void pdk_walls_apply(pdk_explicit *e, double t1);
+
+/* src/solvers/explicit_dt.c: the Lanczos estimate of the stable step (mid_run: a body without
+ * stiffness keeps the last estimate); a re-estimate at the current state lowering dt to
+ * safety x it when above; the smallest current / initial length over the intact bonds; dt_update auto's
+ * trigger, called after every step. */
+int pdk_explicit_estimate_dt(pdk_explicit *e, int mid_run);
+int pdk_explicit_update_dt(pdk_explicit *e, double safety);
+double pdk_explicit_min_bond_ratio(pdk_explicit *e, double *xi_min);
+int pdk_explicit_auto_dt(pdk_explicit *e);
 
 /* The solver's scalars stored in a checkpoint. */
 typedef struct pdk_checkpoint_solver {

@@ -6,7 +6,10 @@
  *                                the dt_update state: the latest stable estimate, where dt last
  *                                changed, the last estimate's step and broken-bond count, the
  *                                counters
+ *   auto_ratio                   dt_update auto: the bond length ratio at its last estimate
+ *                                (only once one ran)
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "explicit_impl.h"
@@ -31,6 +34,9 @@ int pdk_explicit_state_save(const pdk_explicit *e, pdk_state *s) {
   PDK_CALL(pdk_state_put_i64(s, "est_broken", e->est_broken));
   PDK_CALL(pdk_state_put_i64(s, "num_estimates", e->num_estimates));
   PDK_CALL(pdk_state_put_i64(s, "num_dt_changes", e->num_dt_changes));
+  /* auto: only once a re-estimate moved it (files of runs without one stay as they were) */
+  if (e->opts.dt_update == PDK_DT_UPDATE_AUTO && e->num_estimates > 1)
+    PDK_CALL(pdk_state_put_f64(s, "auto_ratio", e->auto_ratio));
   char key[32];
   for (int w = 0; w < e->num_walls; ++w) { /* walls only: runs without keep their files */
     snprintf(key, sizeof key, "wall_impulse_%d", w);
@@ -64,6 +70,8 @@ int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s) {
   PDK_CALL(pdk_state_get_f64(s, "strain", &e->strain));
   PDK_CALL(pdk_state_get_f64(s, "external_work", &e->external_work));
   e->acct_set = 0; /* the energy account's baseline is taken again at the next step */
+  free(e->auto_x); /* dt_update auto reads the bonds in full at the next step */
+  e->auto_x = NULL;
   e->acct_streak = 0;
   if (pdk_state_has(s, "dt_step0")) { /* the dt_update state (files before it: none) */
     PDK_CALL(pdk_state_get_f64(s, "dt_stable", &e->dt_stable));
@@ -79,6 +87,8 @@ int pdk_explicit_state_load(pdk_explicit *e, pdk_state *s) {
     PDK_CALL(pdk_state_get_i64(s, "num_dt_changes", &v));
     e->num_dt_changes = (int)v;
   }
+  /* without it the ratio of creation stands: no auto re-estimate ran before the checkpoint */
+  if (pdk_state_has(s, "auto_ratio")) PDK_CALL(pdk_state_get_f64(s, "auto_ratio", &e->auto_ratio));
   char key[32];
   for (int w = 0; w < e->num_walls; ++w) {
     snprintf(key, sizeof key, "wall_impulse_%d", w);
