@@ -17,6 +17,7 @@
 #include "pdk/run.h"
 #include "core/pdk_impl.h"
 #include "run_impl.h"
+#include "pdk/comm.h"
 #include "pdk/ctx.h"
 #include "pdk/explicit.h"
 #include "pdk/model.h"
@@ -250,6 +251,12 @@ static int run(run_state *r) {
                 pdk_ctx_error_set(r->ctx, PDK_ERR_ARG, "pdk_sim_run",
                                   "the output folder is empty (''); give a folder, or NULL "
                                   "for out/<scene name>"));
+  if (opts->restart && pdk_comm_size() > 1)
+    return fail(r, PDK_RUN_STAGE_RESTART,
+                pdk_ctx_error_set(r->ctx, PDK_ERR_UNSUPPORTED, "pdk_sim_run",
+                                  "a restart runs on one rank only so far; this run has %d ranks: "
+                                  "restart without mpiexec (or with mpiexec -n 1)",
+                                  pdk_comm_size()));
   if (opts->restart) {
     if ((err = pdk_sim_restart_text(sim, r->scene, opts->restart, &rep->restart, &ckpt_scene)))
       return fail(r, PDK_RUN_STAGE_RESTART, err);
