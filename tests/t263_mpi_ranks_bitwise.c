@@ -2,7 +2,8 @@
  * bond breaking, tests/scenes/t263_pmb_2d.yaml (2-D PMB plate with a pre-crack, ~4 000 bonds
  * broken) and t263_lps_3d.yaml (3-D LPS bar, ~8 000 broken; its gather pass, the dilatation, is
  * exchanged between the ranks), run with `pdk run` on one rank (no mpiexec, one thread), then
- * under `mpiexec -n 2` (two threads per rank) and `mpiexec -n 3` (one thread per rank). Asserted,
+ * under `mpiexec -n 2` (two threads per rank) and `mpiexec -n 3` (one thread per rank); and the
+ * LPS bar with float storage (--set model.precision=float) on one and two ranks. Asserted,
  * with no tolerance (the design makes every sum run in one rank's order, so any difference is a
  * bug): the history CSV and the field CSV are the same bytes; the HDF5 output holds the same
  * field outputs, static data and histories, objects, attributes and dataset bytes
@@ -63,11 +64,14 @@ int main(void) {
   snprintf(work, sizeof work, "%s/tests/t263_mpi_ranks_bitwise.work", build);
   snprintf(cmd, sizeof cmd, "rm -rf '%s' && mkdir -p '%s'", work, work);
   T_ASSERT(system(cmd) == 0, "cannot make %s", work);
-  const char *const scenes[] = {"t263_pmb_2d", "t263_lps_3d"};
+  /* the scenes, the overrides each takes, and how many rank counts it runs with */
+  const char *const scenes[] = {"t263_pmb_2d", "t263_lps_3d", "t263_lps_3d"};
+  const char *const sets[] = {"", "", "--set model.precision=float"};
+  const int num_runs[] = {3, 3, 2};
   /* ranks (0: plain pdk run, no mpiexec) and threads per rank */
   const int ranks[] = {0, 2, 3}, threads[] = {1, 2, 1};
-  for (int s = 0; s < 2; ++s) {
-    for (int r = 0; r < 3; ++r) {
+  for (int s = 0; s < 3; ++s) {
+    for (int r = 0; r < num_runs[s]; ++r) {
       char mpi[256] = "";
       if (ranks[r])
         snprintf(mpi, sizeof mpi,
@@ -76,17 +80,17 @@ int main(void) {
       /* the thread count from the environment: --threads would enter the scene text the
        * output and the checkpoint store */
       snprintf(cmd, sizeof cmd,
-               "cd '%s' && PDK_NUM_THREADS=%d %s'%s/pdk' run '%s/tests/scenes/%s.yaml' "
+               "rm -rf '%s/%s_%d' && cd '%s' && PDK_NUM_THREADS=%d %s'%s/pdk' run '%s/tests/scenes/%s.yaml' %s "
                "-o '%s/%s_%d' > '%s/%s_%d.log' 2>&1",
-               work, threads[r], mpi, build, src, scenes[s], work, scenes[s], ranks[r], work,
-               scenes[s], ranks[r]);
+               work, scenes[s], ranks[r], work, threads[r], mpi, build, src, scenes[s], sets[s],
+               work, scenes[s], ranks[r], work, scenes[s], ranks[r]);
       T_ASSERT(system(cmd) == 0, "the run failed (see %s/%s_%d.log): %s", work, scenes[s],
                ranks[r], cmd);
     }
     snprintf(a, sizeof a, "%s/%s_0/%s_history.csv", work, scenes[s], scenes[s]);
     const double broken = last_broken(a);
     T_ASSERT(broken > 1000, "%s: %g bonds broke; the scene must break bonds", scenes[s], broken);
-    for (int r = 1; r < 3; ++r) {
+    for (int r = 1; r < num_runs[s]; ++r) {
       const char *const csv[] = {"_history.csv", "_fields.csv"};
       for (int k = 0; k < 2; ++k) {
         snprintf(a, sizeof a, "%s/%s_0/%s%s", work, scenes[s], scenes[s], csv[k]);

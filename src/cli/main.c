@@ -72,8 +72,10 @@ static int cmd_info(int argc, char **argv) {
 }
 
 /* pdk run: on the ranks of mpiexec when built with MPI (docs/scaling.md). Every rank runs the
- * same loop; rank 0 writes the output and tells the run, the others stay silent. A failure ends
- * every rank (a rank that failed alone would leave the others waiting in an exchange). */
+ * same loop; rank 0 writes the output and tells the run, the others stay silent. A failed run
+ * (status 1) ends every rank: a failure of rank 0 alone (writing the output) would leave the
+ * others waiting in an exchange. A bad command line or scene (2) and an interruption (130, agreed
+ * by the ranks at the same step) end every rank by themselves. */
 static int cmd_run(int argc, char **argv) {
   if (pdk_comm_init(&argc, &argv)) {
     fprintf(stderr, "pdk: MPI could not start (this pdk was built with MPI)\n");
@@ -86,7 +88,7 @@ static int cmd_run(int argc, char **argv) {
     }
   }
   const int rc = pdk_cli_run(argv[0], argc - 2, argv + 2);
-  if (rc && size > 1) {
+  if (rc == 1 && size > 1) {
     fflush(stdout);
     fflush(stderr);
     pdk_comm_abort(rc);

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/comm.h"
 #include "core/h5io.h"
 #include "pdk/output.h"
 #include "pdk/run.h"
@@ -59,7 +60,13 @@ static void emit(run_state *r, pdk_run_event_kind kind, long step, long total,
   r->opts->on_event(r->opts->arg, &ev);
 }
 
-static int stop_requested(const run_state *r) { return r->opts->stop && *r->opts->stop; }
+/* On several ranks the ranks agree (a sum over them): a rank that saw the request leaves the loop
+ * only with the others, at the same step (every rank calls this at the same points). */
+static int stop_requested(const run_state *r) {
+  int64_t stop = r->opts->stop && *r->opts->stop;
+  if (pdk_comm_sum_i64(r->ctx, &stop)) return 1;
+  return stop != 0;
+}
 
 static int fail(run_state *r, pdk_run_stage stage, int err) {
   r->rep->status = PDK_RUN_FAILED;
