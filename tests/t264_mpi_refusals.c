@@ -2,7 +2,9 @@
  * saying to run on one rank (docs/scaling.md), and model.stencil auto takes the general path there.
  * Under `mpiexec -n 2`, each of these exits non-zero with its message on stderr:
  *   solver.type adr (tests/scenes/t094_static.yaml)      "solver.type adr runs on one rank only"
- *   model.kind correspondence (t263_pmb_2d.yaml, --set)  "model kind 'correspondence'"
+ *   model.kind oterkus (t263_pmb_2d.yaml, --set)         "model kind 'oterkus' runs on one rank only"
+ *   correspondence with model.stencil auto               "... with model.stencil auto or on"
+ *   correspondence with model.connectivity semi_tl       "... with model.connectivity semi_tl"
  *   model.layout sell                                    "model.layout sell runs on one rank only"
  *   model.stencil on                                     "model.stencil on runs on one rank only"
  *   --restart of a one-rank run's checkpoint             "a restart runs on one rank only"
@@ -67,8 +69,17 @@ int main(void) {
 
   snprintf(args, sizeof args, "'%s/tests/scenes/t094_static.yaml' -o static", src);
   refused("static", args, "solver.type adr runs on one rank only");
-  snprintf(args, sizeof args, "%s -o corr --set model.kind=correspondence --set solver.steps=2", pmb);
-  refused("corr", args, "model kind 'correspondence'");
+  snprintf(args, sizeof args, "%s -o oterkus --set model.kind=oterkus --set solver.steps=2", pmb);
+  refused("oterkus", args, "model kind 'oterkus' runs on one rank only");
+  snprintf(args, sizeof args,
+           "%s -o corr --set model.kind=correspondence --set model.stencil=auto --set solver.steps=2",
+           pmb);
+  refused("corr_stencil", args, "model kind 'correspondence' with model.stencil auto or on");
+  snprintf(args, sizeof args,
+           "%s -o semi --set model.kind=correspondence --set model.connectivity=semi_tl "
+           "--set solver.steps=2",
+           pmb);
+  refused("corr_semi_tl", args, "model kind 'correspondence' with model.connectivity semi_tl");
   snprintf(args, sizeof args, "%s -o sell --set model.layout=sell --set solver.steps=2", pmb);
   refused("sell", args, "model.layout sell runs on one rank only");
   snprintf(args, sizeof args, "%s -o on --set model.stencil=on --set solver.steps=2", pmb);

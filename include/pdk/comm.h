@@ -15,8 +15,9 @@
 extern "C" {
 #endif
 
-/* Starts MPI (threads funneled: only the main thread calls MPI) unless it runs already or the
- * build has no MPI; returns PDK_SUCCESS, or PDK_ERR_EXTERNAL when MPI could not start. */
+/* Starts MPI (threads funneled: only the main thread calls MPI) when a launcher (mpiexec) started
+ * the process, unless MPI runs already or the build has no MPI; a process started otherwise stays
+ * on one rank. Returns PDK_SUCCESS, or PDK_ERR_EXTERNAL when MPI could not start. */
 PDK_EXPORT int pdk_comm_init(int *argc, char ***argv);
 /* Ends MPI when pdk_comm_init started it. */
 PDK_EXPORT void pdk_comm_finalize(void);

@@ -22,8 +22,18 @@ static int mpi_on(void) {
   return on && !done;
 }
 
+/* Whether a launcher (mpiexec of Open MPI, MPICH's Hydra, a PMIx launcher) started this process:
+ * a process started otherwise runs on one rank without starting MPI (no singleton start-up, which
+ * costs time and can fail where MPI's transports cannot open). */
+static int launched(void) {
+  const char *const vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK"};
+  for (size_t k = 0; k < sizeof vars / sizeof vars[0]; ++k)
+    if (getenv(vars[k])) return 1;
+  return 0;
+}
+
 int pdk_comm_init(int *argc, char ***argv) {
-  if (mpi_on()) return PDK_SUCCESS;
+  if (mpi_on() || !launched()) return PDK_SUCCESS;
   int provided = 0;
   if (MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
     return PDK_ERR_EXTERNAL;

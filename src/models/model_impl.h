@@ -63,8 +63,11 @@ typedef struct pdk_model_ops {
    * opts.lattice_constant (PMB, LPS); the bond damage weighs the bonds the same way. */
   int partial_volumes;
   /* 1: the force passes split their rows over MPI ranks (src/models/model_ranks.c): each rank
-   * computes the rows it owns and the ranks exchange them; kinds without it run on one rank. */
+   * computes the rows it owns and the ranks exchange them; kinds without it run on one rank.
+   * ranks_refusal (may be NULL): why these options do not run on several ranks, NULL when they do
+   * (asked first: it may name the option of a kind without ranks). */
   int ranks;
+  const char *(*ranks_refusal)(const pdk_model_opts *o);
 } pdk_model_ops;
 
 struct pdk_model {

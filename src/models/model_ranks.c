@@ -27,9 +27,14 @@ int pdk_model_ranks_setup(pdk_model *m) {
   const int size = pdk_comm_size();
   if (size == 1) return PDK_SUCCESS;
   pdk_ctx *ctx = m->ctx;
+  const char *why = m->ops->ranks_refusal ? m->ops->ranks_refusal(&m->opts) : NULL;
+  PDK_CHECK(!why, ctx, PDK_ERR_UNSUPPORTED,
+            "model kind '%s' with %s runs on one rank only so far; this run has %d ranks: "
+            "run it without mpiexec (or with mpiexec -n 1)",
+            m->info->name, why ? why : "", size);
   PDK_CHECK(m->ops->ranks, ctx, PDK_ERR_UNSUPPORTED,
-            "model kind '%s' with these options runs on one rank only so far (on several ranks "
-            "pdk runs the pmb and lps kinds, lps without model.influence); this run has %d ranks: "
+            "model kind '%s' runs on one rank only so far (on several ranks pdk runs the kinds "
+            "pmb, lps and correspondence); this run has %d ranks: "
             "run it without mpiexec (or with mpiexec -n 1)",
             m->info->name, size);
   PDK_CHECK(m->opts.layout != PDK_LAYOUT_SELL, ctx, PDK_ERR_UNSUPPORTED,
