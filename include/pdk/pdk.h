@@ -15,5 +15,6 @@
 #include "pdk/plasticity.h"
 #include "pdk/static.h"
 #include "pdk/run.h"
+#include "pdk/comm.h"
 
 #endif

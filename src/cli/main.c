@@ -71,6 +71,32 @@ static int cmd_info(int argc, char **argv) {
   return err ? 1 : 0;
 }
 
+/* pdk run: on the ranks of mpiexec when built with MPI (docs/scaling.md). Every rank runs the
+ * same loop; rank 0 writes the output and tells the run, the others stay silent. A failed run
+ * (status 1) ends every rank: a failure of rank 0 alone (writing the output) would leave the
+ * others waiting in an exchange. A bad command line or scene (2) and an interruption (130, agreed
+ * by the ranks at the same step) end every rank by themselves. */
+static int cmd_run(int argc, char **argv) {
+  if (pdk_comm_init(&argc, &argv)) {
+    fprintf(stderr, "pdk: MPI could not start (this pdk was built with MPI)\n");
+    return 1;
+  }
+  const int size = pdk_comm_size();
+  if (pdk_comm_rank() != 0) {
+    if (!freopen("/dev/null", "w", stdout) || !freopen("/dev/null", "w", stderr)) {
+      /* rank 0 prints the same run's lines: nothing is lost */
+    }
+  }
+  const int rc = pdk_cli_run(argv[0], argc - 2, argv + 2);
+  if (rc == 1 && size > 1) {
+    fflush(stdout);
+    fflush(stderr);
+    pdk_comm_abort(rc);
+  }
+  pdk_comm_finalize();
+  return rc;
+}
+
 int main(int argc, char **argv) {
   if (argc < 2) {
     fputs(usage_main, stderr);
@@ -86,7 +112,7 @@ int main(int argc, char **argv) {
     return 0;
   }
   if (!strcmp(cmd, "info")) return cmd_info(argc - 2, argv + 2);
-  if (!strcmp(cmd, "run")) return pdk_cli_run(argv[0], argc - 2, argv + 2);
+  if (!strcmp(cmd, "run")) return cmd_run(argc, argv);
   if (!strcmp(cmd, "check")) return pdk_cli_check(argv[0], argc - 2, argv + 2);
   fprintf(stderr, "pdk: unknown command '%s'\n\n%s", cmd, usage_main);
   return 2;

@@ -37,6 +37,8 @@ const char *pdk_cli_usage_run =
     "  <name>_history.png       plot of the histories (when gnuplot is installed)\n"
     "  <name>_checkpoint.h5     state for --restart (at checkpoint_interval, the end, and Ctrl-C)\n"
     "Files are written under temporary names and renamed when complete.\n"
+    "Under `mpiexec -n P pdk run SCENE` (a pdk built with MPI) the run takes P ranks, with the\n"
+    "same results bit for bit; rank 0 writes the output (docs/scaling.md).\n"
     "Static scenes (solver.type adr or newton) write one history row per load step (reaction vs\n"
     "displacement, energies) and the fields of the load steps, and no checkpoint.\n"
     "\n"

@@ -11,6 +11,7 @@
 #include "ext.h"
 #include "pdk/ctx.h"
 #include "pdk/version.h"
+#include "pdk/comm.h"
 
 pdk_ctx_opts pdk_ctx_opts_default(void) {
   pdk_ctx_opts o;
@@ -68,6 +69,9 @@ int pdk_ctx_create(const pdk_ctx_opts *opts_in, pdk_ctx **out, char *err_buf, si
     else if (!strcmp(env_bind, "none")) opts.bind = PDK_BIND_NONE;
     else return fail_early(err_buf, err_len, "PDK_BIND='%s' is not a binding policy; use 'core' or 'none'", env_bind);
   }
+  /* several MPI ranks on one host would pin their threads to the same cores (thread t to core t
+   * of each rank's view): the placement is left to mpiexec's binding unless asked for */
+  if (!env_bind && !opts.bind_explicit && pdk_comm_size() > 1) opts.bind = PDK_BIND_NONE;
   const char *env_threads = getenv("PDK_NUM_THREADS");
   if (env_threads && opts.num_threads == 0) {
     if (parse_positive_int(env_threads, &opts.num_threads))

@@ -43,6 +43,7 @@
 #include <sys/stat.h>
 
 #include "core/h5io.h"
+#include "pdk/comm.h"
 #include "pdk/output.h"
 #include "core/pdk_impl.h"
 #include "checkpoint_impl.h"
@@ -223,6 +224,7 @@ int pdk_checkpoint_write(pdk_ctx *ctx, const char *path, pdk_explicit *e, const 
   PDK_CHECK_ARG(ctx, NULL);
   PDK_CHECK(path && path[0], ctx, PDK_ERR_ARG, "no checkpoint path given");
   PDK_CHECK(e, ctx, PDK_ERR_ARG, "no solver given to checkpoint");
+  if (pdk_comm_rank() != 0) return PDK_SUCCESS; /* several ranks: rank 0 writes (same state) */
   pdk_model *m = pdk_explicit_model(e);
   pdk_particles *p = pdk_model_particles(m);
   const pdk_index n = pdk_particles_count(p);

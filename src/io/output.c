@@ -42,6 +42,7 @@
 #include "output_impl.h"
 #include "pdk/ctx.h"
 #include "pdk/explicit.h"
+#include "pdk/comm.h"
 #include "pdk/output.h"
 #include "pdk/particles.h"
 
@@ -346,6 +347,11 @@ int pdk_output_open(pdk_ctx *ctx, const pdk_output_opts *opts_in, pdk_particles 
   PDK_CHECK(o, ctx, PDK_ERR_MEMORY, "out of memory creating the output");
   o->ctx = ctx;
   o->p = p;
+  if (pdk_comm_rank() != 0) { /* several ranks: rank 0 writes */
+    o->mute = 1;
+    *out = o;
+    return PDK_SUCCESS;
+  }
   o->dim = pdk_particles_dim(p);
   o->n = pdk_particles_count(p);
   o->compression = opts.compression;
@@ -439,6 +445,7 @@ static void set_displacement(pdk_output *o, int k, double out[3]) {
 
 int pdk_output_write_history(pdk_output *o, const pdk_history *h) {
   PDK_CHECK_ARG(o, NULL);
+  if (o->mute) return PDK_SUCCESS;
   pdk_ctx *ctx = o->ctx;
   PDK_CHECK_ARG(h, ctx);
   int err = PDK_SUCCESS;
@@ -645,6 +652,7 @@ int pdk_output_adopt(pdk_output *o, const char *part, const char *final) {
   pdk_ctx *ctx = o->ctx;
   PDK_CHECK(part && part[0] && final && final[0] && strcmp(part, final), ctx, PDK_ERR_ARG,
             "pdk_output_adopt needs a file's temporary name and another, final name");
+  if (o->mute) return PDK_SUCCESS;
   PDK_CHECK(!o->adopt_part, ctx, PDK_ERR_ARG,
             "the output already adopted '%s': it takes one file of the caller's", o->adopt_part);
   PDK_CHECK(pdk_file_exists(part), ctx, PDK_ERR_IO, "cannot adopt '%s': it does not exist", part);
@@ -663,6 +671,10 @@ int pdk_output_close(pdk_output **op, int success) {
   if (!op || !*op) return PDK_SUCCESS;
   pdk_output *o = *op;
   *op = NULL;
+  if (o->mute) {
+    free(o);
+    return PDK_SUCCESS;
+  }
   int err = PDK_SUCCESS;
   if (success && o->failed)
     err = pdk_ctx_error_set(o->ctx, PDK_ERR_ARG, __func__,

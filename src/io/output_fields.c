@@ -302,6 +302,7 @@ int pdk_output_write_fields(pdk_output *o, pdk_particles *p, long step, double t
   if (!o)
     return p ? pdk_ctx_error_set(pdk_particles_ctx(p), PDK_ERR_ARG, __func__, "no output given")
              : PDK_ERR_ARG;
+  if (o->mute) return PDK_SUCCESS;
   pdk_ctx *ctx = o->ctx;
   int err = PDK_SUCCESS;
   hid_t g = -1;

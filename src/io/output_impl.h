@@ -40,6 +40,9 @@ enum { OUT_H5 = 0, OUT_XMF, OUT_CSV, OUT_GP, OUT_PNG, OUT_FCSV, OUT_FGP, OUT_FPN
 static const char *const axis_name[3] = {"x", "y", "z"};
 
 struct pdk_output {
+  /* 1: a rank other than 0 of a run on several ranks (docs/scaling.md): it writes nothing, rank 0
+   * writes the output (every rank holds the whole body) */
+  int mute;
   pdk_ctx *ctx;
   pdk_particles *p; /* borrowed */
   int dim;

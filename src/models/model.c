@@ -340,6 +340,7 @@ int pdk_model_create(pdk_particles *p, pdk_families *fam, const pdk_model_opts *
     PDK_CHECK_GOTO(m->s0, ctx, PDK_ERR_MEMORY, "out of memory for the critical stretches");
     for (pdk_index i = 0; i < n; ++i) m->s0[i] = opts->critical_stretch;
   }
+  PDK_CALL_GOTO(pdk_model_ranks_setup(m));
   PDK_CALL_GOTO(m->ops->setup(m));
   *out = m;
   return PDK_SUCCESS;
@@ -364,6 +365,7 @@ void pdk_model_destroy(pdk_model **mp) {
   pdk_free_aligned(m->mat_lambda);
   pdk_free_aligned(m->mat_stab);
   free(m->materials);
+  free(m->row_start);
   free(m);
   *mp = NULL;
 }

@@ -417,6 +417,25 @@ static int corr_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
+/* Several ranks: the force and energy densities of every row, then the energy blocks summed as
+ * the pass-2 loop sums them on one rank. */
+static int corr_ranks_exchange(pdk_model *m, pdk_index num_blocks, pdk_index n) {
+  corr_impl *c = m->impl;
+  pdk_bond_index none = 0;
+  PDK_CALL(pdk_model_ranks_finish(m, c->W, NULL, &none));
+  const double *volume = pdk_particles_volume(m->p), *W = c->W;
+  double *block_energy = c->block_energy;
+#pragma omp parallel for default(none) shared(num_blocks, n, volume, W, block_energy)             \
+    schedule(static) num_threads(m->ctx->num_threads)
+  for (pdk_index blk = 0; blk < num_blocks; ++blk) {
+    CORR_BLOCK_RANGE(blk, n, i0, i1);
+    double e = 0.0;
+    for (pdk_index i = i0; i < i1; ++i) e += volume[i] * W[i];
+    block_energy[blk] = e;
+  }
+  return PDK_SUCCESS;
+}
+
 static int corr_force(pdk_model *m, int commit, double *energy) {
   corr_impl *c = m->impl;
   pdk_corr_consts kc = c->k;
@@ -458,10 +477,15 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
 
   pdk_stencil *st = m->stencil;
   if (st) PDK_CALL(pdk_stencil_corr_passes(m, st, k, &a));
+  /* several ranks (src/models/model_ranks.c): pass 1 runs whole on every rank (its many
+   * per-particle outputs need no exchange), pass 2 on this rank's rows [lo, hi), whose force and
+   * energy densities the ranks then exchange; the energy blocks are summed after that */
+  const int ranked = m->row_start != NULL;
+  const pdk_index lo = ranked ? m->row_lo : 0, hi = ranked ? m->row_hi : n;
 
 #pragma omp parallel default(none)                                                              \
     shared(a, k, num_blocks, n, volume, W, flag, failed, block_energy, pass1, pass2, dim, cur4,  \
-               st, book) reduction(+ : flagged, num_failed) num_threads(nt)
+               st, book, lo, hi) reduction(+ : flagged, num_failed) num_threads(nt)
   {
     if (cur4) {
       /* the displacement rows pass 1 and pass 2 read from neighbours (implicit barrier) */
@@ -482,7 +506,8 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
 #pragma omp for schedule(static)
     for (pdk_index blk = 0; blk < num_blocks; ++blk) {
       CORR_BLOCK_RANGE(blk, n, i0, i1);
-      if (!st) pass2(k, &a, i0, i1);
+      const pdk_index p0 = i0 < lo ? lo : i0, p1 = i1 > hi ? hi : i1;
+      if (!st && p0 < p1) pass2(k, &a, p0, p1);
       if (book)
         for (pdk_index i = i0; i < i1; ++i) {
           const double S = W[i] - a.w_law[i], f0 = a.stab_prev[i], f1 = a.stab_factor[i];
@@ -500,6 +525,7 @@ static int corr_force(pdk_model *m, int commit, double *energy) {
       block_energy[blk] = e;
     }
   }
+  if (ranked) PDK_CALL(corr_ranks_exchange(m, num_blocks, n));
   m->num_flagged = flagged;
   m->num_failed = num_failed;
   if (commit && flagged && m->opts.law == PDK_LAW_JC) {
@@ -555,11 +581,26 @@ static int corr_state_check(const pdk_model *m, pdk_state *s) {
   return PDK_SUCCESS;
 }
 
+static const char *corr_ranks_refusal(const pdk_model_opts *o);
+
 const pdk_model_ops pdk_model_ops_corr = {.setup = corr_setup,
                                           .force = corr_force,
                                           .destroy = corr_destroy,
                                           .state_check = corr_state_check,
-                                          .derived = pdk_model_corr_derived};
+                                          .derived = pdk_model_corr_derived,
+                                          .ranks = 1,
+                                          .ranks_refusal = corr_ranks_refusal};
+
+/* Several ranks split pass 2 only; a law with history, semi-TL's compacted list and the particle
+ * order the stencil options choose are not split yet. */
+static const char *corr_ranks_refusal(const pdk_model_opts *o) {
+  if (o->law == PDK_LAW_JC) return "a law with history (model.law jc)";
+  if (o->connectivity != PDK_CONNECTIVITY_TL) return "model.connectivity semi_tl";
+  if (o->stencil != PDK_STENCIL_OFF)
+    return "model.stencil auto or on (set model.stencil off: on a lattice auto also renumbers "
+           "the particles)";
+  return NULL;
+}
 
 static const pdk_model_ops *corr_ops_for(const pdk_model_opts *o) {
   return o->connectivity == PDK_CONNECTIVITY_UL ? &pdk_model_ops_corr_ul : &pdk_model_ops_corr;

@@ -678,6 +678,12 @@ cleanup:
   return err;
 }
 
+/* Several ranks: refused (the families follow the motion; particles would migrate). */
+static const char *ul_ranks_refusal(const pdk_model_opts *o) {
+  (void)o;
+  return "model.connectivity ul";
+}
+
 const pdk_model_ops pdk_model_ops_corr_ul = {.setup = ul_setup,
                                              .force = ul_force,
                                              .destroy = ul_destroy,
@@ -686,4 +692,5 @@ const pdk_model_ops pdk_model_ops_corr_ul = {.setup = ul_setup,
                                              .state_load = ul_state_load,
                                              .derived = pdk_model_corr_derived,
                                              .rebuild = ul_rebuild,
-                                             .current_families = ul_families};
+                                             .current_families = ul_families,
+                                             .ranks_refusal = ul_ranks_refusal};

@@ -62,6 +62,12 @@ typedef struct pdk_model_ops {
   /* 1: a bond's volume V_j is scaled by the partial-volume factor min(1, (vs_a - r0) vs_b) of
    * opts.lattice_constant (PMB, LPS); the bond damage weighs the bonds the same way. */
   int partial_volumes;
+  /* 1: the force passes split their rows over MPI ranks (src/models/model_ranks.c): each rank
+   * computes the rows it owns and the ranks exchange them; kinds without it run on one rank.
+   * ranks_refusal (may be NULL): why these options do not run on several ranks, NULL when they do
+   * (asked first: it may name the option of a kind without ranks). */
+  int ranks;
+  const char *(*ranks_refusal)(const pdk_model_opts *o);
 } pdk_model_ops;
 
 struct pdk_model {
@@ -102,7 +108,23 @@ struct pdk_model {
   double *book_pending;
   int book_has_pending;
   uint8_t *book_lost; /* [n_pad] 1: the particle's family in bond_alive has a broken bond */
+  /* Several MPI ranks (src/models/model_ranks.c; NULL on one rank): rank r owns the particles
+   * [row_start[r], row_start[r + 1]) and their bonds [bond_row_start[r], bond_row_start[r + 1]);
+   * this rank's particles are [row_lo, row_hi). */
+  int64_t *row_start, *bond_row_start;
+  pdk_index row_lo, row_hi;
 };
+
+/* ---- several ranks (src/models/model_ranks.c) ---------------------------------------------------- */
+
+/* At creation, before the kind's setup: on several ranks, refuses what does not run there yet and
+ * splits the particles into contiguous ranges of about equal bond counts (nothing on one rank). */
+int pdk_model_ranks_setup(pdk_model *m);
+/* After a pass over this rank's rows: every rank gets every row of `data` (n_pad doubles). */
+int pdk_model_ranks_gather(pdk_model *m, double *data);
+/* After a force pass over this rank's rows: "f", w and s0_next (each when not NULL) of every row,
+ * *broken summed over the ranks, and the bond state of every row when a bond broke. */
+int pdk_model_ranks_finish(pdk_model *m, double *w, double *s0_next, pdk_bond_index *broken);
 
 /* Density of particle i: the material's, or opts.density for a one-material body. */
 static inline double pdk_model_density_of(const pdk_model *m, pdk_index i) {

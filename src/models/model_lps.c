@@ -160,6 +160,56 @@ static int lps_setup(pdk_model *m) {
   return PDK_SUCCESS;
 }
 
+/* The general path on several ranks (src/models/model_ranks.c): the dilatations of this rank's
+ * rows, exchanged (the force rows read their neighbours'), then its force rows, exchanged; the
+ * energy blocks summed from the exchanged densities, as on one rank. */
+static int lps_pass_ranked(pdk_model *m, const pdk_bond_arrays *a, int commit, double *energy) {
+  pdk_ctx *ctx = m->ctx;
+  lps_impl *im = m->impl;
+  const pdk_index n = im->n, lo = m->row_lo, hi = m->row_hi;
+  const int64_t num_blocks = im->num_blocks;
+  const pdk_lps_consts *k = &im->k;
+  const pdk_bond_data *bd = &im->bd;
+  const pdk_lps_dilation_fn dilation = ctx->kernels.lps_dilation;
+  const pdk_lps_force_fn force = ctx->kernels.lps_force;
+  const int pack = bd->cur4 != NULL;
+  const double *volume = a->volume, *w = a->w;
+  double *block_energy = im->block_energy;
+  pdk_bond_index broken = 0;
+#pragma omp parallel default(none) num_threads(ctx->num_threads)                                 \
+    shared(num_blocks, n, k, a, bd, dilation, pack, lo, hi)
+  {
+    if (pack) pdk_bond_pack_cur_blocks(bd, a, n, PDK_LPS_BLOCK); /* barrier: rows packed */
+#pragma omp for schedule(static)
+    for (int64_t blk = 0; blk < num_blocks; ++blk) {
+      pdk_index i0, i1;
+      block_range(blk, n, &i0, &i1);
+      if (i0 < lo) i0 = lo;
+      if (i1 > hi) i1 = hi;
+      if (i0 < i1) dilation(k, a, i0, i1);
+    }
+  }
+  PDK_CALL(pdk_model_ranks_gather(m, a->theta_out));
+#pragma omp parallel for default(none) num_threads(ctx->num_threads) reduction(+ : broken)       \
+    schedule(static) shared(num_blocks, n, k, a, force, lo, hi)
+  for (int64_t blk = 0; blk < num_blocks; ++blk) {
+    pdk_index i0, i1;
+    block_range(blk, n, &i0, &i1);
+    if (i0 < lo) i0 = lo;
+    if (i1 > hi) i1 = hi;
+    if (i0 < i1) broken += force(k, a, i0, i1);
+  }
+  PDK_CALL(pdk_model_ranks_finish(m, a->w, a->s0_next, &broken));
+  if (w) {
+#pragma omp parallel default(none) shared(n, volume, w, block_energy) num_threads(ctx->num_threads)
+    pdk_bond_block_energies(volume, w, n, PDK_LPS_BLOCK, block_energy);
+  }
+  pdk_bond_pass_finish(m, &im->s0_next, a->s0_next != NULL, broken, block_energy, num_blocks,
+                       energy);
+  (void)commit;
+  return PDK_SUCCESS;
+}
+
 static int lps_pass(pdk_model *m, int commit, double *energy) {
   pdk_ctx *ctx = m->ctx;
   lps_impl *im = m->impl;
@@ -238,6 +288,7 @@ static int lps_pass(pdk_model *m, int commit, double *energy) {
     return PDK_SUCCESS;
   }
 
+  if (m->row_start) return lps_pass_ranked(m, a, commit, energy);
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
     shared(num_blocks, n, k, a, bd, dilation, force, pack, volume, w, block_energy)
   {
@@ -604,7 +655,8 @@ const pdk_model_ops pdk_model_ops_lps = {.setup = lps_setup,
                                          .padding_fraction = pdk_model_lps_padding_fraction,
                                          .float_bond_lengths = 1,
                                          .layout_sell = 1,
-                                         .partial_volumes = 1};
+                                         .partial_volumes = 1,
+                                         .ranks = 1};
 
 double pdk_model_lps_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_lps || !m->impl) return 0.0;

@@ -194,16 +194,28 @@ static int pmb_pass(pdk_model *m, int commit, double *energy) {
     return PDK_SUCCESS;
   }
 
+  /* several ranks (src/models/model_ranks.c): this rank's rows [lo, hi), then the exchange */
+  const int ranked = m->row_start != NULL;
+  const pdk_index lo = ranked ? m->row_lo : 0, hi = ranked ? m->row_hi : n;
 #pragma omp parallel default(none) num_threads(ctx->num_threads) reduction(+ : broken)           \
-    shared(num_blocks, n, k, a, bd, kernel, pack, volume, w, block_energy)
+    shared(num_blocks, n, k, a, bd, kernel, pack, volume, w, block_energy, ranked, lo, hi)
   {
     if (pack) pdk_bond_pack_cur_blocks(bd, a, n, PDK_PMB_BLOCK); /* barrier: rows packed */
 #pragma omp for schedule(static)
     for (int64_t blk = 0; blk < num_blocks; ++blk) {
-      const pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
-      const pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
-      broken += kernel(k, a, i0, i1);
-      if (w) block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+      pdk_index i0 = (pdk_index)(blk * PDK_PMB_BLOCK);
+      pdk_index i1 = (pdk_index)(i0 + PDK_PMB_BLOCK < (int64_t)n ? i0 + PDK_PMB_BLOCK : n);
+      if (i0 < lo) i0 = lo;
+      if (i1 > hi) i1 = hi;
+      if (i0 < i1) broken += kernel(k, a, i0, i1);
+      if (w && !ranked) block_energy[blk] = pdk_bond_block_energy(volume, w, i0, i1);
+    }
+  }
+  if (ranked) {
+    PDK_CALL(pdk_model_ranks_finish(m, arrays.w, arrays.s0_next, &broken));
+    if (w) {
+#pragma omp parallel default(none) shared(n, volume, w, block_energy) num_threads(ctx->num_threads)
+      pdk_bond_block_energies(volume, w, n, PDK_PMB_BLOCK, block_energy);
     }
   }
 
@@ -337,7 +349,8 @@ const pdk_model_ops pdk_model_ops_pmb = {.setup = pmb_setup,
                                          .padding_fraction = pdk_model_pmb_padding_fraction,
                                          .float_bond_lengths = 1,
                                          .layout_sell = 1,
-                                         .partial_volumes = 1};
+                                         .partial_volumes = 1,
+                                         .ranks = 1};
 
 double pdk_model_pmb_padding_fraction(const pdk_model *m) {
   if (!m || m->ops != &pdk_model_ops_pmb || !m->impl) return 0.0;

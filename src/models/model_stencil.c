@@ -75,6 +75,11 @@ int pdk_stencil_model_setup(pdk_model *m, const float *bond_r0, int multi_materi
   const pdk_model_opts *o = &m->opts;
   m->stencil_why[0] = '\0';
   if (o->stencil == PDK_STENCIL_OFF) return PDK_SUCCESS;
+  if (m->row_start) { /* several ranks: on is refused (model_ranks.c), auto takes the general path */
+    snprintf(m->stencil_why, sizeof m->stencil_why,
+             "several MPI ranks (the stencil path runs on one rank so far)");
+    return PDK_SUCCESS;
+  }
   if (multi_material)
     snprintf(m->stencil_why, sizeof m->stencil_why,
              "several materials (the stencil path takes one modulus)");

@@ -12,11 +12,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/comm.h"
 #include "core/h5io.h"
 #include "pdk/output.h"
 #include "pdk/run.h"
 #include "core/pdk_impl.h"
 #include "run_impl.h"
+#include "pdk/comm.h"
 #include "pdk/ctx.h"
 #include "pdk/explicit.h"
 #include "pdk/model.h"
@@ -58,7 +60,13 @@ static void emit(run_state *r, pdk_run_event_kind kind, long step, long total,
   r->opts->on_event(r->opts->arg, &ev);
 }
 
-static int stop_requested(const run_state *r) { return r->opts->stop && *r->opts->stop; }
+/* On several ranks the ranks agree (a sum over them): a rank that saw the request leaves the loop
+ * only with the others, at the same step (every rank calls this at the same points). */
+static int stop_requested(const run_state *r) {
+  int64_t stop = r->opts->stop && *r->opts->stop;
+  if (pdk_comm_sum_i64(r->ctx, &stop)) return 1;
+  return stop != 0;
+}
 
 static int fail(run_state *r, pdk_run_stage stage, int err) {
   r->rep->status = PDK_RUN_FAILED;
@@ -250,6 +258,12 @@ static int run(run_state *r) {
                 pdk_ctx_error_set(r->ctx, PDK_ERR_ARG, "pdk_sim_run",
                                   "the output folder is empty (''); give a folder, or NULL "
                                   "for out/<scene name>"));
+  if (opts->restart && pdk_comm_size() > 1)
+    return fail(r, PDK_RUN_STAGE_RESTART,
+                pdk_ctx_error_set(r->ctx, PDK_ERR_UNSUPPORTED, "pdk_sim_run",
+                                  "a restart runs on one rank only so far; this run has %d ranks: "
+                                  "restart without mpiexec (or with mpiexec -n 1)",
+                                  pdk_comm_size()));
   if (opts->restart) {
     if ((err = pdk_sim_restart_text(sim, r->scene, opts->restart, &rep->restart, &ckpt_scene)))
       return fail(r, PDK_RUN_STAGE_RESTART, err);

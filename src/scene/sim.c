@@ -42,6 +42,7 @@
 #include "run_impl.h"
 #include "space/points.h"
 #include "scene_impl.h"
+#include "pdk/comm.h"
 #include "pdk/ctx.h"
 #include "pdk/explicit.h"
 #include "pdk/families.h"
@@ -309,6 +310,12 @@ int pdk_sim_create(pdk_ctx *ctx, const pdk_scene *s, pdk_sim **out) {
   sim = calloc(1, sizeof *sim);
   PDK_CHECK(sim, ctx, PDK_ERR_MEMORY, "out of memory creating a simulation");
   sim->ctx = ctx;
+  /* several MPI ranks (docs/scaling.md): the explicit solver only, so far */
+  PDK_CHECK_GOTO(pdk_comm_size() == 1 || s->solver_type == PDK_SOLVER_EXPLICIT, ctx,
+                 PDK_ERR_UNSUPPORTED,
+                 "solver.type %s runs on one rank only so far (on several ranks pdk runs solver.type "
+                 "explicit); this run has %d ranks: run it without mpiexec (or with mpiexec -n 1)",
+                 pdk_solver_type_name(s->solver_type), pdk_comm_size());
 
   if (s->threads > 0) {
     err = pdk_ctx_set_num_threads(ctx, s->threads);
