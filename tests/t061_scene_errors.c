@@ -118,7 +118,7 @@ static const error_case cases[] = {
      PDK_ERR_ARG, "solver.dt_update", "allowed: none, breaks, periodic"},
     {"dt_update_interval without dt_update", "  steps: 10\n",
      "  steps: 10\n  dt_update_interval: 50 #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
-     "solver.dt_update_interval", "solver.dt_update is auto (the default)"},
+     "solver.dt_update_interval", "solver.dt_update is none"},
     {"dt_update_interval 0", "  steps: 10\n",
      "  steps: 10\n  dt_update: breaks\n  dt_update_interval: 0 #<\n", NULL, AT_LOAD, PDK_ERR_ARG,
      "solver.dt_update_interval", "whole number >= 1"},

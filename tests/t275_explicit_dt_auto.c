@@ -1,4 +1,4 @@
-/* The default explicit step (solver.dt_update auto): a run whose bonds never shorten by 10% keeps
+/* The state-following explicit step (solver.dt_update auto): a run whose bonds never shorten by 10% keeps
  * its first estimate and is the run of dt_update none bit for bit; a run that crushes bonds is
  * re-estimated mid-run and its step lowered.
  *
@@ -6,8 +6,10 @@
  *    bond shortens by 10%): with the default and with dt_update none, the same last history
  *    record to the bit (kinetic and strain energy, external work, time), one estimate only, no
  *    dt change: the per-step check reads the state and changes nothing.
+ * It is not the default: on the shipped two-hole plate (JC failure, breaking) it re-estimated
+ * after the fracture and changed the run (tests/t120's dissipation check then failed).
  * 2. tests/scenes/t261_taylor_proxy.yaml to 3 us (a copper rod at 227 m/s onto a plane; the
- *    first layers are crushed by 8% of a spacing per step): the default re-estimates (measured:
+ *    first layers are crushed by 8% of a spacing per step): auto re-estimates (measured:
  *    at step 8, 1.745e-7 -> 1.608e-7 s, then at step 18, 1.516e-7) and lowers dt below 0.8 x the
  *    first estimate x 0.95 (safety x a 5% fall: the measured fall is 13% by 2.4 us), where dt
  *    none keeps 0.8 x the first estimate throughout.
@@ -63,7 +65,8 @@ int main(void) {
   pdk_ctx *ctx = t_ctx(2);
 
   const char *none[1] = {"solver.dt_update=none"};
-  result a = run_case(ctx, "t092_bar.yaml", NULL, 0);
+  const char *autom[1] = {"solver.dt_update=auto"};
+  result a = run_case(ctx, "t092_bar.yaml", autom, 1);
   result b = run_case(ctx, "t092_bar.yaml", none, 1);
   T_ASSERT(!a.err && !b.err, "bar: err %d / %d", a.err, b.err);
   T_ASSERT(a.num_estimates == 1 && a.num_changes == 0 && same_bits(a.dt1, b.dt1),
@@ -78,9 +81,9 @@ int main(void) {
            ha->step, hb->step, ha->kinetic, hb->kinetic, ha->strain, hb->strain,
            ha->external_work, hb->external_work);
 
-  const char *short_auto[1] = {"solver.end_time=3.0e-6"};
+  const char *short_auto[2] = {"solver.end_time=3.0e-6", "solver.dt_update=auto"};
   const char *short_none[2] = {"solver.end_time=3.0e-6", "solver.dt_update=none"};
-  a = run_case(ctx, "t261_taylor_proxy.yaml", short_auto, 1);
+  a = run_case(ctx, "t261_taylor_proxy.yaml", short_auto, 2);
   b = run_case(ctx, "t261_taylor_proxy.yaml", short_none, 2);
   T_ASSERT(!a.err && !b.err, "proxy: err %d / %d (%s)", a.err, b.err, pdk_ctx_error_message(ctx));
   T_ASSERT(a.num_estimates >= 2 && a.num_changes >= 1 && a.dt1 < 0.95 * 0.8 * a.dt0,

@@ -88,13 +88,13 @@ typedef struct pdk_bc {
  * estimate (on trial forces at the current state: no history moves, positions and forces are
  * restored bit for bit) and, when the step is more than 0.1% above safety x the new estimate,
  * lowers the step to safety x the estimate from the next step on. The step never grows back.
- * Each estimate costs about 42 force passes, hence the interval. auto (the default of
- * pdk_explicit_opts_default and of scenes) re-estimates when the deformation moved: when the
+ * Each estimate costs about 42 force passes, hence the interval. auto re-estimates when the
+ * deformation moved: when the
  * smallest current / initial length over the intact bonds fell below 0.9 of its value at the
  * last estimate (checked every 8 steps, one read of the bonds); a run whose bonds never shorten
  * that much keeps its first estimate and is the run of none, bit for bit. */
 typedef enum pdk_dt_update {
-  PDK_DT_UPDATE_NONE = 0,    /* the step chosen at creation throughout */
+  PDK_DT_UPDATE_NONE = 0,    /* the step chosen at creation throughout (default) */
   PDK_DT_UPDATE_BREAKS = 1,  /* re-estimate when bonds broke since the last estimate, at most
                                 once per dt_update_interval steps */
   PDK_DT_UPDATE_PERIODIC = 2, /* re-estimate every dt_update_interval steps */

@@ -445,13 +445,13 @@ int pdk_scene_resolve_solver(loader *ld, const sc_scene *d) {
   REQUIRE(ld, isfinite(e->safety) && e->safety > 0 && e->safety <= 1, "solver.safety",
           "must be in (0, 1] (the fraction of the stable time step used), got %g", e->safety);
   e->force_dt = so->force_dt ? 1 : 0;
-  e->dt_update = has(ld, "solver.dt_update") ? (pdk_dt_update)so->dt_update : PDK_DT_UPDATE_AUTO;
+  e->dt_update = has(ld, "solver.dt_update") ? (pdk_dt_update)so->dt_update : PDK_DT_UPDATE_NONE;
   if (has(ld, "solver.dt_update_interval")) {
     REQUIRE(ld, e->dt_update == PDK_DT_UPDATE_BREAKS || e->dt_update == PDK_DT_UPDATE_PERIODIC,
             "solver.dt_update_interval",
             "is given but solver.dt_update is %s, which %s; set dt_update (breaks or periodic) "
             "or remove the interval",
-            e->dt_update == PDK_DT_UPDATE_NONE ? "none" : "auto (the default)",
+            e->dt_update == PDK_DT_UPDATE_NONE ? "none" : "auto",
             e->dt_update == PDK_DT_UPDATE_NONE ? "re-estimates nothing"
                                                : "re-estimates when bonds shorten, not by steps");
     PDK_CALL(check_whole(ld, "solver.dt_update_interval", so->dt_update_interval, 1, 1e15,

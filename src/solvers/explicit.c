@@ -59,7 +59,6 @@ pdk_explicit_opts pdk_explicit_opts_default(void) {
   pdk_explicit_opts o;
   memset(&o, 0, sizeof o);
   o.safety = 0.8;
-  o.dt_update = PDK_DT_UPDATE_AUTO;
   return o;
 }
 
