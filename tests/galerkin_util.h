@@ -18,6 +18,8 @@
 #ifndef PDK_TESTS_GALERKIN_UTIL_H
 #define PDK_TESTS_GALERKIN_UTIL_H
 
+#include <sys/resource.h>
+
 #include "test_util.h"
 
 static const double pg_H[2][2] = {{0.1, 0.3}, {0.2, 0.4}};
@@ -165,6 +167,103 @@ static inline pg_errors pg_solve(pdk_ctx *ctx, pdk_particles *p, pdk_model *m,
   pdk_static_destroy(&s);
   T_OK(ctx, pdk_model_force_trial(m, NULL)); /* F at the solution */
   return pg_measure(p, Hx);
+}
+
+/* The patch (problem 0) and manufactured sine (problem 1) fields of bench/bench_pg_tradeoff.c and
+ * t271: exact u at (X, Y). */
+static inline void pg_mms_exact(int problem, double X, double Y, double u[2]) {
+  if (problem == 0) {
+    u[0] = pg_H[0][0] * X + pg_H[0][1] * Y;
+    u[1] = pg_H[1][0] * X + pg_H[1][1] * Y;
+  } else {
+    const double a = M_PI * X / 2, b = M_PI * Y / 2;
+    u[0] = sin(a) * cos(b);
+    u[1] = cos(a) * sin(b);
+  }
+}
+
+static inline double pg_cpu_seconds(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec +
+         (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
+}
+
+/* One solve of problem 0 or 1 on the n1 x n1 cloud (seed 1, horizon 2.51 h), every edge particle
+ * held at the exact field; model 0 correspondence with Silling 0.1, 1 correspondence without
+ * stabilization (omega 1/r^2), 2 galerkin taylor vc1, 3 the same with the bond correction.
+ * Returns the relative L2 error of u; *cpu the process CPU seconds of families, model and solve,
+ * *nbp the bonds per particle, *iters Newton's iterations. */
+static inline double pg_mms_run(pdk_ctx *ctx, int problem, int model, int n1, double *cpu,
+                                double *nbp, long *iters) {
+  const double h = 2.0 / (n1 - 1);
+  pdk_particles *p = pg_cloud(ctx, n1, 0.3, 1);
+  const pdk_index n = pdk_particles_count(p);
+  pdk_families_opts fo = pdk_families_opts_default();
+  fo.horizon = 2.51 * h;
+  const double c0 = pg_cpu_seconds();
+  pdk_families *fam;
+  T_OK(ctx, pdk_families_build(p, &fo, &fam));
+  if (nbp) *nbp = (double)pdk_families_num_bonds(fam) / (double)n;
+  pdk_model_opts mo = pg_model_opts(PDK_GALERKIN_TAYLOR, PDK_GALERKIN_VC1);
+  if (model < 2) {
+    mo.kind = PDK_MODEL_CORRESPONDENCE;
+    mo.influence = model == 0 ? PDK_INFLUENCE_CONSTANT : PDK_INFLUENCE_INV_R2;
+    mo.stabilization = model == 0 ? PDK_STAB_SILLING : PDK_STAB_NONE;
+    mo.stab_coefficient = 0.1;
+  }
+  mo.galerkin.bond = model == 3;
+  pdk_model *m;
+  T_OK(ctx, pdk_model_create(p, fam, &mo, &m));
+  T_OK(ctx, pdk_particles_field_add(p, "u_exact", PDK_F64, 2));
+  T_OK(ctx, pdk_particles_field_add(p, "b_mms", PDK_F64, 2));
+  const double *X = pdk_particles_X(p, 0), *Y = pdk_particles_X(p, 1), *V = pdk_particles_volume(p);
+  const double kb = M_PI * M_PI / 2 * (pg_lambda() + 2 * pg_mu());
+  for (pdk_index k = 0; k < n; ++k) {
+    double u[2];
+    pg_mms_exact(problem, X[k], Y[k], u);
+    for (int c = 0; c < 2; ++c) {
+      ((double *)pdk_particles_field_data(p, "u_exact", c))[k] = u[c];
+      ((double *)pdk_particles_field_data(p, "b_mms", c))[k] = problem == 1 ? kb * u[c] : 0.0;
+    }
+  }
+  pdk_bc bcs[2];
+  memset(bcs, 0, sizeof bcs);
+  bcs[0].kind = PDK_BC_DISPLACEMENT;
+  bcs[0].set = "set:surface";
+  bcs[0].components = 3;
+  bcs[0].value[0] = bcs[0].value[1] = pdk_tfun_constant(1.0);
+  bcs[0].scale_field = "u_exact";
+  bcs[1].kind = PDK_BC_BODY_FORCE;
+  bcs[1].set = NULL;
+  bcs[1].components = 3;
+  bcs[1].value[0] = bcs[1].value[1] = pdk_tfun_constant(1.0);
+  bcs[1].scale_field = "b_mms";
+  pdk_static_opts so = pdk_static_opts_default(PDK_STATIC_NEWTON);
+  so.bcs = bcs;
+  so.num_bcs = problem == 1 ? 2 : 1;
+  so.rtol = 1e-12;
+  pdk_static *s;
+  T_OK(ctx, pdk_static_create(m, &so, &s));
+  T_OK(ctx, pdk_static_solve(s));
+  if (iters) *iters = pdk_static_stats_get(s)->iterations;
+  pdk_static_destroy(&s);
+  if (cpu) *cpu = pg_cpu_seconds() - c0;
+  const double *x[2] = {pdk_particles_field_data(p, "x", 0), pdk_particles_field_data(p, "x", 1)};
+  double e = 0.0, nn = 0.0;
+  for (pdk_index k = 0; k < n; ++k) {
+    double u[2];
+    pg_mms_exact(problem, X[k], Y[k], u);
+    const double uh[2] = {x[0][k] - X[k], x[1][k] - Y[k]};
+    for (int c = 0; c < 2; ++c) {
+      e += V[k] * (uh[c] - u[c]) * (uh[c] - u[c]);
+      nn += V[k] * u[c] * u[c];
+    }
+  }
+  pdk_model_destroy(&m);
+  pdk_families_destroy(&fam);
+  pdk_particles_destroy(&p);
+  return sqrt(e / nn);
 }
 
 #endif
