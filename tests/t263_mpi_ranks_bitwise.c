@@ -15,26 +15,12 @@
  * Skipped (77) when the build has no MPI or no mpiexec is on PATH. Oversubscribed: the host may
  * have fewer cores than ranks. Files go to $PDK_BUILD_DIR/tests/t263_mpi_ranks_bitwise.work.
  * labels: mpi scene */
-#include "test_util.h"
+#include "file_util.h"
 #include "h5_same.h"
-
-static char *slurp(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  T_ASSERT(f, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  const long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *s = malloc((size_t)n + 1);
-  T_ASSERT(s && fread(s, 1, (size_t)n, f) == (size_t)n, "cannot read %s", path);
-  s[n] = '\0';
-  fclose(f);
-  *len = (size_t)n;
-  return s;
-}
 
 static void same_bytes(const char *a, const char *b) {
   size_t na, nb;
-  char *x = slurp(a, &na), *y = slurp(b, &nb);
+  char *x = slurp_n(a, &na), *y = slurp_n(b, &nb);
   T_ASSERT(na == nb && !memcmp(x, y, na), "%s and %s differ (%zu and %zu bytes)", a, b, na, nb);
   free(x);
   free(y);
@@ -43,8 +29,9 @@ static void same_bytes(const char *a, const char *b) {
 /* The "broken" column (the 6th) of the last row of a history CSV. */
 static double last_broken(const char *path) {
   size_t n;
-  char *s = slurp(path, &n);
-  while (n > 0 && s[n - 1] == '\n') s[--n] = '\0';
+  char *s = slurp_n(path, &n);
+  while (n > 0 && s[n - 1] == '\n')
+    s[--n] = '\0';
   char *row = strrchr(s, '\n');
   T_ASSERT(row, "%s: no data row", path);
   char *p = row + 1;
@@ -80,17 +67,17 @@ int main(void) {
       char mpi[256] = "";
       if (ranks[r])
         snprintf(mpi, sizeof mpi,
-                 "mpiexec --oversubscribe --allow-run-as-root -x PDK_NUM_THREADS -n %d ",
-                 ranks[r]);
+                 "mpiexec --oversubscribe --allow-run-as-root -x PDK_NUM_THREADS -n %d ", ranks[r]);
       /* the thread count from the environment: --threads would enter the scene text the
        * output and the checkpoint store */
       snprintf(cmd, sizeof cmd,
-               "rm -rf '%s/%s_%d' && cd '%s' && PDK_NUM_THREADS=%d %s'%s/pdk' run '%s/tests/scenes/%s.yaml' %s "
+               "rm -rf '%s/%s_%d' && cd '%s' && PDK_NUM_THREADS=%d %s'%s/pdk' run "
+               "'%s/tests/scenes/%s.yaml' %s "
                "-o '%s/%s_%d' > '%s/%s_%d.log' 2>&1",
                work, scenes[s], ranks[r], work, threads[r], mpi, build, src, scenes[s], sets[s],
                work, scenes[s], ranks[r], work, scenes[s], ranks[r]);
-      T_ASSERT(system(cmd) == 0, "the run failed (see %s/%s_%d.log): %s", work, scenes[s],
-               ranks[r], cmd);
+      T_ASSERT(system(cmd) == 0, "the run failed (see %s/%s_%d.log): %s", work, scenes[s], ranks[r],
+               cmd);
     }
     snprintf(a, sizeof a, "%s/%s_0/%s_history.csv", work, scenes[s], scenes[s]);
     const double broken = last_broken(a);

@@ -2,8 +2,8 @@
  * saying to run on one rank (docs/scaling.md), and model.stencil auto takes the general path there.
  * Under `mpiexec -n 2`, each of these exits non-zero with its message on stderr:
  *   solver.type adr (tests/scenes/t094_static.yaml)      "solver.type adr runs on one rank only"
- *   model.kind oterkus (t263_pmb_2d.yaml, --set)         "model kind 'oterkus' runs on one rank only"
- *   correspondence with model.stencil auto               "... with model.stencil auto or on"
+ *   model.kind oterkus (t263_pmb_2d.yaml, --set)         "model kind 'oterkus' runs on one rank
+ * only" correspondence with model.stencil auto               "... with model.stencil auto or on"
  *   correspondence with model.connectivity semi_tl       "... with model.connectivity semi_tl"
  *   model.layout sell                                    "model.layout sell runs on one rank only"
  *   model.stencil on                                     "model.stencil on runs on one rank only"
@@ -14,22 +14,9 @@
  * Skipped (77) when the build has no MPI or no mpiexec is on PATH.
  * Files go to $PDK_BUILD_DIR/tests/t264_mpi_refusals.work.
  * labels: mpi scene */
-#include "test_util.h"
+#include "file_util.h"
 
 static char work[1024], src[512], build[512];
-
-static char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  T_ASSERT(f, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  const long n = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *s = malloc((size_t)n + 1);
-  T_ASSERT(s && fread(s, 1, (size_t)n, f) == (size_t)n, "cannot read %s", path);
-  s[n] = '\0';
-  fclose(f);
-  return s;
-}
 
 /* pdk run with `args` on `ranks` ranks (0: no mpiexec); its exit status, stderr into tag.log. */
 static int run(int ranks, const char *tag, const char *args) {
@@ -71,9 +58,10 @@ int main(void) {
   refused("static", args, "solver.type adr runs on one rank only");
   snprintf(args, sizeof args, "%s -o oterkus --set model.kind=oterkus --set solver.steps=2", pmb);
   refused("oterkus", args, "model kind 'oterkus' runs on one rank only");
-  snprintf(args, sizeof args,
-           "%s -o corr --set model.kind=correspondence --set model.stencil=auto --set solver.steps=2",
-           pmb);
+  snprintf(
+      args, sizeof args,
+      "%s -o corr --set model.kind=correspondence --set model.stencil=auto --set solver.steps=2",
+      pmb);
   refused("corr_stencil", args, "model kind 'correspondence' with model.stencil auto or on");
   snprintf(args, sizeof args,
            "%s -o semi --set model.kind=correspondence --set model.connectivity=semi_tl "
@@ -87,8 +75,9 @@ int main(void) {
   /* a checkpoint of one rank, restarted on two */
   snprintf(args, sizeof args, "%s -o ck --set solver.steps=20", pmb);
   T_ASSERT(run(0, "ck", args) == 0, "the one-rank run for the checkpoint failed (ck.log)");
-  snprintf(args, sizeof args, "%s -o ck2 --set solver.steps=40 --restart '%s/ck/t263_pmb_2d_checkpoint.h5'",
-           pmb, work);
+  snprintf(args, sizeof args,
+           "%s -o ck2 --set solver.steps=40 --restart '%s/ck/t263_pmb_2d_checkpoint.h5'", pmb,
+           work);
   refused("restart", args, "a restart runs on one rank only");
 
   /* stencil auto on two ranks = stencil off on one */

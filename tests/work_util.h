@@ -1,11 +1,12 @@
 /* A test's folder for the files it writes ($PDK_BUILD_DIR/tests/<test>.work) and the small file
- * helpers the scene tests share: write a text file into it, read a whole file back. */
+ * helpers the scene tests share: write a text file into it; reading a whole file back: file_util.h.
+ */
 #ifndef PDK_TEST_WORK_UTIL_H
 #define PDK_TEST_WORK_UTIL_H
 
 #include <sys/stat.h>
 
-#include "test_util.h"
+#include "file_util.h"
 
 static char work[512];
 
@@ -29,20 +30,6 @@ static inline FILE *work_open(const char *name) {
 static inline void write_file(const char *name, const char *text) {
   FILE *f = work_open(name);
   T_ASSERT(fputs(text, f) >= 0 && fclose(f) == 0, "cannot write %s/%s", work, name);
-}
-
-/* The whole file, NUL-terminated (the caller frees it). */
-static inline char *slurp(const char *path) {
-  FILE *f = fopen(path, "rb");
-  T_ASSERT(f, "cannot open %s", path);
-  fseek(f, 0, SEEK_END);
-  long len = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *buf = malloc((size_t)len + 1);
-  T_ASSERT(buf && fread(buf, 1, (size_t)len, f) == (size_t)len, "cannot read %s", path);
-  buf[len] = '\0';
-  fclose(f);
-  return buf;
 }
 
 #endif
